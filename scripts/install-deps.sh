@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package igm needs to build, test and fuzz.
+set -euo pipefail
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+PKGS="build-essential cmake libgmp-dev libboost-dev libeigen3-dev doctest-dev clang libclang-rt-14-dev"
+missing=""
+for p in $PKGS; do
+  dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"
+done
+if [ -n "$missing" ] || [ "${IGM_FORCE_APT:-0}" = 1 ]; then
+  echo "[install-deps] apt-get install$missing"
+  $SUDO apt-get update
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y --no-install-recommends $PKGS
+else
+  echo "[install-deps] all packages present"
+fi

@@ -1,0 +1,109 @@
+#include <doctest/doctest.h>
+
+#include <random>
+#include <set>
+
+#include "igm/core/error.h"
+#include "igm/mesh/generate.h"
+#include "igm/mesh/trimesh.h"
+
+using namespace igm;
+
+namespace {
+std::vector<std::array<int, 3>> triangles_of(const PolygonSoup& s) {
+  std::vector<std::array<int, 3>> t;
+  for (std::size_t f = 0; f < s.num_faces(); ++f) {
+    const auto* c = &s.corners[s.face_begin[f]];
+    t.push_back({int(c[0]), int(c[1]), int(c[2])});
+  }
+  return t;
+}
+int euler(const TriMesh& m) { return m.num_vertices() - m.num_edges() + m.num_faces(); }
+const std::vector<std::array<int, 3>> kTetra = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+}  // namespace
+
+TEST_CASE("tetrahedron builds with closed fans") {
+  TriMesh m = TriMesh::from_triangles(4, kTetra);
+  CHECK(m.check_invariants() == "");
+  CHECK(m.num_edges() == 6);
+  for (int v = 0; v < 4; ++v) CHECK(m.valence(v) == 3);
+  CHECK(m.find_halfedge(0, 2) >= 0);
+  CHECK(m.target(m.find_halfedge(0, 2)) == 2);
+}
+
+TEST_CASE("from_triangles rejects boundary, non-manifold and inconsistent orientation") {
+  auto open = kTetra;
+  open.pop_back();
+  CHECK_THROWS_AS(TriMesh::from_triangles(4, open), Error);
+  try {
+    TriMesh::from_triangles(4, open);
+  } catch (const Error& e) {
+    CHECK(e.kind() == ErrorKind::Boundary);
+  }
+  auto flipped = kTetra;
+  std::swap(flipped[0][1], flipped[0][2]);
+  try {
+    TriMesh::from_triangles(4, flipped);
+    FAIL("accepted an inconsistently oriented mesh");
+  } catch (const Error& e) {
+    CHECK(e.kind() == ErrorKind::NonManifoldEdge);
+  }
+  try {
+    TriMesh::from_triangles(3, kTetra);
+    FAIL("accepted an out-of-range vertex");
+  } catch (const Error& e) {
+    CHECK(e.kind() == ErrorKind::IndexOutOfRange);
+  }
+}
+
+TEST_CASE("random edge and face splits keep every invariant and the Euler characteristic") {
+  TriMesh m = TriMesh::from_triangles(4, kTetra);
+  std::mt19937 rng(7);
+  for (int step = 0; step < 2000; ++step) {
+    if (rng() % 2) {
+      int h = int(rng() % m.num_halfedges());
+      int a = m.origin(h), b = m.target(h);
+      int v = m.split_edge(h);
+      CHECK(m.find_halfedge(a, v) >= 0);
+      CHECK(m.find_halfedge(v, b) >= 0);
+      CHECK(m.find_halfedge(a, b) == -1);
+      CHECK(m.valence(v) == 4);
+    } else {
+      int v = m.split_face(int(rng() % m.num_faces()));
+      CHECK(m.valence(v) == 3);
+    }
+    if (step % 97 == 0) REQUIRE(m.check_invariants() == "");
+  }
+  REQUIRE(m.check_invariants() == "");
+  CHECK(euler(m) == 2);
+}
+
+TEST_CASE("generated meshes are closed manifolds of the requested genus") {
+  for (int g : {0, 1, 2, 3, 5, 12, 40}) {
+    for (std::int64_t faces : {16, 1000, 20000}) {
+      GenerateOptions o;
+      o.genus = g;
+      o.faces = faces;
+      o.seed = std::uint64_t(g * 131 + faces);
+      PolygonSoup s = generate_closed_mesh(o);
+      TriMesh m = TriMesh::from_triangles(int(s.positions.size()), triangles_of(s));
+      INFO("genus " << g << " faces " << faces);
+      REQUIRE(m.check_invariants() == "");
+      CHECK(euler(m) == 2 - 2 * g);
+      if (faces >= 1000) CHECK(m.num_faces() <= 3 * faces);
+    }
+  }
+}
+
+TEST_CASE("generator is deterministic for a seed and varies with it") {
+  GenerateOptions o;
+  o.genus = 3;
+  o.faces = 3000;
+  auto a = generate_closed_mesh(o), b = generate_closed_mesh(o);
+  CHECK(a.corners == b.corners);
+  o.seed = 2;
+  auto c = generate_closed_mesh(o);
+  CHECK(a.corners != c.corners);
+  o.genus = -1;
+  CHECK_THROWS_AS(generate_closed_mesh(o), Error);
+}
