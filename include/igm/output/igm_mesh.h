@@ -1,0 +1,35 @@
+#pragma once
+// The artefacts of a run: the IGM (triangle mesh with exact per-corner UV) and the quad mesh,
+// and their writers. File formats:
+//  - NAME.igm.obj   : `v x y z`, one `vt u v` per face corner (doubles, %.17g of the exact value,
+//                     rounded toward zero), `f a/ta b/tb c/tc` (1-based) — readable by libQEx.
+//  - NAME.igm.exact : the same with exact `vt p/q r/s` rationals (the certified artefact; the
+//                     certifier reads it exactly, see certify/README.md).
+//  - NAME.quad.obj  : `v x y z`, `f a b c d`.
+#include <array>
+#include <iosfwd>
+#include <vector>
+
+#include "igm/exact/predicates.h"
+
+namespace igm {
+
+struct IgmMesh {
+  std::vector<Vec3d> positions;                 // per vertex (rounded from exact positions)
+  std::vector<std::array<int, 3>> triangles;    // ccw
+  std::vector<std::array<Point2q, 3>> corner_uv;  // per face corner, exact
+};
+
+struct QuadMesh {
+  std::vector<Vec3d> positions;
+  std::vector<std::array<int, 4>> quads;  // ccw
+};
+
+/// Writes the IGM with double UVs (exact == false) or exact rational UVs (exact == true).
+/// Pre: corner_uv.size() == triangles.size(). Cost O(F) (plus the size of the rationals).
+void write_igm_obj(std::ostream& out, const IgmMesh& igm, bool exact);
+
+/// Writes the quad mesh as OBJ.
+void write_quad_obj(std::ostream& out, const QuadMesh& quads);
+
+}  // namespace igm
