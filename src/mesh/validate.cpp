@@ -94,8 +94,10 @@ struct Collector {
     ++count;
     for (std::int64_t id : ids)
       if (elements.size() < kMaxElements) elements.push_back(id);
-    if (examples.size() < kMaxNamed) examples.push_back(example);
+    if (!example.empty() && examples.size() < kMaxNamed) examples.push_back(example);
   }
+  // Whether a new example would still be named (callers skip building the text otherwise).
+  bool named() const { return examples.size() < kMaxNamed; }
   std::string list() const {
     std::string s;
     for (std::size_t i = 0; i < examples.size(); ++i) {
@@ -190,12 +192,12 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
     const std::int64_t* c = soup.corners.data() + soup.face_begin[f];
     const std::size_t k = soup.face_size(f);
     const auto fid = static_cast<std::int64_t>(f);
-    if (k < 3) small.add(fid, "face " + std::to_string(f) + " has " + std::to_string(k) + " corners");
+    if (k < 3) small.add(fid, !small.named() ? std::string() : "face " + std::to_string(f) + " has " + std::to_string(k) + " corners");
     bool bad = false;
     for (std::size_t i = 0; i < k; ++i)
       if (c[i] < 0 || c[i] >= static_cast<std::int64_t>(nv)) {
         if (!bad)
-          out_of_range.add(fid, "face " + std::to_string(f) + " uses vertex " + std::to_string(c[i]) +
+          out_of_range.add(fid, !out_of_range.named() ? std::string() : "face " + std::to_string(f) + " uses vertex " + std::to_string(c[i]) +
                                     (c[i] < 0 ? " (negative)" : ""));
         bad = true;
       } else {
@@ -205,7 +207,7 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
     std::sort(sorted.begin(), sorted.end());
     const auto dup = std::adjacent_find(sorted.begin(), sorted.end());
     if (dup != sorted.end())
-      repeated.add(fid, "face " + std::to_string(f) + " uses vertex " + std::to_string(*dup) + " twice");
+      repeated.add(fid, !repeated.named() ? std::string() : "face " + std::to_string(f) + " uses vertex " + std::to_string(*dup) + " twice");
   }
   emit(ErrorKind::InvalidArgument, small,
        plural(small.count, "face has", "faces have") + " fewer than 3 corners: " + small.list());
@@ -221,7 +223,7 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
   for (std::size_t v = 0; v < nv; ++v) {
     a.keep_vertex[v] = referenced[v] || !opt.drop_unreferenced;
     if (!referenced[v]) ++r.unreferenced_vertices;
-    if (a.keep_vertex[v] && !is_finite(soup.positions[v])) non_finite.add(static_cast<std::int64_t>(v), "vertex " + std::to_string(v));
+    if (a.keep_vertex[v] && !is_finite(soup.positions[v])) non_finite.add(static_cast<std::int64_t>(v), !non_finite.named() ? std::string() : "vertex " + std::to_string(v));
   }
   emit(ErrorKind::NonFinite, non_finite,
        plural(non_finite.count, "vertex has", "vertices have") + " a NaN or infinite coordinate: " + non_finite.list());
@@ -286,7 +288,7 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
     ++r.edges;
     const int h1 = keys[i].second;
     const int u = origin(h1), w = origin(hnext(h1));
-    const std::string edge = "edge (" + std::to_string(std::min(u, w)) + ", " + std::to_string(std::max(u, w)) + ")";
+    auto edge = [&] { return "edge (" + std::to_string(std::min(u, w)) + ", " + std::to_string(std::max(u, w)) + ")"; };
     if (j - i == 1) {
       boundary.push_back(h1);
     } else if (j - i == 2) {
@@ -296,7 +298,7 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
       corners.unite(hnext(h1), same ? hnext(h2) : h2);
       const int f1 = a.tri_face[h1 / 3], f2 = a.tri_face[h2 / 3];
       if (same)
-        inconsistent.add_ids({f1, f2}, edge + " in faces " + std::to_string(f1) + " and " + std::to_string(f2));
+        inconsistent.add_ids({f1, f2}, !inconsistent.named() ? std::string() : edge() + " in faces " + std::to_string(f1) + " and " + std::to_string(f2));
     } else {
       std::vector<std::int64_t> faces;
       int diag_face = -1;
@@ -305,8 +307,11 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
         faces.push_back(a.tri_face[h / 3]);
         if (diagonal[h]) diag_face = a.tri_face[h / 3];
       }
-      std::string ex = edge + " has " + std::to_string(j - i) + " faces (" + ids_text(faces, 8) + ")";
-      if (diag_face >= 0) ex += ", made by the fan triangulation of polygon " + std::to_string(diag_face);
+      std::string ex;
+      if (nm_edges.named()) {
+        ex = edge() + " has " + std::to_string(j - i) + " faces (" + ids_text(faces, 8) + ")";
+        if (diag_face >= 0) ex += ", made by the fan triangulation of polygon " + std::to_string(diag_face);
+      }
       nm_edges.add_ids(faces, ex);
     }
     i = j;
@@ -323,7 +328,7 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
     if (corners.find(int(h)) == int(h)) ++fans[origin(int(h))];
   Collector nm_vertices;
   for (std::size_t v = 0; v < nv; ++v)
-    if (fans[v] > 1) nm_vertices.add(static_cast<std::int64_t>(v), "vertex " + std::to_string(v) + " (" + std::to_string(fans[v]) + " fans)");
+    if (fans[v] > 1) nm_vertices.add(static_cast<std::int64_t>(v), !nm_vertices.named() ? std::string() : "vertex " + std::to_string(v) + " (" + std::to_string(fans[v]) + " fans)");
   r.non_manifold_vertices = nm_vertices.count;
   emit(ErrorKind::NonManifoldVertex, nm_vertices,
        plural(nm_vertices.count, "vertex has", "vertices have") + " faces forming more than one fan: " + nm_vertices.list());
@@ -399,7 +404,7 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
       const int root = loops.find(origin(h));
       if (length[root] == 0) continue;  // loop already reported
       const int u = origin(h), w = origin(hnext(h));
-      bl.add(a.tri_face[h / 3], "a loop of " + plural(length[root], "edge", "edges") + " through edge (" + std::to_string(u) +
+      bl.add(a.tri_face[h / 3], !bl.named() ? std::string() : "a loop of " + plural(length[root], "edge", "edges") + " through edge (" + std::to_string(u) +
                                     ", " + std::to_string(w) + ") of face " + std::to_string(a.tri_face[h / 3]));
       length[root] = 0;
     }
