@@ -1,0 +1,210 @@
+// Runs the `igm` binary (IGM_CLI_PATH) and checks exit codes and output.
+#include <doctest/doctest.h>
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+#include "test_data.h"
+
+namespace {
+
+struct Run {
+  int code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::filesystem::path tmp_dir() {
+  const auto d = std::filesystem::temp_directory_path() / ("igm-cli-test-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+Run igm(const std::string& args) {
+  const auto d = tmp_dir();
+  const std::string cmd = quote(IGM_CLI_PATH) + " " + args + " >" + quote((d / "out").string()) + " 2>" + quote((d / "err").string());
+  const int status = std::system(cmd.c_str());
+  Run r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(d / "out");
+  r.err = slurp(d / "err");
+  return r;
+}
+
+bool has(const std::string& text, const std::string& needle) { return text.find(needle) != std::string::npos; }
+
+}  // namespace
+
+TEST_CASE("igm without arguments runs info on a generated genus-2 mesh") {
+  const Run r = igm("");
+  CHECK(r.code == 0);
+  CHECK(has(r.out, "built-in generated mesh"));
+  CHECK(has(r.out, "genus: 2\n"));
+  CHECK(has(r.out, "status: valid"));
+}
+
+TEST_CASE("help and usage errors") {
+  for (const char* a : {"--help", "help", "-h"}) {
+    const Run r = igm(a);
+    CHECK(r.code == 0);
+    CHECK(has(r.out, "usage:"));
+    CHECK(has(r.out, "igm info MESH"));
+    CHECK(has(r.out, "igm generate --genus G --faces N"));
+  }
+  for (const char* a : {"--bogus", "bogus", "info", "info a.off b.off", "info --x", "generate", "generate --genus 2 x.obj",
+                        "generate --genus 2 --faces 100", "generate --genus two --faces 100 x.obj",
+                        "generate --genus 2 --faces 100 --seed", "generate --genus 2 --faces 100 x.ply",
+                        "generate --genus 2 --faces 100 --color red x.obj", "help me"}) {
+    CAPTURE(a);
+    const Run r = igm(a);
+    CHECK(r.code == 2);
+    CHECK(has(r.err, "usage:"));
+    CHECK(r.out.empty());
+  }
+}
+
+TEST_CASE("generate writes a mesh that info accepts with the requested genus") {
+  const auto d = tmp_dir();
+  for (int g : {0, 1, 4}) {
+    for (const char* ext : {".obj", ".off"}) {
+      const std::string out = (d / ("gen" + std::to_string(g) + ext)).string();
+      const Run w = igm("generate --genus " + std::to_string(g) + " --faces 500 --seed 7 " + quote(out));
+      CHECK(w.code == 0);
+      CHECK(has(w.out, "genus " + std::to_string(g)));
+      const Run r = igm("info " + quote(out));
+      CHECK(r.code == 0);
+      CHECK(has(r.out, "genus: " + std::to_string(g) + "\n"));
+      CHECK(has(r.out, "boundary loops: 0\n"));
+      CHECK(has(r.out, "components: 1\n"));
+      CHECK(r.err.empty());
+    }
+  }
+  // Same seed, same file; another seed, another file.
+  igm("generate --genus 1 --faces 300 --seed 1 " + quote((d / "a.obj").string()));
+  igm("generate --genus 1 --faces 300 --seed 1 " + quote((d / "b.obj").string()));
+  igm("generate --genus 1 --faces 300 --seed 2 " + quote((d / "c.obj").string()));
+  CHECK(slurp(d / "a.obj") == slurp(d / "b.obj"));
+  CHECK(slurp(d / "a.obj") != slurp(d / "c.obj"));
+  const Run bad = igm("generate --genus 1 --faces 300 " + quote((d / "no-such-dir" / "x.obj").string()));
+  CHECK(bad.code == 2);
+  CHECK(has(bad.err, "io"));
+  std::filesystem::remove_all(d);
+}
+
+TEST_CASE("info on shared meshes: exit codes and the named problems") {
+  IGM_REQUIRE_DATA(dir);
+  const auto m = dir / "meshes";
+  {
+    const Run r = igm("info " + quote((m / "clean" / "elephant.off").string()));
+    CHECK(r.code == 0);
+    CHECK(has(r.out, "vertices: 2775\n"));
+    CHECK(has(r.out, "faces: 5558\n"));
+    CHECK(has(r.out, "edges: 8337\n"));
+    CHECK(has(r.out, "genus: 3\n"));
+    CHECK(r.err.empty());
+  }
+  {
+    const Run r = igm("info " + quote((m / "polygonal" / "3torus.off").string()));
+    CHECK(r.code == 0);
+    CHECK(has(r.out, "genus: 3\n"));
+    CHECK(has(r.out, "warning: triangulated 23 polygons"));
+  }
+  {
+    const Run r = igm("info " + quote((m / "repairable" / "cube-shuffled.off").string()));
+    CHECK(r.code == 0);
+    CHECK(has(r.out, "inconsistently oriented edges: 9\n"));
+    CHECK(has(r.out, "warning: re-oriented"));
+  }
+  {
+    const Run r = igm("info " + quote((m / "repairable" / "prim.off").string()));
+    CHECK(r.code == 0);
+    CHECK(has(r.out, "warning: dropped 3 unreferenced vertices"));
+  }
+  struct Case {
+    const char* file;
+    const char* first;
+    std::vector<std::string> lines;
+  };
+  const Case cases[] = {
+      {"b9.ply", "no_faces", {"problem: no_faces"}},
+      {"blobby_3cc.off", "boundary", {"components: 3\n", "boundary loops: 4\n", "problem: several_components (3)"}},
+      {"degtri_sliding.off", "boundary", {"boundary loops: 1\n"}},
+      {"double-torus-3-holes.off", "boundary", {"boundary loops: 3\n"}},
+      {"knot2.off", "several_components", {"components: 2\n"}},
+      {"pig.stl", "non_manifold_vertex", {"non-manifold vertices: 421\n", "boundary loops: 5\n", "problem: boundary (5)"}},
+      {"polygon_mesh.off", "non_manifold_vertex", {"non-manifold vertices: 2\n", "boundary loops: 14\n", "  elements: 4113 4349\n"}},
+  };
+  for (const Case& c : cases) {
+    CAPTURE(c.file);
+    const Run r = igm("info " + quote((m / "invalid" / c.file).string()));
+    CHECK(r.code == 2);
+    CHECK(has(r.err, std::string("invalid mesh: ") + c.first));
+    CHECK(has(r.out, std::string("problem: ") + c.first));
+    CHECK(has(r.out, "status: invalid"));
+    for (const std::string& l : c.lines) CHECK(has(r.out, l));
+  }
+}
+
+TEST_CASE("info on unreadable files: exit 2 with the reason on stderr") {
+  const auto d = tmp_dir();
+  {
+    const Run r = igm("info " + quote((d / "missing.off").string()));
+    CHECK(r.code == 2);
+    CHECK(has(r.err, "no such file"));
+  }
+  {
+    std::ofstream(d / "x.txt") << "hello";
+    const Run r = igm("info " + quote((d / "x.txt").string()));
+    CHECK(r.code == 2);
+    CHECK(has(r.err, "unknown mesh file extension"));
+  }
+  {
+    std::ofstream(d / "trunc.off") << "OFF\n4 4 0\n0.0000 0.0000 0.0000\n1.0000 0.0000 0.0000\n0.0000 1.0000 0.0000\n"
+                                       "0.0000 0.0000 1.0000\n3 0 1 2\n3 0";
+    const Run r = igm("info " + quote((d / "trunc.off").string()));
+    CHECK(r.code == 2);
+    CHECK(has(r.err, "parse: line 8: face 1: expected 3 vertex indices"));
+    // So short that the declared counts cannot fit: rejected before reading on.
+    std::ofstream(d / "short.off") << "OFF\n4 4 0\n0 0 0\n";
+    const Run s = igm("info " + quote((d / "short.off").string()));
+    CHECK(s.code == 2);
+    CHECK(has(s.err, "too_large: OFF header declares 4 vertices and 4 faces but only"));
+  }
+  {
+    std::ofstream(d / "huge.ply", std::ios::binary)
+        << "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000000\nproperty float x\nproperty float y\n"
+           "property float z\nend_header\n"
+        << std::string(100, '\0');
+    const Run r = igm("info " + quote((d / "huge.ply").string()));
+    CHECK(r.code == 2);
+    CHECK(has(r.err, "too_large"));
+  }
+  {
+    std::string garbage;
+    for (int i = 0; i < 5000; ++i) garbage += static_cast<char>((i * 7919 + 13) % 256);
+    std::ofstream(d / "garbage.stl", std::ios::binary) << garbage;
+    const Run r = igm("info " + quote((d / "garbage.stl").string()));
+    CHECK(r.code == 2);
+    CHECK(has(r.err, "cannot read"));
+  }
+  std::filesystem::remove_all(d);
+}
