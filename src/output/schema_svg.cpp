@@ -18,7 +18,7 @@ void write_schema_svg(std::ostream& out, const SchemaDrawing& d, std::size_t max
   const double size = 800, margin = 40;
   const double span = std::max({hi_x - lo_x, hi_y - lo_y, 1e-300});
   const double scale = (size - 2 * margin) / span;
-  char buf[160];
+  char buf[256];
   auto X = [&](const Vec2d& p) { return margin + (p.x - lo_x) * scale; };
   auto Y = [&](const Vec2d& p) { return size - margin - (p.y - lo_y) * scale; };
   auto line = [&](const Vec2d& a, const Vec2d& b, const char* style) {
@@ -39,9 +39,10 @@ void write_schema_svg(std::ostream& out, const SchemaDrawing& d, std::size_t max
     const std::size_t pair = s < d.side_pair.size() ? static_cast<std::size_t>(d.side_pair[s]) : s;
     const std::size_t key = std::min(s, pair);
     const double hue = n ? 360.0 * static_cast<double>(key) / static_cast<double>(n) * 1.618 : 0;
-    std::snprintf(buf, sizeof buf, "stroke=\"hsl(%.0f,75%%,45%%)\" stroke-width=\"5\"",
+    char style[64];
+    std::snprintf(style, sizeof style, "stroke=\"hsl(%.0f,75%%,45%%)\" stroke-width=\"5\"",
                   hue - 360.0 * static_cast<long>(hue / 360.0));
-    line(d.polygon[s], d.polygon[(s + 1) % n], buf);
+    line(d.polygon[s], d.polygon[(s + 1) % n], style);
   }
   out << "</g>\n<g>\n";
   for (const Vec2d& c : d.cones) {
