@@ -17,6 +17,7 @@
 #include "igm/io/write_mesh.h"
 #include "igm/mesh/generate.h"
 #include "igm/mesh/validate.h"
+#include "run_command.h"
 
 namespace {
 
@@ -35,8 +36,13 @@ struct Command {
 int cmd_help(const Args& args);
 int cmd_info(const Args& args);
 int cmd_generate(const Args& args);
+int cmd_run(const Args& args) { return igm_cli::run_command(args); }
 
 const Command kCommands[] = {
+    {"run", "igm run MESH [-o DIR] [--resolution N] [--root V]\n"
+            "                                the whole pipeline: certified IGM, quad mesh, certificate, schema picture\n"
+            "                                (writes DIR/NAME.igm.obj .igm.exact .quad.obj .cert.json .schema.svg; DIR=out)",
+     cmd_run},
     {"info", "igm info MESH                 read MESH (.obj .off .ply .stl), validate it, print what was found", cmd_info},
     {"generate", "igm generate --genus G --faces N [--seed S] OUT.(obj|off)\n"
                  "                                write a generated closed mesh of genus G with about N faces",
@@ -48,10 +54,11 @@ void print_usage(std::FILE* out) {
   std::fprintf(out,
                "igm: integer grid maps of closed orientable triangle meshes\n\n"
                "usage:\n"
-               "  igm                           (for now) `info` on a built-in generated mesh of genus 2\n");
+               "  igm                           `run` on a built-in generated mesh of genus 2 (outputs in ./out)\n");
   for (const Command& c : kCommands) std::fprintf(out, "  %s\n", c.usage);
   std::fprintf(out,
-               "\nexit codes: 0 success (info: the mesh is valid after repairs), 2 invalid or unreadable\n"
+               "\nexit codes: 0 success (info: the mesh is valid after repairs; run: outputs certified), 1 (run) the\n"
+               "certifier rejected an output, 2 invalid or unreadable\n"
                "input, or a usage error. Element ids in messages are 0-based (vertices and faces in file order).\n");
 }
 
@@ -130,16 +137,6 @@ int cmd_info(const Args& args) {
   return print_report(path, igm::inspect(soup));
 }
 
-int cmd_default() {
-  std::printf("igm: no arguments: running `info` on a built-in generated mesh (genus 2, ~2000 faces); "
-              "see `igm --help`\n");
-  igm::GenerateOptions o;
-  o.genus = 2;
-  o.faces = 2000;
-  o.seed = 1;
-  return print_report("<generated genus 2>", igm::inspect(igm::generate_closed_mesh(o)));
-}
-
 bool parse_int(std::string_view s, std::int64_t& out) {
   auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
   return ec == std::errc() && p == s.data() + s.size();
@@ -199,7 +196,7 @@ int cmd_generate(const Args& args) {
 
 int main(int argc, char** argv) {
   try {
-    if (argc < 2) return cmd_default();
+    if (argc < 2) return igm_cli::run_default();
     const std::string_view name = argv[1];
     if (name == "--help" || name == "-h") return cmd_help({});
     const Args rest(argv + 2, argv + argc);

@@ -1,0 +1,63 @@
+#pragma once
+// The whole pipeline on a validated mesh: topology -> embed -> arrange -> igm -> extract ->
+// certify (design.md). Returns the IGM, the quad mesh and the certifier's reports on both.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "certify/certify.h"
+#include "igm/embed/tutte.h"
+#include "igm/mesh/validate.h"
+#include "igm/output/igm_mesh.h"
+#include "igm/output/schema_svg.h"
+#include "igm/topology/cut_to_canonical_disk.h"
+
+namespace igm {
+
+/// Reported after each stage through PipelineOptions::progress (the library never prints).
+struct StageEvent {
+  std::string stage;   // "topology", "embed", "arrange", "igm", "extract", "certify"
+  double seconds = 0;  // wall time of the stage
+  std::string detail;  // one line of numbers for humans
+};
+
+struct PipelineOptions {
+  int resolution = 2;  // N: the quad mesh has N x N quads per layout quad (N >= 1)
+  int root = -1;       // root vertex of the loops (-1: deterministic default)
+  TutteOptions tutte;
+  std::size_t max_witnesses = 20;
+  std::function<void(const StageEvent&)> progress;  // optional
+};
+
+struct PipelineStats {
+  int genus = 0;
+  int input_vertices = 0, input_faces = 0;
+  int refined_vertices = 0, refined_faces = 0;  // after the topology stage's splits
+  int output_vertices = 0, output_triangles = 0;  // the IGM triangle mesh
+  int layout_quads = 0, quads = 0;
+  std::size_t max_uv_bits = 0;  // largest bit_size of an exact UV coordinate
+  CutStats cut;
+  TutteStats tutte;
+  std::vector<StageEvent> stages;
+};
+
+struct PipelineResult {
+  IgmMesh igm;                       // refinement of the input, exact per-corner UV
+  QuadMesh quads;                    // N x N quads per layout quad
+  certify::Report igm_report;        // certifier checks 1-4 on `igm`
+  certify::Report quad_report;       // certifier check 5 on `quads` (expected genus = input genus)
+  SchemaDrawing schema;              // the polygonal schema, for the SVG picture
+  PipelineStats stats;
+  bool certified() const { return igm_report.valid() && quad_report.valid(); }
+};
+
+/// Computes a certified IGM of a closed orientable mesh of genus g >= 1 (paper §4–5): loops and
+/// cut (topology), rational convex 4g-gon and exact Tutte map (embed), exact overlay of the quad
+/// template (arrange), piecewise-affine map of each layout quad to the unit square (igm), quad
+/// extraction at the requested resolution (extract), then the independent certifier on both
+/// outputs. Throws igm::Error(Unsupported) for genus 0 (see the genus-0 orbifold stage),
+/// igm::Error(InvalidArgument) for resolution < 1 or a bad root. Cost: dominated by the
+/// embedding and the overlay, about O(n log n) plus the exact arithmetic.
+PipelineResult compute_igm(const ValidMesh& mesh, const PipelineOptions& options = {});
+
+}  // namespace igm

@@ -1,0 +1,167 @@
+#include "run_command.h"
+
+#include <sys/resource.h>
+
+#include <charconv>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "igm/core/error.h"
+#include "igm/mesh/generate.h"
+#include "igm/mesh/validate.h"
+#include "igm/output/igm_mesh.h"
+#include "igm/output/schema_svg.h"
+#include "igm/pipeline/pipeline.h"
+
+namespace igm_cli {
+
+namespace {
+
+constexpr int kExitCertified = 0, kExitRejected = 1, kExitInput = 2;
+
+bool parse_int(std::string_view s, long long& out) {
+  auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
+  return ec == std::errc() && p == s.data() + s.size();
+}
+
+int usage(const std::string& message) {
+  std::fprintf(stderr,
+               "igm run: %s\nusage: igm run MESH [-o DIR] [--resolution N] [--root V]\n"
+               "  writes DIR/NAME.igm.obj, NAME.igm.exact, NAME.quad.obj, NAME.cert.json, NAME.schema.svg\n",
+               message.c_str());
+  return kExitInput;
+}
+
+double peak_rss_mb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_maxrss) / 1024.0;
+}
+
+template <class Writer>
+void write_file(const std::filesystem::path& path, Writer&& writer) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw igm::Error(igm::ErrorKind::Io, "cannot write " + path.string());
+  writer(out);
+  out.flush();
+  if (!out) throw igm::Error(igm::ErrorKind::Io, "error while writing " + path.string());
+}
+
+std::string json_escape(const std::string& s) {
+  std::string r;
+  for (char c : s) {
+    if (c == '"' || c == '\\') r += '\\', r += c;
+    else if (static_cast<unsigned char>(c) < 0x20) r += ' ';
+    else r += c;
+  }
+  return r;
+}
+
+int run_pipeline(const igm::ValidMesh& mesh, const std::string& name, const std::filesystem::path& dir,
+                 const igm::PipelineOptions& base) {
+  for (const std::string& w : mesh.warnings) std::printf("warning: %s\n", w.c_str());
+  std::printf("[input]    %s: %d vertices, %d faces, genus %d\n", name.c_str(), mesh.mesh.num_vertices(),
+              mesh.mesh.num_faces(), mesh.genus);
+  std::fflush(stdout);
+  igm::PipelineOptions options = base;
+  options.progress = [](const igm::StageEvent& e) {
+    std::printf("[%-8s] %8.3f s  %s\n", e.stage.c_str(), e.seconds, e.detail.c_str());
+    std::fflush(stdout);
+  };
+  const auto t0 = std::chrono::steady_clock::now();
+  igm::PipelineResult r = igm::compute_igm(mesh, options);
+  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw igm::Error(igm::ErrorKind::Io, "cannot create output folder " + dir.string() + ": " + ec.message());
+  const auto out = [&](const char* suffix) { return dir / (name + suffix); };
+  write_file(out(".igm.obj"), [&](std::ostream& s) { igm::write_igm_obj(s, r.igm, false); });
+  write_file(out(".igm.exact"), [&](std::ostream& s) { igm::write_igm_obj(s, r.igm, true); });
+  write_file(out(".quad.obj"), [&](std::ostream& s) { igm::write_quad_obj(s, r.quads); });
+  write_file(out(".schema.svg"), [&](std::ostream& s) { igm::write_schema_svg(s, r.schema); });
+  write_file(out(".cert.json"), [&](std::ostream& s) {
+    const igm::PipelineStats& st = r.stats;
+    s << "{\n\"input\": {\"name\": \"" << json_escape(name) << "\", \"vertices\": " << st.input_vertices
+      << ", \"faces\": " << st.input_faces << ", \"genus\": " << st.genus << "},\n"
+      << "\"certified\": " << (r.certified() ? "true" : "false") << ",\n"
+      << "\"stats\": {\"refined_vertices\": " << st.refined_vertices << ", \"output_triangles\": " << st.output_triangles
+      << ", \"layout_quads\": " << st.layout_quads << ", \"quads\": " << st.quads
+      << ", \"max_uv_bits\": " << st.max_uv_bits << ", \"tutte_iterations\": " << st.tutte.iterations
+      << ", \"tutte_flips_double\": " << st.tutte.flips_double << ", \"seconds\": " << total << "},\n"
+      << "\"igm\": " << igm::certify::to_json(r.igm_report) << ",\n"
+      << "\"quad\": " << igm::certify::to_json(r.quad_report) << "}\n";
+  });
+  std::printf("[total]    %8.3f s  peak memory %.0f MB\n", total, peak_rss_mb());
+  std::printf("wrote %s/%s.{igm.obj,igm.exact,quad.obj,cert.json,schema.svg}\n", dir.string().c_str(), name.c_str());
+  if (!r.certified()) {
+    std::printf("NOT CERTIFIED: %s | %s\n", igm::certify::summary(r.igm_report).c_str(),
+                igm::certify::summary(r.quad_report).c_str());
+    return kExitRejected;
+  }
+  std::printf("certified: %s\n", igm::certify::summary(r.igm_report).c_str());
+  return kExitCertified;
+}
+
+}  // namespace
+
+int run_command(const std::vector<std::string_view>& args) {
+  std::string mesh_path;
+  std::filesystem::path dir = "out";
+  igm::PipelineOptions options;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string_view a = args[i];
+    if (a == "-o" || a == "--resolution" || a == "--root") {
+      if (i + 1 >= args.size()) return usage(std::string(a) + " needs a value");
+      const std::string_view v = args[++i];
+      if (a == "-o") {
+        dir = std::string(v);
+        continue;
+      }
+      long long n = 0;
+      if (!parse_int(v, n)) return usage(std::string(a) + " needs an integer, got '" + std::string(v) + "'");
+      if (a == "--resolution") {
+        if (n < 1 || n > 1024) return usage("--resolution must be in 1..1024");
+        options.resolution = static_cast<int>(n);
+      } else {
+        if (n < 0 || n > 2000000000) return usage("--root must be a vertex id >= 0");
+        options.root = static_cast<int>(n);
+      }
+    } else if (!a.empty() && a[0] == '-') {
+      return usage("unknown option '" + std::string(a) + "'");
+    } else {
+      if (!mesh_path.empty()) return usage("run takes one mesh file");
+      mesh_path = std::string(a);
+    }
+  }
+  if (mesh_path.empty()) return usage("run needs a mesh file");
+  try {
+    const igm::ValidMesh mesh = igm::load_mesh(mesh_path);
+    return run_pipeline(mesh, std::filesystem::path(mesh_path).stem().string(), dir, options);
+  } catch (const igm::Error& e) {
+    std::fprintf(stderr, "igm: %s: %s\n", mesh_path.c_str(), e.what());
+    return e.kind() == igm::ErrorKind::Internal ? 3 : kExitInput;
+  }
+}
+
+int run_default() {
+  std::printf("igm: no arguments: running the pipeline on a built-in generated mesh (genus 2, ~2000 faces); "
+              "see `igm --help`\n");
+  igm::GenerateOptions g;
+  g.genus = 2;
+  g.faces = 2000;
+  g.seed = 1;
+  try {
+    const igm::ValidMesh mesh = igm::validate(igm::generate_closed_mesh(g));
+    return run_pipeline(mesh, "default-genus2", "out", igm::PipelineOptions{});
+  } catch (const igm::Error& e) {
+    std::fprintf(stderr, "igm: default mesh: %s\n", e.what());
+    return e.kind() == igm::ErrorKind::Internal ? 3 : kExitInput;
+  }
+}
+
+}  // namespace igm_cli
