@@ -86,7 +86,8 @@ inline double pow2(long k) { return std::bit_cast<double>(static_cast<std::uint6
 
 // The leading bits of a positive integer z: z / 2^e in [lo, hi] with 0.5 <= lo <= hi <= 1.
 // mpz_get_d_2exp truncates toward zero to 53 bits with lo in [0.5, 1): lo * 2^e <= z < (lo + 2^-53) 2^e,
-// and lo + 2^-53 = next_up(lo) (the gap in [0.5, 1) is 2^-53). No truncation when z < 2^53.
+// and lo + 2^-53 = next_up(lo) (the gap in [0.5, 1) is 2^-53). No truncation when z has at most
+// 53 significant bits (bit length minus trailing zeros), e.g. every power of two.
 struct Lead {
   double lo, hi;
   long e;
@@ -94,7 +95,8 @@ struct Lead {
 inline Lead lead(mpz_srcptr z) {
   Lead r;
   r.lo = std::fabs(mpz_get_d_2exp(&r.e, z));
-  r.hi = mpz_sizeinbase(z, 2) <= 53 ? r.lo : next_up(r.lo);
+  const std::size_t bits = mpz_sizeinbase(z, 2);
+  r.hi = (bits <= 53 || bits - mpz_scan1(z, 0) <= 53) ? r.lo : next_up(r.lo);
   return r;
 }
 
@@ -216,8 +218,20 @@ std::optional<Sign> orient2d_filter(const Point2q& a, const Point2q& b, const Po
   for (const Mag& x : m)
     if (x.sgn != 0) shift = std::max(shift, x.e);
   if (shift == std::numeric_limits<long>::min()) return std::nullopt;  // all zero: collinear
-  const IntervalD ax = scaled(m[0], shift), ay = scaled(m[1], shift), bx = scaled(m[2], shift),
-                  by = scaled(m[3], shift), cx = scaled(m[4], shift), cy = scaled(m[5], shift);
+  // Pivot: the determinant is invariant under cyclic rotation of (a, b, c). Subtracting the point
+  // of largest magnitude would cancel its product term cx*cy (present in both L and R) only in
+  // exact arithmetic, leaving interval widths of its size: subtract the smallest point instead.
+  auto point_exp = [&](int i) {
+    const long ex = m[2 * i].sgn ? m[2 * i].e : std::numeric_limits<long>::min();
+    const long ey = m[2 * i + 1].sgn ? m[2 * i + 1].e : std::numeric_limits<long>::min();
+    return std::max(ex, ey);
+  };
+  const long e0 = point_exp(0), e1 = point_exp(1), e2 = point_exp(2);
+  const int pivot = (e0 <= e1 && e0 <= e2) ? 0 : (e1 <= e2 ? 1 : 2);
+  const int ia = (pivot + 1) % 3, ib = (pivot + 2) % 3, ic = pivot;  // (a,b,c) rotated, same sign
+  const IntervalD ax = scaled(m[2 * ia], shift), ay = scaled(m[2 * ia + 1], shift),
+                  bx = scaled(m[2 * ib], shift), by = scaled(m[2 * ib + 1], shift),
+                  cx = scaled(m[2 * ic], shift), cy = scaled(m[2 * ic + 1], shift);
   // |values| < 4: differences < 8, products < 64(1+2^-50), no overflow anywhere.
   const IntervalD l = imul(isub(ax, cx), isub(by, cy));
   const IntervalD r = imul(isub(ay, cy), isub(bx, cx));

@@ -11,37 +11,13 @@
 
 #include "igm/core/error.h"
 #include "igm/exact/rational.h"
+#include "reference.h"
 
 using namespace igm;
 
 namespace {
 
-// Independent exact value of a finite double, from its bit fields with integer arithmetic only:
-// (-1)^s * m * 2^(e - 1075), m the 53-bit significand (implicit bit for normals), e the biased
-// exponent (1 for subnormals).
-Rational exact_from_bits(double x) {
-  std::uint64_t b;
-  std::memcpy(&b, &x, 8);
-  const bool neg = b >> 63;
-  const int e = static_cast<int>((b >> 52) & 0x7ff);
-  std::uint64_t m = b & ((std::uint64_t(1) << 52) - 1);
-  int ex;
-  if (e == 0) {
-    ex = 1 - 1075;
-  } else {
-    m |= std::uint64_t(1) << 52;
-    ex = e - 1075;
-  }
-  Integer num;
-  mpz_import(num.get_mpz_t(), 1, 1, sizeof(m), 0, 0, &m);
-  Integer den = 1;
-  if (ex >= 0)
-    num <<= ex;
-  else
-    den <<= -ex;
-  if (neg) num = -num;
-  return make_rational(num, den);
-}
+Rational exact_from_bits(double x) { return igm_ref::exact_from_bits(x); }
 
 bool canonical(const Rational& q) {
   Integer g;
@@ -55,11 +31,7 @@ Integer pow10(unsigned long k) {
   return r;
 }
 
-double from_bits(std::uint64_t b) {
-  double x;
-  std::memcpy(&x, &b, 8);
-  return x;
-}
+using igm_ref::from_bits;
 
 }  // namespace
 

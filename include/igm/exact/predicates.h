@@ -49,11 +49,12 @@ std::optional<Sign> orient2d_filter(const Vec2d& a, const Vec2d& b, const Vec2d&
 /// The exact path alone (GMP), for tests. Pre: finite coordinates (throws NonFinite).
 Sign orient2d_exact(const Vec2d& a, const Vec2d& b, const Vec2d& c);
 
-/// Exact orientation of rational points (same convention as above). Filtered: interval filter
-/// first (about 20 double operations after reading the leading bits of the 12 integers), exact
-/// integer arithmetic (no gcd) when the filter cannot decide: always when the points are exactly
-/// collinear, or a coordinate lies outside [2^-1000, 2^1000] in magnitude (nonzero). Thread-safe
-/// (per-thread scratch integers).
+/// Exact orientation of rational points (same convention as above). Filtered: every coordinate is
+/// enclosed in a double interval (enclose(), after a common power-of-two scaling, so any magnitude
+/// works), the determinant is evaluated in outward-rounded interval arithmetic (about 30 double
+/// operations after reading the leading bits of the 12 integers); exact integer arithmetic (no gcd;
+/// shifts only for dyadic coordinates) when the interval contains 0: always for exactly collinear
+/// points. Thread-safe (per-thread scratch integers). Proof in src/exact/predicates.cpp.
 Sign orient2d(const Point2q& a, const Point2q& b, const Point2q& c);
 
 /// The rational filter alone: the exact sign when the interval evaluation proves it, nullopt
@@ -69,9 +70,9 @@ struct IntervalD {
   double lo = 0, hi = 0;
 };
 
-/// A double interval containing q: lo <= q <= hi exactly, with hi - lo at most 4 ulps of q
-/// (0 when q is a double with a power-of-two denominator). nullopt when q != 0 and |q| is not
-/// within [2^-1000, 2^1000] (the enclosure is then not computed; callers go exact).
+/// A double interval containing q: lo <= q <= hi exactly, hi - lo <= 2^-49 |q| (hi == lo when q is
+/// a double with a power-of-two denominator). Succeeds for q == 0 and 2^-999 <= |q| <= 2^999; nullopt
+/// for |q| <= 2^-1001 or |q| >= 2^1001 (between: either). Cost: reads the top limbs, <= 2 divisions.
 std::optional<IntervalD> enclose(const Rational& q);
 
 /// Exact double -> rational point conversion (throws NonFinite).
