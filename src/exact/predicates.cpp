@@ -73,30 +73,49 @@ void require_finite(const Vec2d& p) {
 // (scaling by 2^k is exact, and the sign of the determinant, homogeneous of degree 2, is unchanged).
 // ---------------------------------------------------------------------------------------------
 
-inline double next_up(double x) {  // pre: x finite (callers never pass Inf/NaN)
-  if (x == 0) return std::numeric_limits<double>::denorm_min();
-  auto b = std::bit_cast<std::uint64_t>(x);
-  b = x > 0 ? b + 1 : b - 1;
-  return std::bit_cast<double>(b);
+// The next double above x, for finite x, branch-free (operand signs are unpredictable here).
+// x + 0.0 maps -0 to +0 and leaves every other value unchanged; then the bit pattern of a positive
+// double (or +0) steps up by one, that of a negative double steps down by one (toward -0).
+// Pre: x finite (callers never pass Inf/NaN: every value in the filter is below 2^8).
+inline double next_up(double x) {
+  const auto b = std::bit_cast<std::uint64_t>(x + 0.0);
+  const std::uint64_t neg = b >> 63;
+  return std::bit_cast<double>(b + 1 - 2 * neg);
 }
 inline double next_down(double x) { return -next_up(-x); }
 
 // 2^k as a double, for -1022 <= k <= 1023 (a normal number: exact scaling).
 inline double pow2(long k) { return std::bit_cast<double>(static_cast<std::uint64_t>(k + 1023) << 52); }
 
-// The leading bits of a positive integer z: z / 2^e in [lo, hi] with 0.5 <= lo <= hi <= 1.
-// mpz_get_d_2exp truncates toward zero to 53 bits with lo in [0.5, 1): lo * 2^e <= z < (lo + 2^-53) 2^e,
-// and lo + 2^-53 = next_up(lo) (the gap in [0.5, 1) is 2^-53). No truncation when z has at most
-// 53 significant bits (bit length minus trailing zeros), e.g. every power of two.
+// The leading bits of a nonzero integer z, read from its limbs (GMP's documented mpz_size and
+// mpz_limbs_read; 64-bit limbs without nails): |z| has bit length e, and with m the integer formed
+// by its top 53 bits (truncation toward zero), lo = m 2^-53 in [0.5, 1) and
+//   lo * 2^e <= |z| < (lo + 2^-53) 2^e = next_up(lo) 2^e        (the gap in [0.5, 1) is 2^-53),
+// with equality on the left (exact) iff every bit below the top 53 is zero. m < 2^53 converts to
+// double exactly and the scaling by 2^-53 is exact. Cost: O(1), plus a scan of the lower limbs
+// for exactness that stops at the first nonzero limb (bound: the limb count).
+static_assert(GMP_LIMB_BITS == 64 && GMP_NAIL_BITS == 0, "64-bit limbs without nails expected");
 struct Lead {
   double lo, hi;
   long e;
 };
 inline Lead lead(mpz_srcptr z) {
+  const auto n = static_cast<std::ptrdiff_t>(mpz_size(z));  // >= 1: z != 0
+  const mp_limb_t* d = mpz_limbs_read(z);
+  const std::uint64_t top = d[n - 1];
+  const int clz = __builtin_clzll(top);
+  std::uint64_t w = top << clz;  // the top 64 bits of |z|, bit 63 set
+  std::uint64_t rest = 0;        // nonzero iff some bit below the window is set
+  if (n >= 2) {
+    if (clz) w |= d[n - 2] >> (64 - clz);
+    rest = d[n - 2] & (~std::uint64_t(0) >> clz);
+    for (std::ptrdiff_t i = n - 3; i >= 0 && rest == 0; --i) rest = d[i];
+  }
+  rest |= w & 0x7ff;  // the 11 window bits below the top 53
   Lead r;
-  r.lo = std::fabs(mpz_get_d_2exp(&r.e, z));
-  const std::size_t bits = mpz_sizeinbase(z, 2);
-  r.hi = (bits <= 53 || bits - mpz_scan1(z, 0) <= 53) ? r.lo : next_up(r.lo);
+  r.lo = static_cast<double>(w >> 11) * 0x1p-53;
+  r.hi = rest == 0 ? r.lo : next_up(r.lo);
+  r.e = 64 * static_cast<long>(n) - clz;
   return r;
 }
 
@@ -167,10 +186,10 @@ Scratch& scratch() {
   return s;
 }
 
-// log2 of a power-of-two denominator, or -1 when it is not one.
+// log2 of a power-of-two denominator (> 0), or -1 when it is not one.
 inline long pow2_exponent(mpz_srcptr d) {
-  const auto bits = mpz_sizeinbase(d, 2);
-  return mpz_scan1(d, 0) + 1 == bits ? static_cast<long>(bits - 1) : -1;
+  const Lead l = lead(d);
+  return l.lo == 0.5 && l.hi == 0.5 ? l.e - 1 : -1;
 }
 
 }  // namespace
@@ -187,14 +206,51 @@ std::optional<Sign> orient2d_filter(const Vec2d& a, const Vec2d& b, const Vec2d&
   return std::nullopt;
 }
 
+namespace {
+
+// x = m 2^e exactly with m an integer, |m| < 2^53: frexp gives f in [0.5, 1) with x = f 2^ex (also
+// for subnormals), and f 2^53 is an integer in [2^52, 2^53), computed exactly by ldexp.
+struct Split {
+  long long m;
+  int e;
+};
+inline Split split(double x) {
+  if (x == 0) return {0, std::numeric_limits<int>::max()};  // never the minimum exponent
+  int ex;
+  const double f = std::frexp(x, &ex);
+  return {static_cast<long long>(std::ldexp(f, 53)), ex - 53};
+}
+inline void set_scaled(mpz_ptr t, const Split& s, int emin) {
+  mpz_set_si(t, static_cast<long>(s.m));
+  if (s.m != 0) mpz_mul_2exp(t, t, static_cast<unsigned long>(s.e - emin));  // < 2100 bits shift
+}
+
+}  // namespace
+
 Sign orient2d_exact(const Vec2d& a, const Vec2d& b, const Vec2d& c) {
   require_finite(a);
   require_finite(b);
   require_finite(c);
-  const Rational ax(a.x), ay(a.y), bx(b.x), by(b.y), cx(c.x), cy(c.y);  // exact (mpq_set_d)
-  const Rational l = (ax - cx) * (by - cy);
-  const Rational r = (ay - cy) * (bx - cx);
-  return sign_of(cmp(l, r));
+  // Every double is an integer times 2^e: with Ex (Ey) the least exponent among the nonzero x (y)
+  // coordinates, x = X 2^Ex with X integer, and det = det(X, Y) 2^(Ex+Ey): same sign.
+  const Split sax = split(a.x), sbx = split(b.x), scx = split(c.x);
+  const Split say = split(a.y), sby = split(b.y), scy = split(c.y);
+  const int ex = std::min({sax.e, sbx.e, scx.e}), ey = std::min({say.e, sby.e, scy.e});
+  Scratch& S = scratch();
+  mpz_ptr t0 = S.t[0], t1 = S.t[1], t2 = S.t[2], t3 = S.t[3], t4 = S.t[4], t5 = S.t[5];
+  set_scaled(t0, sax, ex);
+  set_scaled(t1, sbx, ex);
+  set_scaled(t2, scx, ex);
+  mpz_sub(t0, t0, t2);  // p = ax - cx
+  mpz_sub(t1, t1, t2);  // s = bx - cx
+  set_scaled(t2, sby, ey);
+  set_scaled(t3, say, ey);
+  set_scaled(t4, scy, ey);
+  mpz_sub(t2, t2, t4);  // q = by - cy
+  mpz_sub(t3, t3, t4);  // r = ay - cy
+  mpz_mul(t4, t0, t2);
+  mpz_mul(t5, t3, t1);
+  return sign_of(mpz_cmp(t4, t5));
 }
 
 Sign orient2d(const Vec2d& a, const Vec2d& b, const Vec2d& c) {
