@@ -1,6 +1,7 @@
 #include "igm/exact/rational.h"
 
 #include <cmath>
+#include <limits>
 
 #include "igm/core/error.h"
 
@@ -103,7 +104,13 @@ std::optional<Rational> parse_rational(std::string_view text, long max_exponent)
   return q;
 }
 
-double to_double(const Rational& q) { return q.get_d(); }
+double to_double(const Rational& q) {
+  // mpq_get_d truncates toward zero, subnormals included; beyond the double range it returns
+  // +-Inf (GMP documents overflow as system dependent), which truncation maps to +-DBL_MAX.
+  const double d = q.get_d();
+  if (std::isinf(d)) return std::copysign(std::numeric_limits<double>::max(), d);
+  return d;
+}
 
 std::string to_string(const Rational& q) {
   if (q.get_den() == 1) return q.get_num().get_str();

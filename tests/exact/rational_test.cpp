@@ -238,3 +238,48 @@ TEST_CASE("to_string and bit_size") {
   CHECK(bit_size(make_rational(0, 1)) == 1 + 1);
   CHECK(bit_size(to_rational(std::numeric_limits<double>::denorm_min())) == 1 + 1075);
 }
+
+TEST_CASE("to_double truncates toward zero over the whole range, never Inf") {
+  gmp_randclass g(gmp_randinit_default);
+  g.seed(21);
+  std::mt19937_64 rng(21);
+  const double M = std::numeric_limits<double>::max();
+  const Rational Mq = to_rational(M);
+  int beyond = 0, subnormal = 0, zero = 0;
+  for (int i = 0; i < 20000; ++i) {
+    Integer n = g.get_z_bits(1 + rng() % 200), d = g.get_z_bits(1 + rng() % 200);
+    if (d == 0) d = 1;
+    if (n == 0) n = 1;
+    Rational q = make_rational(n, d);
+    const long shift = static_cast<long>(rng() % 2400) - 1200;  // 2^-1400 .. 2^1400
+    if (shift >= 0)
+      mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), static_cast<unsigned long>(shift));
+    else
+      mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), static_cast<unsigned long>(-shift));
+    const bool neg = rng() % 2;
+    if (neg) q = -q;
+    const double x = to_double(q);
+    REQUIRE(std::isfinite(x));
+    const Rational aq = abs(q);
+    const double ax = std::fabs(x);
+    CAPTURE(to_string(q));
+    REQUIRE(to_rational(ax) <= aq);  // toward zero
+    if (ax == M) {
+      if (aq > Mq) ++beyond;
+    } else {
+      REQUIRE(aq < to_rational(std::nextafter(ax, INFINITY)));  // the largest such double
+    }
+    if (x != 0) REQUIRE((x < 0) == neg);
+    if (x == 0) ++zero;
+    if (x != 0 && ax < std::numeric_limits<double>::min()) ++subnormal;
+  }
+  CHECK(beyond > 1000);
+  CHECK(subnormal > 50);
+  CHECK(zero > 1000);
+  // Regression: values beyond the double range used to come back as +-Inf from mpq_get_d.
+  Rational huge = 1;
+  mpq_mul_2exp(huge.get_mpq_t(), huge.get_mpq_t(), 2000);
+  CHECK(to_double(huge) == M);
+  CHECK(to_double(-huge) == -M);
+  CHECK(to_double(Rational(Mq + 1)) == M);
+}

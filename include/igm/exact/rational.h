@@ -30,8 +30,9 @@ Rational make_rational(const Integer& num, const Integer& den);
 /// clamped to [0, 1e8]. Cost: O(n^2) at worst in the length n of the text (GMP conversion).
 std::optional<Rational> parse_rational(std::string_view text, long max_exponent = 100000);
 
-/// Nearest-or-adjacent double (truncation toward zero by GMP): for output and initial guesses
-/// only, never for decisions.
+/// The double nearest to q toward zero (truncation: |to_double(q)| <= |q| < the next double away
+/// from zero), over the whole range: +-DBL_MAX beyond it, 0 (with q's sign lost) below the
+/// smallest subnormal 2^-1074. Never Inf or NaN. For output and initial guesses only, never for decisions.
 double to_double(const Rational& q);
 
 /// "p/q", or "p" when the denominator is 1: the exact text form, read back by parse_rational.
