@@ -3,6 +3,10 @@
 //   1: near-collinear: raw a, b and t, c = a + t (b - a) rounded
 //   2: small rationals: 16 (int16 numerator, uint8 denominator) pairs: a, b, c, d
 //   3: scaled doubles: (int32 mantissa, int16 binary exponent) pairs: tiny, huge, subnormal
+//   4: near-collinear rationals: a, b raw doubles, c = a + t (b - a) exactly with t = int32/uint16,
+//      then c.x or c.y moved by +-2^-k (or +-2^-k/3)
+//   5: multi-limb dyadics: numerators from 3 optional 64-bit words (zero limbs included) over 2^k;
+//      also checks enclose(): lo <= q <= hi exactly
 // Checks (abort() on any disagreement): the double filter, when it answers, equals the exact sign;
 // orient2d(double) == exact == an mpq reference computed here; the rational filter (when it
 // answers), the filtered and the exact rational orient2d agree with it too; antisymmetry and
@@ -98,7 +102,7 @@ void check_segments(const Point2q& a, const Point2q& b, const Point2q& c, const 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
   Reader in{data + 1, size - 1};
-  switch (data[0] % 4) {
+  switch (data[0] % 6) {
     case 0: {
       Vec2d p[3];
       for (auto& q : p) q = {in.get<double>(), in.get<double>()};
@@ -123,6 +127,52 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       }
       check_rational(p[0], p[1], p[2], ref_orient(p[0], p[1], p[2]));
       check_segments(p[0], p[1], p[2], p[3]);
+      break;
+    }
+    case 4: {
+      Point2q p[2];
+      for (auto& q : p) {
+        const double x = in.get<double>(), y = in.get<double>();
+        if (!std::isfinite(x) || !std::isfinite(y)) return 0;
+        q = to_point2q({x, y});
+      }
+      const auto tn = in.get<std::int32_t>();
+      const auto td = in.get<std::uint16_t>();
+      const Rational t = make_rational(tn, td == 0 ? 1 : td);
+      Point2q c{Rational(p[0].x + t * (p[1].x - p[0].x)), Rational(p[0].y + t * (p[1].y - p[0].y))};
+      check(ref_orient(p[0], p[1], c) == 0);
+      check_rational(p[0], p[1], c, 0);
+      const auto k = in.get<std::uint16_t>();
+      Rational eps = 1;
+      mpq_div_2exp(eps.get_mpq_t(), eps.get_mpq_t(), k % 2200);
+      if (k & 0x8000) eps /= 3;
+      if (k & 0x4000) eps = -eps;
+      if (k & 0x2000)
+        c.x += eps;
+      else
+        c.y += eps;
+      check_rational(p[0], p[1], c, ref_orient(p[0], p[1], c));
+      break;
+    }
+    case 5: {
+      Point2q p[3];
+      for (auto& q : p)
+        for (Rational* v : {&q.x, &q.y}) {
+          const auto mask = in.get<std::uint8_t>();
+          mpz_class n = 0;
+          for (int w = 0; w < 3; ++w) {
+            const auto word = in.get<std::uint64_t>();
+            n <<= 64;
+            if (mask & (1 << w)) n += mpz_class(static_cast<unsigned long>(word));
+          }
+          if (mask & 8) n = -n;
+          const auto k = in.get<std::uint8_t>();
+          *v = make_rational(n, mpz_class(1) << k);
+          if (auto iv = enclose(*v)) {
+            check(iv->lo <= iv->hi && to_rational(iv->lo) <= *v && *v <= to_rational(iv->hi));
+          }
+        }
+      check_rational(p[0], p[1], p[2], ref_orient(p[0], p[1], p[2]));
       break;
     }
     default: {
