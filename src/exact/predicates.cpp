@@ -99,7 +99,7 @@ struct Lead {
   double lo, hi;
   long e;
 };
-inline Lead lead(mpz_srcptr z) {
+[[gnu::always_inline]] inline Lead lead(mpz_srcptr z) {
   const auto n = static_cast<std::ptrdiff_t>(mpz_size(z));  // >= 1: z != 0
   const mp_limb_t* d = mpz_limbs_read(z);
   const std::uint64_t top = d[n - 1];
@@ -119,27 +119,42 @@ inline Lead lead(mpz_srcptr z) {
   return r;
 }
 
+// log2 of a power-of-two positive integer d, or -1 when d is not a power of two. O(1) for a
+// single limb; otherwise scans the lower limbs (bound: the limb count, stops at a nonzero limb).
+inline long pow2_exponent(mpz_srcptr d) {
+  const auto n = static_cast<std::ptrdiff_t>(mpz_size(d));
+  const mp_limb_t* l = mpz_limbs_read(d);
+  const std::uint64_t top = l[n - 1];
+  if ((top & (top - 1)) != 0) return -1;
+  for (std::ptrdiff_t i = n - 2; i >= 0; --i)
+    if (l[i] != 0) return -1;
+  return 64 * static_cast<long>(n - 1) + __builtin_ctzll(top);
+}
+
 // |q| = mag * 2^e with mag in [lo, hi] subset of [0.25, 4); sign separately. zero when q == 0.
 struct Mag {
   double lo = 0, hi = 0;
   long e = 0;
   int sgn = 0;
 };
-inline Mag magnitude(const Rational& q) {
+[[gnu::always_inline]] inline Mag magnitude(const Rational& q) {
   Mag m;
   m.sgn = mpq_sgn(q.get_mpq_t());
   if (m.sgn == 0) return m;
   const Lead n = lead(q.get_num_mpz_t());
-  const Lead d = lead(q.get_den_mpz_t());
-  m.e = n.e - d.e;
-  // |q| / 2^e = (|num| / 2^ne) / (den / 2^de) in [n.lo / d.hi, n.hi / d.lo] subset of [0.5, 2].
-  if (d.lo == 0.5 && d.hi == 0.5) {  // den is a power of two: division by 0.5 is exact
+  if (const long k = pow2_exponent(q.get_den_mpz_t()); k >= 0) {
+    // den = 2^k = 0.5 * 2^(k+1): |q| = (2 n.lo .. 2 n.hi) 2^(ne - k - 1), exact doubling.
+    m.e = n.e - k - 1;
     m.lo = 2 * n.lo;
     m.hi = 2 * n.hi;
-  } else {  // (N1): quotients in [0.5, 2] are normal; widening gives [0.25, 4)
-    m.lo = next_down(n.lo / d.hi);
-    m.hi = next_up(n.hi / d.lo);
+    return m;
   }
+  const Lead d = lead(q.get_den_mpz_t());
+  m.e = n.e - d.e;
+  // |q| / 2^e = (|num| / 2^ne) / (den / 2^de) in [n.lo / d.hi, n.hi / d.lo] subset of [0.5, 2];
+  // (N1): the quotients are normal, widening gives [0.25, 4).
+  m.lo = next_down(n.lo / d.hi);
+  m.hi = next_up(n.hi / d.lo);
   return m;
 }
 
@@ -184,12 +199,6 @@ struct Scratch {
 Scratch& scratch() {
   thread_local Scratch s;
   return s;
-}
-
-// log2 of a power-of-two denominator (> 0), or -1 when it is not one.
-inline long pow2_exponent(mpz_srcptr d) {
-  const Lead l = lead(d);
-  return l.lo == 0.5 && l.hi == 0.5 ? l.e - 1 : -1;
 }
 
 }  // namespace
