@@ -46,7 +46,8 @@ Sign orient2d(const Vec2d& a, const Vec2d& b, const Vec2d& c);
 /// overflow and non-finite input). Never answers Zero. For tests and the filter-vs-exact fuzzer.
 std::optional<Sign> orient2d_filter(const Vec2d& a, const Vec2d& b, const Vec2d& c);
 
-/// The exact path alone (GMP), for tests. Pre: finite coordinates (throws NonFinite).
+/// The exact path alone, for tests: each double is m 2^e (|m| < 2^53), the determinant is taken on
+/// GMP integers after shifting to common exponents. Pre: finite coordinates (throws NonFinite).
 Sign orient2d_exact(const Vec2d& a, const Vec2d& b, const Vec2d& c);
 
 /// Exact orientation of rational points (same convention as above). Filtered: every coordinate is
@@ -55,6 +56,9 @@ Sign orient2d_exact(const Vec2d& a, const Vec2d& b, const Vec2d& c);
 /// operations after reading the leading bits of the 12 integers); exact integer arithmetic (no gcd;
 /// shifts only for dyadic coordinates) when the interval contains 0: always for exactly collinear
 /// points. Thread-safe (per-thread scratch integers). Proof in src/exact/predicates.cpp.
+/// Measured (callgrind, instructions per call, random triples): 60-bit dyadic 933 (orient2d_exact
+/// alone 1239, plain mpq determinant 10011); 200-bit dyadic 1084 (1779, 17940); general 60-bit
+/// rationals 1264 (1976, 24737). Collinear triples pay the filter plus the exact path.
 Sign orient2d(const Point2q& a, const Point2q& b, const Point2q& c);
 
 /// The rational filter alone: the exact sign when the interval evaluation proves it, nullopt
