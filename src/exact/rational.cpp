@@ -1,7 +1,7 @@
 #include "igm/exact/rational.h"
 
-#include <cctype>
 #include <cmath>
+#include <limits>
 
 #include "igm/core/error.h"
 
@@ -23,6 +23,13 @@ Rational make_rational(const Integer& num, const Integer& den) {
 
 namespace {
 
+// ASCII decimal digit only (std::isdigit is locale-dependent in principle).
+bool is_digit(char c) { return c >= '0' && c <= '9'; }
+
+// Hard cap on max_exponent: keeps every exponent computation below in range of long
+// (|e10| <= 2 * kMaxExponentCap) and 10^|e10| below ~2^(6.7e8) bits.
+constexpr long kMaxExponentCap = 100000000;
+
 // Parses [+-]digits into z; returns false if no digit.
 bool parse_integer(std::string_view s, Integer& z) {
   std::size_t i = 0;
@@ -30,7 +37,7 @@ bool parse_integer(std::string_view s, Integer& z) {
   if (i < s.size() && (s[i] == '+' || s[i] == '-')) neg = s[i++] == '-';
   if (i == s.size()) return false;
   for (std::size_t j = i; j < s.size(); ++j)
-    if (!std::isdigit(static_cast<unsigned char>(s[j]))) return false;
+    if (!is_digit(s[j])) return false;
   std::string digits(s.substr(i));
   if (z.set_str(digits, 10) != 0) return false;
   if (neg) z = -z;
@@ -41,6 +48,8 @@ bool parse_integer(std::string_view s, Integer& z) {
 
 std::optional<Rational> parse_rational(std::string_view text, long max_exponent) {
   if (text.empty()) return std::nullopt;
+  if (max_exponent < 0) max_exponent = 0;
+  if (max_exponent > kMaxExponentCap) max_exponent = kMaxExponentCap;
   if (auto slash = text.find('/'); slash != std::string_view::npos) {
     Integer p, q;
     std::string_view den = text.substr(slash + 1);
@@ -56,7 +65,7 @@ std::optional<Rational> parse_rational(std::string_view text, long max_exponent)
   bool any_digit = false, seen_point = false;
   for (; i < text.size(); ++i) {
     char c = text[i];
-    if (std::isdigit(static_cast<unsigned char>(c))) {
+    if (is_digit(c)) {
       digits.push_back(c);
       any_digit = true;
       if (seen_point) ++frac_digits;
@@ -75,8 +84,10 @@ std::optional<Rational> parse_rational(std::string_view text, long max_exponent)
     bool eneg = false;
     if (k < e.size() && (e[k] == '+' || e[k] == '-')) eneg = e[k++] == '-';
     if (k == e.size()) return std::nullopt;
+    // Bound: one step per character of the exponent; exponent <= max_exponent <= 1e8 before each
+    // step, so exponent * 10 + 9 never overflows a long.
     for (; k < e.size(); ++k) {
-      if (!std::isdigit(static_cast<unsigned char>(e[k]))) return std::nullopt;
+      if (!is_digit(e[k])) return std::nullopt;
       exponent = exponent * 10 + (e[k] - '0');
       if (exponent > max_exponent) return std::nullopt;
     }
@@ -93,7 +104,13 @@ std::optional<Rational> parse_rational(std::string_view text, long max_exponent)
   return q;
 }
 
-double to_double(const Rational& q) { return q.get_d(); }
+double to_double(const Rational& q) {
+  // mpq_get_d truncates toward zero, subnormals included; beyond the double range it returns
+  // +-Inf (GMP documents overflow as system dependent), which truncation maps to +-DBL_MAX.
+  const double d = q.get_d();
+  if (std::isinf(d)) return std::copysign(std::numeric_limits<double>::max(), d);
+  return d;
+}
 
 std::string to_string(const Rational& q) {
   if (q.get_den() == 1) return q.get_num().get_str();

@@ -20,13 +20,19 @@ Rational to_rational(double x);
 /// num/den in canonical form. Pre: den != 0 (throws igm::Error(InvalidArgument) otherwise).
 Rational make_rational(const Integer& num, const Integer& den);
 
-/// Parses decimal text exactly: [+-]digits[.digits][(e|E)[+-]digits], or [+-]p/q with q > 0.
-/// "0.1" is exactly 1/10, never the double nearest to it. Returns nullopt on anything else,
-/// including exponents beyond +-max_exponent (a bound on the size of the result).
+/// Parses decimal text exactly, the whole string:
+///   [+-] (digits [. [digits]] | . digits) [(e|E) [+-] digits]      e.g. "1e-3", ".5", "5.", "+1.25E+2"
+///   [+-] digits / digits   (denominator unsigned and nonzero)         e.g. "1/3", "-2/4" -> -1/2
+/// "0.1" is exactly 1/10, never the double nearest to it; the result is canonical. Returns
+/// nullopt on anything else (empty, whitespace anywhere, "e5", "1e", "--1", "nan", "inf", "0x10",
+/// "1/0", "1/-2"), and when |exponent| > max_exponent or the mantissa has more than max_exponent
+/// digits: a bound on the size of the result (about 3.33 * 2 * max_exponent bits). max_exponent is
+/// clamped to [0, 1e8]. Cost: O(n^2) at worst in the length n of the text (GMP conversion).
 std::optional<Rational> parse_rational(std::string_view text, long max_exponent = 100000);
 
-/// Nearest-or-adjacent double (truncation toward zero by GMP): for output and initial guesses
-/// only, never for decisions.
+/// The double nearest to q toward zero (truncation: |to_double(q)| <= |q| < the next double away
+/// from zero), over the whole range: +-DBL_MAX beyond it, 0 (with q's sign lost) below the
+/// smallest subnormal 2^-1074. Never Inf or NaN. For output and initial guesses only, never for decisions.
 double to_double(const Rational& q);
 
 /// "p/q", or "p" when the denominator is 1: the exact text form, read back by parse_rational.
