@@ -169,6 +169,10 @@ Report certify_igm_data(IgmData& d, const Options& opt, const std::string& sourc
   c3.name = "transitions";
   c3.histogram_name = "rotation_k";
   std::vector<signed char> edge_k(static_cast<std::size_t>(t.E), kNotInterior);
+  // For a non-rigid edge: the rotation nearest to the actual relation of its edge vectors (the k
+  // with the largest exact dot product (R^k e_a) . e_b, -1 on a tie), used only to report the index
+  // of vertices on non-rigid edges (check 4, "nonrigid ring").
+  std::vector<signed char> edge_near_k(static_cast<std::size_t>(t.E), -1);
   std::int64_t checked = 0, not_interior = 0, fail_rot = 0, fail_trans = 0, zero_len = 0;
   mpq_class e1x, e1y, e2x, e2y, tx, ty;
   for (std::int64_t e = 0; e < t.E; ++e) {  // bound: E edges
@@ -223,6 +227,7 @@ Report certify_igm_data(IgmData& d, const Options& opt, const std::string& sourc
           continue;
         }
         edge_k[e] = kNonInteger;
+        edge_near_k[e] = static_cast<signed char>(found);
         ++fail_trans;
         add_witness(c3, W,
                     {"edge", {u, v}, "translation not integer",
@@ -238,6 +243,13 @@ Report certify_igm_data(IgmData& d, const Options& opt, const std::string& sourc
       }
     }
     edge_k[e] = static_cast<signed char>(found);
+    if (found == kNoRotation && !zero1 && !zero2) {
+      // dot_k = (R^k e1) . e2: dot_0 = e1.e2, dot_1 = e1 x e2 (cross), dot_2 = -dot_0, dot_3 = -dot_1.
+      const mpq_class d0 = e1x * e2x + e1y * e2y, d1 = e1x * e2y - e1y * e2x;
+      const int c = cmp(abs(d0), abs(d1));
+      if (c > 0) edge_near_k[e] = sgn(d0) > 0 ? 0 : 2;
+      if (c < 0) edge_near_k[e] = sgn(d1) > 0 ? 1 : 3;
+    }
     if (found == kNonInteger) {
       ++fail_trans;
     } else {
@@ -269,11 +281,14 @@ Report certify_igm_data(IgmData& d, const Options& opt, const std::string& sourc
   c4.name = "cones";
   c4.histogram_name = "vertex_index_k";
   std::int64_t determined = 0, undetermined = 0, cones = 0, off_integer = 0, nonpositive = 0, inconsistent = 0;
+  std::int64_t nonrigid_ring = 0, nonrigid_cones = 0, nonrigid_off_integer = 0;
   std::int64_t ph_sum = 0;
+  mpq_class rx, ry, gx, gy, cr;
   for (std::int64_t v = 0; v < d.V; ++v) {  // bound: V vertices, each ring walk <= degree steps
     const std::int64_t start = t.vertex_corner[v];
     if (start < 0) continue;
     bool ok = t.vertex_manifold[v] != 0;
+    bool rigid = true;  // every edge of the ring passed check 3
     std::int64_t sum_c = 0, hol = 0, steps = 0, h = start;
     const ExactPoint* non_int = nullptr;
     while (ok) {  // bound: vertex_degree[v] steps (checked)
@@ -303,25 +318,86 @@ Report certify_igm_data(IgmData& d, const Options& opt, const std::string& sourc
       }
       sum_c += c;
       const std::int64_t e = t.edge_of[p];
-      if (e < 0 || t.twin[p] < 0 || edge_k[e] < 0) {
+      if (e < 0 || t.twin[p] < 0) {
         ok = false;
         break;
       }
-      hol += (t.origin(p) < t.target(p)) ? edge_k[e] : -edge_k[e];
-      h = t.twin[p];
+      int k = edge_k[e];
+      const std::int64_t hn = t.twin[p];  // v -> b in the next face
+      if (k < 0) {
+        // Non-rigid edge: transport with the nearest rotation and count the quadrant boundaries
+        // crossed by the gap between the transported direction and the next face's direction.
+        k = edge_near_k[e];
+        if (k < 0) {
+          ok = false;
+          break;
+        }
+        rigid = false;
+        const int r = ((t.origin(p) < t.target(p) ? k : -k) % 4 + 4) % 4;
+        const ExactPoint &ov = uv(p == h ? h : t.next(p)), &ob = uv(p);  // in face f: v and b
+        const ExactPoint &nv = uv(hn), &nb = uv(t.next(hn));               // in the next face
+        gx = ob.x - ov.x;
+        gy = ob.y - ov.y;
+        switch (r) {  // (rx, ry) = R^r (gx, gy)
+          case 0: rx = gx; ry = gy; break;
+          case 1: rx = -gy; ry = gx; break;
+          case 2: rx = -gx; ry = -gy; break;
+          default: rx = gy; ry = -gx; break;
+        }
+        gx = nb.x - nv.x;
+        gy = nb.y - nv.y;
+        cr = rx * gy - ry * gx;
+        ExactPoint zero, a, b2;
+        a.x = rx;
+        a.y = ry;
+        b2.x = gx;
+        b2.y = gy;
+        const int qa = quadrant(zero, a), qb = quadrant(zero, b2);
+        if (qa < 0 || qb < 0) {
+          ok = false;
+          break;
+        }
+        int g;
+        if (sgn(cr) > 0) {
+          g = (qb - qa + 4) % 4;
+        } else if (sgn(cr) < 0) {
+          g = -((qa - qb + 4) % 4);
+        } else {
+          g = qa == qb ? 0 : 3;
+        }
+        if (g == 3 || g == -3) {
+          ok = false;
+          break;
+        }
+        sum_c += g;
+      }
+      hol += (t.origin(p) < t.target(p)) ? k : -k;
+      h = hn;
       if (h == start) break;
     }
     if (ok && steps != t.vertex_degree[v]) ok = false;
     if (ok && ((sum_c + hol) % 4 + 4) % 4 != 0) {
-      ++inconsistent;  // cannot happen when check 3 passed on the ring (internal cross-check)
+      ++inconsistent;  // cannot happen: the transported path closes up (internal cross-check)
       ok = false;
     }
     if (!ok) {
       ++undetermined;
       continue;
     }
-    ++determined;
     const std::int64_t k = sum_c;
+    if (!rigid) {
+      // Index with the nearest rotation across this ring's non-rigid edges: reported, not exact.
+      ++nonrigid_ring;
+      if (k != 4) ++nonrigid_cones;
+      if (k != 4 && non_int) {
+        ++nonrigid_off_integer;
+        add_witness(c4, W,
+                    {"vertex", {v}, "cone not on an integer point (ring has non-rigid edges; index with nearest rotations)",
+                     {{"k", std::to_string(k)}, {"uv", point_string(non_int->x, non_int->y)}}});
+      }
+      continue;
+    }
+    ++determined;
     ++c4.histogram[k];
     ph_sum += 4 - k;
     if (k != 4) ++cones;
@@ -336,23 +412,30 @@ Report certify_igm_data(IgmData& d, const Options& opt, const std::string& sourc
                    {{"k", std::to_string(k)}, {"uv", point_string(non_int->x, non_int->y)}}});
     }
   }
-  const bool ph_checkable = undetermined == 0 && t.ok;
+  const bool ph_checkable = undetermined == 0 && nonrigid_ring == 0 && t.ok;
   const bool ph_ok = ph_checkable && ph_sum == 4 * t.euler;
   if (ph_checkable && !ph_ok) {
     add_witness(c4, W, {"mesh", {}, "Poincare-Hopf violated: sum(4-k) != 4*chi",
                         {{"sum_4_minus_k", std::to_string(ph_sum)}, {"4_chi", std::to_string(4 * t.euler)}}});
   }
   c4.counts = {{"vertices_determined", determined},
+               {"vertices_nonrigid_ring", nonrigid_ring},
                {"vertices_undetermined", undetermined},
                {"cones", cones},
                {"cones_off_integer", off_integer},
+               {"nonrigid_ring_cones", nonrigid_cones},
+               {"nonrigid_ring_cones_off_integer", nonrigid_off_integer},
+               {"cones_off_integer_total", off_integer + nonrigid_off_integer},
                {"nonpositive_index", nonpositive},
                {"poincare_hopf_sum", ph_checkable ? ph_sum : 0},
                {"poincare_hopf_expected", ph_checkable ? 4 * t.euler : 0},
                {"poincare_hopf_checked", ph_checkable ? 1 : 0},
                {"transport_inconsistent", inconsistent}};
-  c4.note = "undetermined: vertex on a non-manifold/boundary/failed/zero-length edge or a zero-length corner";
-  if (off_integer > 0 || nonpositive > 0 || (ph_checkable && !ph_ok)) {
+  c4.note =
+      "determined: ring of rigid edges, exact index; nonrigid_ring: ring crosses edges that failed check 3, index "
+      "computed with the nearest rotation there (reported, not a proof); undetermined: non-manifold ring, "
+      "zero-length or tied edge, or antiparallel corner";
+  if (off_integer > 0 || nonrigid_off_integer > 0 || nonpositive > 0 || (ph_checkable && !ph_ok)) {
     c4.status = Status::Fail;
   } else if (!ph_checkable) {
     c4.status = Status::Incomplete;
