@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -111,6 +112,24 @@ bool parse_exact(std::string_view s, mpq_class& out) {
       frac_digits.remove_prefix(1);
       --exponent;
     }
+  }
+  const std::int64_t scale0 = std::int64_t(exponent) - std::int64_t(frac_digits.size());
+  if (int_digits.size() + frac_digits.size() <= 18 && scale0 <= 0 && scale0 >= -18) {
+    // Fast path: numerator < 10^18 and denominator 10^k <= 10^18 fit in 64 bits; reduce by the
+    // integer gcd and store directly (the result is canonical).
+    std::uint64_t num = 0, den = 1;
+    for (char c : int_digits) num = num * 10 + std::uint64_t(c - '0');   // bound: <= 18 digits
+    for (char c : frac_digits) num = num * 10 + std::uint64_t(c - '0');
+    for (std::int64_t k = 0; k < -scale0; ++k) den *= 10;                // bound: <= 18
+    if (num == 0) {
+      out = 0;
+      return true;
+    }
+    const std::uint64_t g = std::gcd(num, den);
+    mpz_set_ui(mpq_numref(out.get_mpq_t()), static_cast<unsigned long>(num / g));
+    mpz_set_ui(mpq_denref(out.get_mpq_t()), static_cast<unsigned long>(den / g));
+    if (neg) mpz_neg(mpq_numref(out.get_mpq_t()), mpq_numref(out.get_mpq_t()));
+    return true;
   }
   mpz_class num;
   digits_to_mpz(int_digits, frac_digits, num);

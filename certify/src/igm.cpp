@@ -92,8 +92,17 @@ void translation(int k, const ExactPoint& p, const ExactPoint& q, mpq_class& tx,
 
 // Half-open quadrant of the direction p - o (0: x>0,y>=0; 1: x<=0,y>0; 2: x<0,y<=0; 3: x>=0,y<0),
 // -1 for the zero vector. R maps quadrant q onto q+1 exactly.
+// Exact comparison of two coordinates; the truncated approximations decide when they differ
+// (truncation toward zero is monotone, so a < b for the approximations implies a < b exactly).
+int compare(const mpq_class& a, double da, const mpq_class& b, double db, bool filterable) {
+  if (filterable && da != db) return da < db ? -1 : 1;
+  const int c = cmp(a, b);
+  return c < 0 ? -1 : (c > 0 ? 1 : 0);
+}
+
 int quadrant(const ExactPoint& o, const ExactPoint& p) {
-  const int sx = cmp(p.x, o.x), sy = cmp(p.y, o.y);
+  const bool f = o.filterable && p.filterable;
+  const int sx = compare(p.x, p.ax, o.x, o.ax, f), sy = compare(p.y, p.ay, o.y, o.ay, f);
   if (sx == 0 && sy == 0) return -1;
   if (sx > 0 && sy >= 0) return 0;
   if (sx <= 0 && sy > 0) return 1;

@@ -111,6 +111,20 @@ ObjReadResult read_obj(std::string_view text) {
   ObjReadResult res;
   ObjMesh& m = res.mesh;
   m.face_begin.push_back(0);
+  {
+    // Reserve the vt array (mpq_class has no noexcept move: a growing vector would copy every
+    // rational). Count lines starting with "vt": proportional to the text, not to a declared size.
+    std::size_t nvt = 0;
+    for (std::size_t p = 0; p + 2 < text.size();) {  // bound: text.size()
+      std::size_t q = p;
+      while (q < text.size() && is_space(text[q])) ++q;
+      if (q + 2 < text.size() && text[q] == 'v' && text[q + 1] == 't' && is_space(text[q + 2])) ++nvt;
+      const std::size_t e = text.find('\n', q);
+      if (e == std::string_view::npos) break;
+      p = e + 1;
+    }
+    m.uv.reserve(nvt);
+  }
   std::int64_t num_vn = 0;
   std::vector<std::pair<std::int64_t, std::int64_t>> corner_vn;  // (normal id, line): range-checked
   std::vector<std::string_view> toks;
