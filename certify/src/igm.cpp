@@ -571,6 +571,11 @@ Report certify_igm(const IgmInput& in, const Options& opt) {
                       "corner_uv has " + std::to_string(in.corner_uv.size()) + " entries, expected 3 per face (" +
                           std::to_string(3 * F) + ")",
                       0);
+  if (in.num_vertices > 3 * F)  // no allocation proportional to a declared but absent size
+    return unreadable("igm", src,
+                      "num_vertices " + std::to_string(in.num_vertices) + " exceeds the " + std::to_string(3 * F) +
+                          " face corners: most vertices would be unreferenced",
+                      0);
   IgmData d;
   std::int64_t max_index = -1;
   for (std::int64_t f = 0; f < F; ++f)  // bound: F
@@ -598,6 +603,11 @@ Report certify_quads(const QuadInput& in, const Options& opt) {
   const std::string src = "<memory>";
   const std::int64_t F = std::int64_t(in.quads.size());
   if (F == 0) return unreadable("quad", src, "no faces", 0);
+  if (in.num_vertices > 4 * F)
+    return unreadable("quad", src,
+                      "num_vertices " + std::to_string(in.num_vertices) + " exceeds the " + std::to_string(4 * F) +
+                          " face corners: most vertices would be unreferenced",
+                      0);
   std::int64_t max_index = -1;
   std::vector<std::int64_t> fb(static_cast<std::size_t>(F + 1));
   std::vector<int> cv;

@@ -291,6 +291,13 @@ TEST_CASE("in-memory input errors are unreadable, not crashes") {
   bad.faces[0][1] = -1;
   CHECK(certify_igm(bad).verdict == Verdict::Unreadable);
   CHECK(certify_igm(IgmInput{}).verdict == Verdict::Unreadable);
+  IgmInput huge = torus(3);
+  huge.num_vertices = std::int64_t(1) << 40;  // declared, absent: refused without allocating
+  CHECK(certify_igm(huge).verdict == Verdict::Unreadable);
+  QuadInput hq;
+  hq.quads = {{0, 1, 2, 3}};
+  hq.num_vertices = std::int64_t(1) << 40;
+  CHECK(certify_quads(hq).verdict == Verdict::Unreadable);
 }
 
 TEST_CASE("witnesses are capped, counts are not") {
