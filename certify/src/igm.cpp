@@ -571,20 +571,22 @@ Report certify_igm(const IgmInput& in, const Options& opt) {
                       "corner_uv has " + std::to_string(in.corner_uv.size()) + " entries, expected 3 per face (" +
                           std::to_string(3 * F) + ")",
                       0);
-  if (in.num_vertices > 3 * F)  // no allocation proportional to a declared but absent size
+  const std::int64_t declared_v =
+      in.num_vertices >= 0 ? in.num_vertices : (in.positions.empty() ? -1 : std::int64_t(in.positions.size()));
+  if (declared_v > 3 * F)  // no allocation proportional to a declared but absent size
     return unreadable("igm", src,
-                      "num_vertices " + std::to_string(in.num_vertices) + " exceeds the " + std::to_string(3 * F) +
+                      "num_vertices " + std::to_string(declared_v) + " exceeds the " + std::to_string(3 * F) +
                           " face corners: most vertices would be unreferenced",
                       0);
   IgmData d;
   std::int64_t max_index = -1;
   for (std::int64_t f = 0; f < F; ++f)  // bound: F
     for (int v : in.faces[f]) {
-      if (v < 0 || (in.num_vertices >= 0 && v >= in.num_vertices))
+      if (v < 0 || (declared_v >= 0 && v >= declared_v))
         return unreadable("igm", src, "face " + std::to_string(f) + ": vertex index " + std::to_string(v) + " out of range", 0);
       max_index = std::max<std::int64_t>(max_index, v);
     }
-  d.V = in.num_vertices >= 0 ? in.num_vertices : max_index + 1;
+  d.V = declared_v >= 0 ? declared_v : max_index + 1;
   d.face_begin.resize(static_cast<std::size_t>(F + 1));
   d.corner_vertex.resize(static_cast<std::size_t>(3 * F));
   d.corner_uv.resize(static_cast<std::size_t>(3 * F));

@@ -259,6 +259,13 @@ TEST_CASE("topology: boundary, inconsistent orientation, two components, unrefer
     CHECK(chk(r, 1).witnesses[0].ids == std::vector<std::int64_t>{9});
     CHECK(r.verdict == Verdict::Invalid);
   }
+  SUBCASE("unreferenced vertex declared through positions") {
+    IgmInput in = torus(3);
+    in.positions.assign(11, {0.0, 0.0, 0.0});
+    const Report r = certify_igm(in);
+    CHECK(r.num_vertices == 11);
+    CHECK(chk(r, 1).count("unreferenced_vertices") == 2);
+  }
   SUBCASE("unreferenced vertex") {
     IgmInput in = torus(3);
     in.num_vertices = 10;

@@ -78,12 +78,14 @@ struct Options {
 };
 
 /// In-memory IGM: triangles (0-based vertex ids) and one exact UV per face corner, three per face
-/// in face order (corner i of face f is corner_uv[3f+i]). positions are not used by any check;
-/// num_vertices < 0 means "max index + 1" (then no vertex can be unreferenced).
+/// in face order (corner i of face f is corner_uv[3f+i]). The vertex count is num_vertices if
+/// >= 0, else positions.size() if positions are given, else max index + 1. Positions are optional
+/// and used by no check (an IGM is judged on its combinatorics and UVs only).
 struct IgmInput {
   std::vector<std::array<int, 3>> faces;
   std::vector<std::array<mpq_class, 2>> corner_uv;
   std::int64_t num_vertices = -1;
+  std::vector<std::array<double, 3>> positions;
 };
 
 /// In-memory quad mesh (0-based ids); num_vertices < 0 means "max index + 1".
