@@ -563,6 +563,7 @@ Report quads_from_text(const std::string& text, const Options& opt, const std::s
 }  // namespace
 
 Report certify_igm(const IgmInput& in, const Options& opt) {
+  auto num = [](std::int64_t x) { return std::to_string(x); };
   const std::string src = "<memory>";
   const std::int64_t F = std::int64_t(in.faces.size());
   if (F == 0) return unreadable("igm", src, "no faces", 0);
@@ -573,11 +574,14 @@ Report certify_igm(const IgmInput& in, const Options& opt) {
                       0);
   const std::int64_t declared_v =
       in.num_vertices >= 0 ? in.num_vertices : (in.positions.empty() ? -1 : std::int64_t(in.positions.size()));
-  if (declared_v > 3 * F)  // no allocation proportional to a declared but absent size
-    return unreadable("igm", src,
-                      "num_vertices " + std::to_string(declared_v) + " exceeds the " + std::to_string(3 * F) +
-                          " face corners: most vertices would be unreferenced",
-                      0);
+  if (declared_v > 3 * F) {  // no allocation proportional to a declared but absent size
+    std::string m = "num_vertices ";
+    m += num(declared_v);
+    m += " exceeds the ";
+    m += num(3 * F);
+    m += " face corners: most vertices would be unreferenced";
+    return unreadable("igm", src, m, 0);
+  }
   IgmData d;
   std::int64_t max_index = -1;
   for (std::int64_t f = 0; f < F; ++f)  // bound: F
@@ -605,11 +609,14 @@ Report certify_quads(const QuadInput& in, const Options& opt) {
   const std::string src = "<memory>";
   const std::int64_t F = std::int64_t(in.quads.size());
   if (F == 0) return unreadable("quad", src, "no faces", 0);
-  if (in.num_vertices > 4 * F)
-    return unreadable("quad", src,
-                      "num_vertices " + std::to_string(in.num_vertices) + " exceeds the " + std::to_string(4 * F) +
-                          " face corners: most vertices would be unreferenced",
-                      0);
+  if (in.num_vertices > 4 * F) {
+    std::string m = "num_vertices ";
+    m += std::to_string(in.num_vertices);
+    m += " exceeds the ";
+    m += std::to_string(4 * F);
+    m += " face corners: most vertices would be unreferenced";
+    return unreadable("quad", src, m, 0);
+  }
   std::int64_t max_index = -1;
   std::vector<std::int64_t> fb(static_cast<std::size_t>(F + 1));
   std::vector<int> cv;

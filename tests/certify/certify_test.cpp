@@ -261,6 +261,7 @@ TEST_CASE("topology: boundary, inconsistent orientation, two components, unrefer
   }
   SUBCASE("unreferenced vertex declared through positions") {
     IgmInput in = torus(3);
+    in.num_vertices = -1;
     in.positions.assign(11, {0.0, 0.0, 0.0});
     const Report r = certify_igm(in);
     CHECK(r.num_vertices == 11);
