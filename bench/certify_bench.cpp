@@ -32,11 +32,19 @@ void write_torus(const fs::path& path, int n, bool per_corner) {
     o.write(buf.data(), static_cast<std::streamsize>(buf.size()));
     buf.clear();
   };
-  auto half = [](int i) { return std::to_string(i / 2) + (i % 2 ? ".5" : ".0"); };
+  auto half = [](int i) {
+    std::string h = std::to_string(i / 2);
+    h += i % 2 ? ".5" : ".0";
+    return h;
+  };
   buf += "# generated torus IGM\n";
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
-      buf += "v " + std::to_string(i) + " " + std::to_string(j) + " 0\n";
+      buf += "v ";
+      buf += std::to_string(i);
+      buf += ' ';
+      buf += std::to_string(j);
+      buf += " 0\n";
       if (buf.size() > (1u << 20)) flush();
     }
   auto vid = [n](int i, int j) { return (i % n) + n * (j % n) + 1; };
@@ -44,7 +52,11 @@ void write_torus(const fs::path& path, int n, bool per_corner) {
   if (!per_corner) {
     for (int j = 0; j <= n; ++j)
       for (int i = 0; i <= n; ++i) {
-        buf += "vt " + half(i) + " " + half(j) + "\n";
+        buf += "vt ";
+        buf += half(i);
+        buf += ' ';
+        buf += half(j);
+        buf += '\n';
         if (buf.size() > (1u << 20)) flush();
       }
   }
@@ -57,12 +69,19 @@ void write_torus(const fs::path& path, int n, bool per_corner) {
         for (const auto& c : t) {
           long long uvid;
           if (per_corner) {
-            buf += "vt " + half(c[0]) + " " + half(c[1]) + "\n";
+            buf += "vt ";
+            buf += half(c[0]);
+            buf += ' ';
+            buf += half(c[1]);
+            buf += '\n';
             uvid = ++vt;
           } else {
             uvid = gid(c[0], c[1]);
           }
-          f += " " + std::to_string(vid(c[0], c[1])) + "/" + std::to_string(uvid);
+          f += ' ';
+          f += std::to_string(vid(c[0], c[1]));
+          f += '/';
+          f += std::to_string(uvid);
         }
         buf += f + "\n";
       }

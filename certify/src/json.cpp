@@ -7,6 +7,12 @@ namespace igm::certify {
 
 namespace {
 
+// Appends every piece (avoids `"literal" + std::string` temporaries).
+template <class... Parts>
+void app(std::string& out, const Parts&... parts) {
+  (out.append(parts), ...);
+}
+
 void put_string(std::string& out, const std::string& s) {
   out.push_back('"');
   for (unsigned char c : s) {  // bound: |s|
@@ -41,25 +47,32 @@ std::string to_json(const Report& r) {
   o += to_string(r.verdict);
   o += "\",\n  \"valid\": ";
   o += r.valid() ? "true" : "false";
-  o += ",\n  \"exit_code\": " + std::to_string(exit_code(r));
+  o += ",\n  \"exit_code\": ";
+    o += std::to_string(exit_code(r));
   o += ",\n  \"index_base\": 0,\n  \"error\": ";
   if (r.verdict == Verdict::Unreadable) {
     o += "{\"message\": ";
     put_string(o, r.error);
-    o += ", \"line\": " + std::to_string(r.error_line) + "}";
+    app(o, ", \"line\": ", std::to_string(r.error_line), "}");
   } else {
     o += "null";
   }
-  o += ",\n  \"mesh\": {\"vertices\": " + std::to_string(r.num_vertices) +
-       ", \"edges\": " + std::to_string(r.num_edges) + ", \"faces\": " + std::to_string(r.num_faces) +
-       ", \"euler_characteristic\": " +
-       (r.euler_characteristic ? std::to_string(*r.euler_characteristic) : std::string("null")) +
-       ", \"genus\": " + (r.genus ? std::to_string(*r.genus) : std::string("null")) + "}";
+  o += ",\n  \"mesh\": {\"vertices\": ";
+  o += std::to_string(r.num_vertices);
+  o += ", \"edges\": ";
+  o += std::to_string(r.num_edges);
+  o += ", \"faces\": ";
+  o += std::to_string(r.num_faces);
+  o += ", \"euler_characteristic\": ";
+  o += r.euler_characteristic ? std::to_string(*r.euler_characteristic) : std::string("null");
+  o += ", \"genus\": ";
+  o += r.genus ? std::to_string(*r.genus) : std::string("null");
+  o += "}";
   o += ",\n  \"checks\": [";
   for (std::size_t i = 0; i < r.checks.size(); ++i) {  // bound: <= 5 checks
     const CheckResult& c = r.checks[i];
     o += i ? ",\n    {" : "\n    {";
-    o += "\"id\": " + std::to_string(c.id) + ", \"name\": ";
+    app(o, "\"id\": ", std::to_string(c.id), ", \"name\": ");
     put_string(o, c.name);
     o += ", \"status\": \"";
     o += to_string(c.status);
@@ -69,7 +82,8 @@ std::string to_json(const Report& r) {
     for (std::size_t k = 0; k < c.counts.size(); ++k) {
       if (k) o += ", ";
       put_string(o, c.counts[k].first);
-      o += ": " + std::to_string(c.counts[k].second);
+      o += ": ";
+    o += std::to_string(c.counts[k].second);
     }
     o += "}";
     if (!c.histogram_name.empty()) {
@@ -81,12 +95,15 @@ std::string to_json(const Report& r) {
         if (!first) o += ", ";
         first = false;
         put_string(o, std::to_string(k));
-        o += ": " + std::to_string(v);
+        o += ": ";
+    o += std::to_string(v);
       }
       o += "}}";
     }
-    o += ",\n     \"offending\": " + std::to_string(c.offending);
-    o += ", \"witnesses_shown\": " + std::to_string(c.witnesses.size());
+    o += ",\n     \"offending\": ";
+    o += std::to_string(c.offending);
+    o += ", \"witnesses_shown\": ";
+    o += std::to_string(c.witnesses.size());
     o += ", \"note\": ";
     put_string(o, c.note);
     o += ",\n     \"witnesses\": [";
@@ -96,7 +113,10 @@ std::string to_json(const Report& r) {
       o += "\"kind\": ";
       put_string(o, x.kind);
       o += ", \"ids\": [";
-      for (std::size_t j = 0; j < x.ids.size(); ++j) o += (j ? ", " : "") + std::to_string(x.ids[j]);
+      for (std::size_t j = 0; j < x.ids.size(); ++j) {
+        if (j) o += ", ";
+        o += std::to_string(x.ids[j]);
+      }
       o += "], \"reason\": ";
       put_string(o, x.reason);
       o += ", \"values\": {";
@@ -120,11 +140,11 @@ std::string summary(const Report& r) {
                                                                : "UNREADABLE");
   s += " " + r.mode + " " + r.source;
   if (r.verdict == Verdict::Unreadable) return s + ": " + r.error;
-  s += ": V=" + std::to_string(r.num_vertices) + " E=" + std::to_string(r.num_edges) +
-       " F=" + std::to_string(r.num_faces) + " genus=" + (r.genus ? std::to_string(*r.genus) : std::string("?"));
+  app(s, ": V=", std::to_string(r.num_vertices), " E=", std::to_string(r.num_edges), " F=",
+      std::to_string(r.num_faces), " genus=", r.genus ? std::to_string(*r.genus) : std::string("?"));
   for (const auto& c : r.checks) {
-    s += "; " + std::to_string(c.id) + ":" + c.name + "=" + to_string(c.status);
-    if (c.offending) s += "(" + std::to_string(c.offending) + ")";
+    app(s, "; ", std::to_string(c.id), ":", c.name, "=", to_string(c.status));
+    if (c.offending) app(s, "(", std::to_string(c.offending), ")");
   }
   return s;
 }
