@@ -367,3 +367,20 @@ TEST_CASE("JSON shape") {
   CHECK(std::count(j.begin(), j.end(), '{') == std::count(j.begin(), j.end(), '}'));
   CHECK(std::count(j.begin(), j.end(), '[') == std::count(j.begin(), j.end(), ']'));
 }
+
+TEST_CASE("zero-length UV edge: degenerate triangles, its vertices undetermined") {
+  IgmInput in = torus(5);
+  // vertex (2,2) = id 12 moved onto its neighbour (3,2) = id 13 in every corner
+  for (std::size_t c = 0; c < in.corner_uv.size(); ++c)
+    if (in.faces[c / 3][c % 3] == 12) in.corner_uv[c] = uv(3, 2);
+  const Report r = certify_igm(in);
+  INFO(to_json(r));
+  CHECK(chk(r, 2).count("degenerate") == 2);
+  CHECK(chk(r, 2).count("flipped") == 0);
+  CHECK(chk(r, 3).count("zero_length_both_sides") == 1);
+  CHECK(chk(r, 3).count("non_rigid") == 0);
+  CHECK(chk(r, 4).count("vertices_undetermined") == 2);
+  CHECK(chk(r, 4).count("poincare_hopf_checked") == 0);
+  CHECK(chk(r, 4).status == Status::Incomplete);
+  CHECK(r.verdict == Verdict::Invalid);
+}
