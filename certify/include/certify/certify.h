@@ -1,0 +1,123 @@
+#pragma once
+// igm::certify — the independent judge of Integer Grid Maps (IGMs).
+//
+// Depends on GMP and the standard library only: its own OBJ reader (obj.h), its own adjacency,
+// its own exact predicates and decimal parser (exact.h). It never includes the producer's headers.
+// Format, checks, JSON schema and exit codes: certify/README.md.
+//
+// Checks (all exact; doubles only feed a filter with a proven error bound):
+//   1 topology     closed, edge- and vertex-manifold, consistently oriented, connected; V,E,F, genus
+//   2 orientation  every UV triangle strictly positive (exact orient2d); flipped / degenerate counts
+//   3 transitions  every interior edge: x -> R^k x + t, k in {0..3}, t in Z^2, same for both ends
+//   4 cones        per-vertex index k (total angle k*pi/2) by exact quadrant counting; k != 4 must be
+//                  on an integer point; Poincare-Hopf  sum(4 - k) = 4 chi
+//   5 quad mesh    (quad mode) pure quads, closed manifold oriented connected, genus, valences
+// Ids in reports are 0-based (vertex v of an OBJ file is OBJ index v+1; faces in file order).
+#include <array>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <gmpxx.h>
+
+namespace igm::certify {
+
+enum class Status { Pass, Fail, Incomplete, Skipped };
+enum class Verdict { Valid = 0, Invalid = 1, Unreadable = 2 };
+
+const char* to_string(Status s);
+const char* to_string(Verdict v);
+
+/// One offending element. kind: "face" (ids = {f}), "edge" (ids = {u, v}, vertex pair, u < v),
+/// "vertex" (ids = {v}). values: named exact values ("p/q" strings, points as "(x, y)").
+struct Witness {
+  std::string kind;
+  std::vector<std::int64_t> ids;
+  std::string reason;
+  std::vector<std::pair<std::string, std::string>> values;
+};
+
+struct CheckResult {
+  int id = 0;                 // 1..5
+  std::string name;           // "topology", "uv_orientation", "transitions", "cones", "quad_mesh"
+  Status status = Status::Skipped;
+  std::vector<std::pair<std::string, std::int64_t>> counts;  // ordered, named counts
+  std::string histogram_name;                                // e.g. "vertex_index_k", "valence"
+  std::map<std::int64_t, std::int64_t> histogram;
+  std::int64_t offending = 0;          // total number of offending elements (witnesses are capped)
+  std::vector<Witness> witnesses;      // at most Options::max_witnesses
+  std::string note;
+
+  /// The named count, or -1 if absent.
+  std::int64_t count(const std::string& key) const;
+  bool passed() const { return status == Status::Pass; }
+};
+
+struct Report {
+  Verdict verdict = Verdict::Unreadable;
+  std::string mode = "igm";            // "igm" or "quad"
+  std::string source;                  // file name or "<memory>"
+  std::string error;                   // set when unreadable (names the line for files)
+  std::int64_t error_line = 0;         // 1-based line of the error in the file, 0 if none
+  std::int64_t num_vertices = 0, num_edges = 0, num_faces = 0;
+  std::optional<std::int64_t> euler_characteristic;  // V - E + F (when the edge count is defined)
+  std::optional<std::int64_t> genus;   // when closed, manifold, oriented and connected
+  std::vector<CheckResult> checks;
+
+  /// The check with this id (1..5), or nullptr.
+  const CheckResult* check(int id) const;
+  bool valid() const { return verdict == Verdict::Valid; }
+};
+
+struct Options {
+  std::size_t max_witnesses = 20;
+  std::optional<std::int64_t> expected_genus;  // quad mode: check 5 also requires this genus
+};
+
+/// In-memory IGM: triangles (0-based vertex ids) and one exact UV per face corner, three per face
+/// in face order (corner i of face f is corner_uv[3f+i]). The vertex count is num_vertices if
+/// >= 0, else positions.size() if positions are given, else max index + 1. Positions are optional
+/// and used by no check (an IGM is judged on its combinatorics and UVs only).
+struct IgmInput {
+  std::vector<std::array<int, 3>> faces;
+  std::vector<std::array<mpq_class, 2>> corner_uv;
+  std::int64_t num_vertices = -1;
+  std::vector<std::array<double, 3>> positions;
+};
+
+/// In-memory quad mesh (0-based ids); num_vertices < 0 means "max index + 1".
+struct QuadInput {
+  std::vector<std::array<int, 4>> quads;
+  std::int64_t num_vertices = -1;
+};
+
+/// Certify an in-memory IGM (checks 1-4). Cost O(F log F) plus exact arithmetic where the
+/// double filter cannot decide. Malformed input (bad sizes, indices out of range) gives a
+/// report with verdict Unreadable; never throws except std::bad_alloc.
+Report certify_igm(const IgmInput& input, const Options& options = {});
+
+/// Certify an in-memory quad mesh (check 5).
+Report certify_quads(const QuadInput& input, const Options& options = {});
+
+/// Certify OBJ text (IGM mode: triangles with `f v/vt`; see certify/README.md).
+Report certify_igm_text(const std::string& text, const Options& options = {});
+/// Certify OBJ text as a quad mesh (`f a b c d`, uv optional).
+Report certify_quads_text(const std::string& text, const Options& options = {});
+
+/// Read a file (missing/unreadable file -> verdict Unreadable) and certify it.
+Report certify_igm_file(const std::string& path, const Options& options = {});
+Report certify_quads_file(const std::string& path, const Options& options = {});
+
+/// The report as JSON (schema in certify/README.md). Deterministic, ends with a newline.
+std::string to_json(const Report& report);
+
+/// One line for humans: "VALID igm V=.. F=.. genus=.." or "INVALID: failed checks ...".
+std::string summary(const Report& report);
+
+/// Process exit code for the verdict: 0 valid, 1 invalid, 2 unreadable.
+inline int exit_code(const Report& r) { return static_cast<int>(r.verdict); }
+
+}  // namespace igm::certify

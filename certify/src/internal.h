@@ -1,0 +1,53 @@
+#pragma once
+// Internal pieces of the certifier shared by its translation units (not installed).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "certify/certify.h"
+
+namespace igm::certify::detail {
+
+/// Half-edge adjacency of a polygon soup, built by sorting the undirected edge keys.
+/// Half-edge h is corner h: it starts at corner_vertex[h] and ends at corner_vertex[next(h)].
+struct Topology {
+  std::int64_t V = 0, F = 0, E = 0;
+  const std::vector<std::int64_t>* face_begin = nullptr;
+  const std::vector<int>* corner_vertex = nullptr;
+  std::vector<std::int64_t> corner_face;   // face of each corner
+  std::vector<std::int64_t> twin;          // opposite half-edge when the edge has exactly two
+                                           // oppositely oriented half-edges, else -1
+  std::vector<std::int64_t> edge_of;       // undirected edge id per half-edge, -1 for a loop (u->u)
+  std::vector<std::int64_t> edge_start;    // size E+1: half-edges of edge e are
+  std::vector<std::int64_t> edge_halfedges;//   edge_halfedges[edge_start[e] .. edge_start[e+1])
+  std::vector<std::int64_t> vertex_corner; // one corner per vertex, -1 if unreferenced
+  std::vector<std::int32_t> vertex_degree; // number of corners at each vertex
+  std::vector<char> vertex_manifold;       // 1 when its corners form one fan
+  bool closed_manifold_oriented = false;   // no boundary, non-manifold or inconsistent edge/vertex
+  bool ok = false;                         // check 1 passed (also connected, no degenerate faces)
+  std::int64_t euler = 0;
+
+  std::int64_t origin(std::int64_t h) const { return (*corner_vertex)[h]; }
+  std::int64_t next(std::int64_t h) const {
+    const std::int64_t f = corner_face[h];
+    return h + 1 == (*face_begin)[f + 1] ? (*face_begin)[f] : h + 1;
+  }
+  std::int64_t prev(std::int64_t h) const {
+    const std::int64_t f = corner_face[h];
+    return h == (*face_begin)[f] ? (*face_begin)[f + 1] - 1 : h - 1;
+  }
+  std::int64_t target(std::int64_t h) const { return origin(next(h)); }
+};
+
+/// Builds the adjacency and fills check 1 (topology) counts, status and witnesses.
+/// Pre: every corner_vertex in [0, V). Cost O(C log C) for C corners.
+Topology analyze_topology(std::int64_t V, const std::vector<std::int64_t>& face_begin,
+                          const std::vector<int>& corner_vertex, std::size_t max_witnesses,
+                          CheckResult& check);
+
+/// Adds a witness unless the cap is reached; always counts it in check.offending.
+void add_witness(CheckResult& check, std::size_t max_witnesses, Witness w);
+
+std::string point_string(const mpq_class& x, const mpq_class& y);
+
+}  // namespace igm::certify::detail
