@@ -125,7 +125,8 @@ int run_command(const std::vector<std::string_view>& args) {
       long long n = 0;
       if (!parse_int(v, n)) return usage(std::string(a) + " needs an integer, got '" + std::string(v) + "'");
       if (a == "--resolution") {
-        if (n < 1 || n > 1024) return usage("--resolution must be in 1..1024");
+        if (n < 3 || n > 1024)
+          return usage("--resolution must be in 3..1024 (below 3 the quad mesh has loops and multi-edges at the root)");
         options.resolution = static_cast<int>(n);
       } else {
         if (n < 0 || n > 2000000000) return usage("--root must be a vertex id >= 0");

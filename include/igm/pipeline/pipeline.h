@@ -22,7 +22,11 @@ struct StageEvent {
 };
 
 struct PipelineOptions {
-  int resolution = 2;  // N: the quad mesh has N x N quads per layout quad (N >= 1)
+  /// N: the quad mesh has N x N quads per layout quad (N >= 1). For N < 3 the quad mesh has
+  /// loops and multi-edges at the root (inherent to the layout, paper §6.2: every polygon corner
+  /// is the root); the certifier identifies edges by their end points and rejects such a mesh,
+  /// so only N >= 3 gives a certified quad mesh.
+  int resolution = 4;
   int root = -1;       // root vertex of the loops (-1: deterministic default)
   TutteOptions tutte;
   std::size_t max_witnesses = 20;
