@@ -333,13 +333,6 @@ TutteResult tutte_embed(int num_vertices, const std::vector<std::array<int, 3>>&
   std::vector<int> bpos;
   const Disk d = build_and_check_disk(num_vertices, triangles, boundary, bpos);
   const Sides sides = check_boundary_polygon(boundary, boundary_uv);
-  for (int h = 0; h < 3 * d.nf; ++h) {
-    const int a = d.origin[h], b = d.target(h);
-    if (d.twin[h] >= 0 && a < b && bpos[a] >= 0 && bpos[b] >= 0 && sides.share(bpos[a], bpos[b]))
-      bad("interior edge " + edge_str(a, b) +
-              " joins two boundary vertices on the same polygon side (split it first)",
-          {a, b});
-  }
   for (int f = 0; f < d.nf; ++f) {
     const auto& t = triangles[f];
     if (bpos[t[0]] < 0 || bpos[t[1]] < 0 || bpos[t[2]] < 0) continue;
@@ -351,6 +344,13 @@ TutteResult tutte_embed(int num_vertices, const std::vector<std::array<int, 3>>&
             {f});
   }
 
+  for (int h = 0; h < 3 * d.nf; ++h) {
+    const int a = d.origin[h], b = d.target(h);
+    if (d.twin[h] >= 0 && a < b && bpos[a] >= 0 && bpos[b] >= 0 && sides.share(bpos[a], bpos[b]))
+      bad("interior edge " + edge_str(a, b) +
+              " joins two boundary vertices on the same polygon side (split it first)",
+          {a, b});
+  }
   // ---------------- interior system ----------------
   const int nv = num_vertices;
   std::vector<int> idx(nv, -1), vert;
