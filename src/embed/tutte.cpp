@@ -1,7 +1,6 @@
 #include "igm/embed/tutte.h"
 
 #include <Eigen/OrderingMethods>
-#include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <chrono>
@@ -13,6 +12,7 @@
 
 #include "igm/core/error.h"
 #include "igm/embed/polygon.h"
+#include "igm/embed/sparse_cholesky.h"
 
 // Convergence of the refinement (why the loop terminates, and its bound).
 //
@@ -328,6 +328,8 @@ TutteResult tutte_embed(int num_vertices, const std::vector<std::array<int, 3>>&
             std::to_string(boundary_uv.size()) + " boundary positions",
         {});
   if (options.max_iterations < 0) bad("max_iterations must be >= 0", {});
+  if (options.min_iterations > options.max_iterations)
+    bad("min_iterations must be <= max_iterations", {});
 
   // ---------------- pre-conditions ----------------
   std::vector<int> bpos;
@@ -360,6 +362,8 @@ TutteResult tutte_embed(int num_vertices, const std::vector<std::array<int, 3>>&
       vert.push_back(v);
     }
   const int m = static_cast<int>(vert.size());
+  st.seconds_validate = since(t_start);
+  const auto t_assemble = Clock::now();
   st.interior_vertices = m;
   st.boundary_vertices = static_cast<int>(boundary.size());
   st.triangles = d.nf;
@@ -391,7 +395,7 @@ TutteResult tutte_embed(int num_vertices, const std::vector<std::array<int, 3>>&
       by.push_back(sy);
     }
   }
-  st.seconds_validate = since(t_start);
+  st.seconds_assemble = since(t_assemble);
 
   // Orientation checks. Triangles with a boundary vertex use exact rationals; the others the
   // filter of the current representation (doubles, or the common grid 2^-e).
@@ -452,20 +456,13 @@ TutteResult tutte_embed(int num_vertices, const std::vector<std::array<int, 3>>&
 
   // ---------------- double solve ----------------
   auto t0 = Clock::now();
-  Eigen::SparseMatrix<double> A(m, m);
+  SparseCholesky chol;
   {
-    std::vector<Eigen::Triplet<double>> trip;
-    trip.reserve(static_cast<std::size_t>(m) + nb.size());
-    for (int i = 0; i < m; ++i) {
-      trip.emplace_back(i, i, static_cast<double>(deg[i]));
-      for (int k = nb_begin[i]; k < nb_begin[i + 1]; ++k) trip.emplace_back(i, nb[k], -1.0);
-    }
-    A.setFromTriplets(trip.begin(), trip.end());
+    std::vector<double> val(nb.size(), -1.0), diag(m);
+    for (int i = 0; i < m; ++i) diag[i] = static_cast<double>(deg[i]);
+    chol.factorize(nb_begin, nb, val, diag);  // throws Internal if not positive definite
   }
-  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> chol;
-  chol.compute(A);
-  if (chol.info() != Eigen::Success)
-    throw Error(ErrorKind::Internal, "tutte_embed: Cholesky factorization of the interior Laplacian failed");
+  st.factor_entries = chol.factor_entries();
   st.seconds_factorization = since(t0);
 
   t0 = Clock::now();
@@ -474,7 +471,8 @@ TutteResult tutte_embed(int num_vertices, const std::vector<std::array<int, 3>>&
     rhs(brow[k], 0) = to_double(bx[k]);
     rhs(brow[k], 1) = to_double(by[k]);
   }
-  Eigen::MatrixXd sol = chol.solve(rhs);
+  Eigen::MatrixXd sol = rhs;
+  chol.solve(sol);
   xd.resize(m);
   yd.resize(m);
   for (int i = 0; i < m; ++i) {
@@ -486,7 +484,7 @@ TutteResult tutte_embed(int num_vertices, const std::vector<std::array<int, 3>>&
   st.seconds_solve = since(t0);
 
   st.flips_double = count_flips(Mode::Double);
-  if (st.flips_double == 0) {
+  if (st.flips_double == 0 && options.min_iterations <= 0) {
     finish(Mode::Double);
     return result;
   }
@@ -563,7 +561,8 @@ TutteResult tutte_embed(int num_vertices, const std::vector<std::array<int, 3>>&
         const long sh = re[2 * i + c] - emax;
         rhs(i, c) = rm[2 * i + c] == 0 || sh < -1100 ? 0.0 : std::ldexp(rm[2 * i + c], static_cast<int>(sh));
       }
-    sol = chol.solve(rhs);
+    sol = rhs;
+    chol.solve(sol);
     double dmax = 0;
     for (int i = 0; i < m; ++i) dmax = std::max({dmax, std::fabs(sol(i, 0)), std::fabs(sol(i, 1))});
     if (!std::isfinite(dmax))
@@ -599,11 +598,11 @@ TutteResult tutte_embed(int num_vertices, const std::vector<std::array<int, 3>>&
     st.iterations = it + 1;
     const std::int64_t flips = count_flips(Mode::Grid);
     st.flips_per_iteration.push_back(flips);
-    if (flips == 0) done = true;
+    if (flips == 0 && st.iterations >= options.min_iterations) done = true;
   }
   st.grid_exponent = e;
   st.seconds_refinement = since(t_ref) - (st.seconds_checks - seconds_checks_before);
-  if (done) {
+  if (done || (!st.flips_per_iteration.empty() && st.flips_per_iteration.back() == 0)) {
     finish(Mode::Grid);
     return result;
   }
@@ -634,6 +633,15 @@ TutteResult tutte_embed(int num_vertices, const std::vector<std::array<int, 3>>&
   {
     // Sparse symmetric elimination in rationals along a minimum-degree (AMD) order: row k keeps
     // its entries in columns >= k (the upper factor U = D L^T after elimination).
+    Eigen::SparseMatrix<double> A(m, m);
+    {
+      std::vector<Eigen::Triplet<double>> trip;
+      for (int i = 0; i < m; ++i) {
+        trip.emplace_back(i, i, static_cast<double>(deg[i]));
+        for (int k = nb_begin[i]; k < nb_begin[i + 1]; ++k) trip.emplace_back(i, nb[k], -1.0);
+      }
+      A.setFromTriplets(trip.begin(), trip.end());
+    }
     Eigen::AMDOrdering<int> amd;
     Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> perm;
     amd(A, perm);

@@ -15,6 +15,9 @@ struct TutteOptions {
   /// about 53 - log2(cond) bits of accuracy (see tutte.cpp); 40 steps cover > 800 bits on
   /// meshes with condition numbers up to 2^30.
   int max_iterations = 40;
+  /// Refinement steps run even if the double solution is already certified (for measurements,
+  /// or to move closer to the exact Tutte solution). Must be <= max_iterations.
+  int min_iterations = 0;
   /// When the bound is hit: meshes with at most this many interior vertices are solved exactly
   /// (sparse rational elimination); larger ones throw igm::Error(Internal) with the statistics.
   int exact_fallback_max_interior = 5000;
@@ -35,8 +38,10 @@ struct TutteStats {
   /// max over all output coordinates of igm::bit_size (numerator + denominator bits).
   std::size_t max_bits = 0;
   bool exact_fallback = false;
-  double seconds_validate = 0;       // pre-condition checks and adjacency
-  double seconds_factorization = 0;  // sparse Cholesky (AMD ordering, symbolic + numeric)
+  double seconds_validate = 0;       // pre-condition checks (half-edges, fans, boundary, sides)
+  double seconds_assemble = 0;       // adjacency, degrees, exact right-hand side
+  double seconds_factorization = 0;  // nested dissection + multifrontal sparse Cholesky
+  std::size_t factor_entries = 0;    // entries of the Cholesky factor's dense blocks
   double seconds_solve = 0;          // double solve of both coordinates
   double seconds_refinement = 0;     // exact residuals, corrections, exact updates
   double seconds_checks = 0;         // orientation checks of all triangles (every round)
