@@ -11,6 +11,10 @@ namespace igm {
 
 namespace {
 
+// Largest dense frontal matrix accepted (32768^2 doubles = 8 GiB would be the next step); planar
+// meshes of 10^7 vertices have fronts of a few thousand.
+constexpr int kMaxFront = 20000;
+
 struct NdNode {
   int s0, s1, parent;
 };
@@ -191,6 +195,10 @@ void SparseCholesky::factorize(const std::vector<int>& xadj, const std::vector<i
     for (int p = node.s0; p < node.s1; ++p) loc[p] = p - node.s0;
     for (int j = 0; j < u; ++j) loc[border[j]] = k + j;
     max_front_ = std::max(max_front_, k + u);
+    if (k + u > kMaxFront)
+      throw Error(ErrorKind::Internal, "SparseCholesky: frontal matrix of dimension " + std::to_string(k + u) +
+                                           " exceeds the limit " + std::to_string(kMaxFront) +
+                                           " (graph without small separators)");
 
     Eigen::MatrixXd F = Eigen::MatrixXd::Zero(k + u, k + u);  // lower triangle used
     for (int p = node.s0; p < node.s1; ++p) {

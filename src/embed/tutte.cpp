@@ -580,7 +580,10 @@ TutteResult tutte_embed(int num_vertices, const std::vector<std::array<int, 3>>&
         mpz_mul_2exp(Z.get_mpz_t(), Z.get_mpz_t(), static_cast<mp_bitcnt_t>(s));
         const double v = sol(i, c);
         if (v == 0) continue;
-        const double scaled = std::nearbyint(std::ldexp(v, static_cast<int>(std::clamp(scale, -2000L, 2000L))));
+        if (scale > 2000 || scale < -2000)
+          throw Error(ErrorKind::Internal, "tutte_embed: correction scale 2^" + std::to_string(scale) +
+                                               " out of range in refinement");
+        const double scaled = std::nearbyint(std::ldexp(v, static_cast<int>(scale)));
         if (!std::isfinite(scaled))
           throw Error(ErrorKind::Internal, "tutte_embed: correction out of range in refinement");
         if (std::fabs(scaled) < 0x1p62) {
