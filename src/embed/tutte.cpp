@@ -54,6 +54,7 @@ struct Disk {
   int nv = 0, nf = 0;
   std::vector<int> origin, twin;
   std::vector<int> out_begin, out;  // CSR: half-edges leaving each vertex, sorted by target
+  std::vector<int> out_target;      // target of out[k]
   int target(int h) const { return origin[h % 3 == 2 ? h - 2 : h + 1]; }
   static int prev(int h) { return h % 3 == 0 ? h + 2 : h - 1; }
 };
@@ -133,30 +134,36 @@ Disk build_and_check_disk(int nv, const std::vector<std::array<int, 3>>& tris,
   d.out_begin.assign(nv + 1, 0);
   for (int h = 0; h < nh; ++h) ++d.out_begin[d.origin[h] + 1];
   for (int v = 0; v < nv; ++v) d.out_begin[v + 1] += d.out_begin[v];
-  d.out.resize(nh);
   {
+    // Sort keys (target << 32 | half-edge) inside each bucket: contiguous integer sorts.
+    std::vector<std::uint64_t> key(nh);
     std::vector<int> fill(d.out_begin.begin(), d.out_begin.end() - 1);
-    for (int h = 0; h < nh; ++h) d.out[fill[d.origin[h]]++] = h;
-  }
-  for (int v = 0; v < nv; ++v) {
-    if (d.out_begin[v] == d.out_begin[v + 1])
-      bad("vertex " + std::to_string(v) + " is used by no triangle", {v});
-    auto b = d.out.begin() + d.out_begin[v], e = d.out.begin() + d.out_begin[v + 1];
-    std::sort(b, e, [&](int x, int y) { return d.target(x) < d.target(y); });
-    for (auto it = b; it + 1 < e; ++it)
-      if (d.target(*it) == d.target(*(it + 1)))
-        bad("edge " + edge_str(v, d.target(*it)) +
-                " has two triangles in the same direction (non-manifold or inconsistently oriented)",
-            {v, d.target(*it)});
+    for (int h = 0; h < nh; ++h)
+      key[fill[d.origin[h]]++] = (static_cast<std::uint64_t>(d.target(h)) << 32) | static_cast<std::uint32_t>(h);
+    d.out.resize(nh);
+    d.out_target.resize(nh);
+    for (int v = 0; v < nv; ++v) {
+      if (d.out_begin[v] == d.out_begin[v + 1])
+        bad("vertex " + std::to_string(v) + " is used by no triangle", {v});
+      std::sort(key.begin() + d.out_begin[v], key.begin() + d.out_begin[v + 1]);
+      for (int k = d.out_begin[v]; k < d.out_begin[v + 1]; ++k) {
+        d.out[k] = static_cast<int>(key[k] & 0xffffffffu);
+        d.out_target[k] = static_cast<int>(key[k] >> 32);
+        if (k > d.out_begin[v] && d.out_target[k] == d.out_target[k - 1])
+          bad("edge " + edge_str(v, d.out_target[k]) +
+                  " has two triangles in the same direction (non-manifold or inconsistently oriented)",
+              {v, d.out_target[k]});
+      }
+    }
   }
   d.twin.assign(nh, -1);
   int num_boundary_he = 0;
   for (int h = 0; h < nh; ++h) {
     const int a = d.origin[h], b = d.target(h);
-    auto first = d.out.begin() + d.out_begin[b], last = d.out.begin() + d.out_begin[b + 1];
-    auto it = std::lower_bound(first, last, a, [&](int x, int val) { return d.target(x) < val; });
-    if (it != last && d.target(*it) == a)
-      d.twin[h] = *it;
+    auto first = d.out_target.begin() + d.out_begin[b], last = d.out_target.begin() + d.out_begin[b + 1];
+    auto it = std::lower_bound(first, last, a);
+    if (it != last && *it == a)
+      d.twin[h] = d.out[it - d.out_target.begin()];
     else
       ++num_boundary_he;
   }
@@ -379,7 +386,7 @@ TutteResult tutte_embed(int num_vertices, const std::vector<std::array<int, 3>>&
     Rational sx = 0, sy = 0;
     bool touches = false;
     for (int k = d.out_begin[v]; k < d.out_begin[v + 1]; ++k) {
-      const int w = d.target(d.out[k]);
+      const int w = d.out_target[k];
       if (idx[w] >= 0)
         nb.push_back(idx[w]);
       else {
