@@ -73,6 +73,38 @@ double cpu_seconds() {
   return u.ru_utime.tv_sec + u.ru_utime.tv_usec * 1e-6 + u.ru_stime.tv_sec + u.ru_stime.tv_usec * 1e-6;
 }
 
+// Adversarial disks (same constructions as tests/embed/tutte_test.cpp): a dense fan whose path
+// collapses onto an edge like (2 - sqrt 3)^i, and a long tube of 4-vertex rings.
+Disk fan_disk(int n) {
+  Disk d;
+  d.nv = 3 + n;
+  auto P = [&](int i) { return i == 0 ? 2 : 2 + i; };
+  for (int i = 0; i < n; ++i) {
+    d.tris.push_back({0, P(i + 1), P(i)});
+    d.tris.push_back({1, P(i), P(i + 1)});
+  }
+  d.tris.push_back({0, 1, P(n)});
+  d.boundary = {0, 1, 2};
+  d.buv = {{Rational(0), Rational(1)}, {Rational(1), Rational(1)}, {Rational(1, 3), Rational(2)}};
+  return d;
+}
+
+Disk tube_disk(int rings) {
+  Disk d;
+  const int B = 4;
+  d.nv = B * (rings + 1) + 1;
+  auto id = [&](int k, int i) { return k * B + i % B; };
+  for (int k = 0; k < rings; ++k)
+    for (int i = 0; i < B; ++i) {
+      d.tris.push_back({id(k, i), id(k, i + 1), id(k + 1, i + 1)});
+      d.tris.push_back({id(k, i), id(k + 1, i + 1), id(k + 1, i)});
+    }
+  for (int i = 0; i < B; ++i) d.tris.push_back({id(rings, i), id(rings, i + 1), d.nv - 1});
+  d.boundary = {0, 1, 2, 3};
+  d.buv = canonical_polygon(1);
+  return d;
+}
+
 long maxrss_mb() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
@@ -108,6 +140,8 @@ void run(const char* name, const Disk& d, const TutteOptions& o = {}) {
 
 int main(int argc, char** argv) {
   const std::int64_t max_faces = argc > 1 ? std::atoll(argv[1]) : 1000000;
+  for (int n : {100, 400, 1000}) run(("dense fan " + std::to_string(n)).c_str(), fan_disk(n));
+  for (int k : {50, 150, 300}) run(("tube of 4-rings " + std::to_string(k)).c_str(), tube_disk(k));
   for (std::int64_t faces : {std::int64_t(100000), std::int64_t(1000000)}) {
     if (faces > max_faces) break;
     run(("punctured sphere " + std::to_string(faces)).c_str(), punctured_sphere(faces));
