@@ -5,6 +5,7 @@
 // time includes waiting for a core. The per-phase times are wall times from TutteStats.
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -140,6 +141,14 @@ void run(const char* name, const Disk& d, const TutteOptions& o = {}) {
 
 int main(int argc, char** argv) {
   const std::int64_t max_faces = argc > 1 ? std::atoll(argv[1]) : 1000000;
+  for (int g : {2, 10, 100, 1000, 10000}) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto c = canonical_polygon(g);  // includes the exact convexity check
+    const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::size_t bits = 0;
+    for (const auto& p : c) bits = std::max({bits, bit_size(p.x), bit_size(p.y)});
+    std::printf("canonical_polygon(%d): %zu corners, max bits per coordinate %zu, %.4f s\n", g, c.size(), bits, sec);
+  }
   for (int n : {100, 400, 1000}) run(("dense fan " + std::to_string(n)).c_str(), fan_disk(n));
   for (int k : {50, 150, 300}) run(("tube of 4-rings " + std::to_string(k)).c_str(), tube_disk(k));
   for (std::int64_t faces : {std::int64_t(100000), std::int64_t(1000000)}) {
