@@ -29,7 +29,7 @@ struct NdNode {
 // Output: order[p] = vertex at position p; nodes with separator positions [s0, s1) and parent.
 void nested_dissection(const std::vector<int>& xadj, const std::vector<int>& adj, std::vector<int>& order,
                        std::vector<NdNode>& nodes) {
-  constexpr int kLeaf = 96;
+  constexpr int kLeaf = 32;
   const int n = static_cast<int>(xadj.size()) - 1;
   order.assign(n, -1);
   nodes.clear();
