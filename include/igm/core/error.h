@@ -35,13 +35,18 @@ const char* to_string(ErrorKind kind);
 class Error : public std::runtime_error {
  public:
   Error(ErrorKind kind, const std::string& message, std::vector<std::int64_t> elements = {})
-      : std::runtime_error(std::string(to_string(kind)) + ": " + message),
+      : std::runtime_error(compose(kind, message)),
         kind_(kind),
         elements_(std::move(elements)) {}
   ErrorKind kind() const noexcept { return kind_; }
   const std::vector<std::int64_t>& elements() const noexcept { return elements_; }
 
  private:
+  static std::string compose(ErrorKind kind, const std::string& message) {
+    std::string s = to_string(kind);
+    s.append(": ").append(message);
+    return s;
+  }
   ErrorKind kind_;
   std::vector<std::int64_t> elements_;
 };
