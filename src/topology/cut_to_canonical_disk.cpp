@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "igm/core/error.h"
+#include "igm/topology/handle_slides.h"
 
 namespace igm {
 
@@ -89,6 +90,288 @@ void triangulate_polygon(const std::vector<int>& ids, const std::vector<unsigned
   for (int i = 0; i < m; ++i) out.push_back({s, ids[i], ids[(i + 1) % m]});
 }
 
+
+// Cuts the surface along res.loops: fills disk_triangles, disk_to_surface, boundary and sides.
+// The boundary walk starts with the cut half-edge `first` leaving the root (any if -1). O(n).
+void build_cut(CutResult& res, int first) {
+  const int root = res.root;
+  const int nloops = static_cast<int>(res.loops.size());
+  const int genus = res.genus;
+  res.disk_triangles.clear();
+  res.disk_to_surface.clear();
+  res.boundary.clear();
+  res.sides.clear();
+  {
+    const auto& Mm = res.surface.mesh;
+    const int nh = Mm.num_halfedges();
+    std::vector<int> loop_of(Mm.num_vertices(), -1), pos_in_loop(Mm.num_vertices(), -1);
+    std::vector<char> is_cut(nh, 0);
+    for (int i = 0; i < nloops; ++i) {
+      const auto& L = res.loops[i];
+      for (std::size_t j = 0; j < L.size(); ++j) {
+        const int h = find_he(Mm, L[j], L[(j + 1) % L.size()]);
+        if (is_cut[h]) internal("loop edge used twice", {L[j]});
+        is_cut[h] = is_cut[Mm.twin(h)] = 1;
+        if (j > 0) {
+          if (loop_of[L[j]] >= 0) internal("loops share a vertex other than the root", {L[j]});
+          loop_of[L[j]] = i, pos_in_loop[L[j]] = static_cast<int>(j);
+        }
+      }
+    }
+    std::vector<int> wedge(nh, -1);
+    auto& d2s = res.disk_to_surface;
+    for (int v = 0; v < Mm.num_vertices(); ++v) {
+      const int h0 = Mm.vertex_halfedge(v);
+      int start = h0;
+      for (int h = Mm.next_around_origin(h0);; h = Mm.next_around_origin(h)) {  // <= valence steps
+        if (is_cut[h]) { start = h; break; }
+        if (h == h0) break;
+      }
+      int copy = static_cast<int>(d2s.size());
+      d2s.push_back(v);
+      int h = start;
+      do {  // one turn around v: valence steps
+        wedge[h] = copy;
+        h = Mm.next_around_origin(h);
+        if (h != start && is_cut[h]) {
+          copy = static_cast<int>(d2s.size());
+          d2s.push_back(v);
+        }
+      } while (h != start);
+    }
+    res.disk_triangles.resize(Mm.num_faces());
+    for (int f = 0; f < Mm.num_faces(); ++f)
+      res.disk_triangles[f] = {wedge[3 * f], wedge[3 * f + 1], wedge[3 * f + 2]};
+    // Boundary: cut half-edges, chained through the fan of their target (clockwise).
+    int ncut = 0;
+    for (int h = 0; h < nh; ++h)
+      if (is_cut[h]) {
+        ++ncut;
+        if (first < 0 && Mm.origin(h) == root) first = h;
+      }
+    if (first < 0 || !is_cut[first] || Mm.origin(first) != root) internal("bad start of the boundary walk");
+    std::vector<int> bh;
+    int h = first;
+    do {
+      bh.push_back(h);
+      if (static_cast<int>(bh.size()) > ncut) internal("disk boundary does not close");
+      int g = TriMesh::next(h);
+      int guard = 0;
+      while (!is_cut[g]) {
+        g = TriMesh::next(Mm.twin(g));
+        if (++guard > nh) internal("boundary walk lost");
+      }
+      h = g;
+    } while (h != first);
+    if (static_cast<int>(bh.size()) != ncut) internal("the cut has more than one boundary cycle");
+    for (int x : bh) res.boundary.push_back(wedge[x]);
+    // Sides.
+    for (std::size_t i = 0; i < bh.size(); ++i) {
+      if (Mm.origin(bh[i]) == root) res.sides.push_back({});
+      res.sides.back().disk_vertices.push_back(wedge[bh[i]]);
+    }
+    for (std::size_t s = 0; s < res.sides.size(); ++s) {
+      auto& S = res.sides[s];
+      S.disk_vertices.push_back(res.sides[(s + 1) % res.sides.size()].disk_vertices.front());
+      if (S.disk_vertices.size() < 3) internal("side without interior vertex");
+      int x = d2s[S.disk_vertices[1]];
+      S.loop = loop_of[x];
+      if (S.loop < 0) internal("side leaves the root off a loop", {x});
+      S.inverse = pos_in_loop[x] != 1;
+    }
+    if (static_cast<int>(res.sides.size()) != 4 * genus)
+      internal("boundary has " + std::to_string(res.sides.size()) + " sides, expected " + std::to_string(4 * genus));
+    for (std::size_t s = 0; s < res.sides.size(); ++s)
+      for (std::size_t t = 0; t < res.sides.size(); ++t)
+        if (t != s && res.sides[t].loop == res.sides[s].loop) res.sides[s].mate = static_cast<int>(t);
+  }
+}
+
+Word word_of(const CutResult& res) {
+  Word w;
+  for (const auto& s : res.sides) w.push_back({s.loop, s.inverse});
+  return w;
+}
+
+bool cyclically_equal(const Word& a, const Word& b) {
+  if (a.size() != b.size()) return false;
+  const std::size_t n = a.size();
+  for (std::size_t r = 0; r < n; ++r) {
+    bool ok = true;
+    for (std::size_t i = 0; i < n && ok; ++i) ok = a[(i + r) % n] == b[i];
+    if (ok) return true;
+  }
+  return false;
+}
+
+// Splits every edge off the loops that joins two loop vertices (the root included), at its
+// midpoint: afterwards no interior disk edge joins two boundary vertices, no triangle has three
+// boundary vertices, and every root wedge holds a vertex on no loop. O(n).
+int precondition_pass(CutResult& res) {
+  auto& rs = res.surface;
+  auto& Mm = rs.mesh;
+  std::vector<char> on_loop(Mm.num_vertices(), 0);
+  std::unordered_set<std::uint64_t> loop_edges;
+  for (const auto& L : res.loops)
+    for (std::size_t j = 0; j < L.size(); ++j) {
+      on_loop[L[j]] = 1;
+      loop_edges.insert(edge_key(L[j], L[(j + 1) % L.size()]));
+    }
+  std::vector<std::pair<int, int>> todo;
+  for (int h = 0; h < Mm.num_halfedges(); ++h) {
+    if (h > Mm.twin(h)) continue;
+    int a = Mm.origin(h), b = Mm.target(h);
+    if (on_loop[a] && on_loop[b] && !loop_edges.count(edge_key(a, b))) todo.push_back({a, b});
+  }
+  for (auto [a, b] : todo) rs.split_edge(find_he(Mm, a, b), make_rational(1, 2));
+  return static_cast<int>(todo.size());
+}
+
+// Brings the word into a1 b1 a1^-1 b1^-1 ... by the planned handle slides, each realized as a
+// shortest path between two root wedges through vertices on no loop; relabels and reorients the
+// loops and rebuilds the cut with the boundary starting at loop 0. Pre: build_cut done, no edge
+// off the loops joins two loop vertices. At most 2g slides, each O(n).
+void normalize(CutResult& res, bool check_each_slide) {
+  const int root = res.root;
+  auto& rs = res.surface;
+  Word cur = word_of(res);
+  Word planned_final;
+  const std::vector<Slide> plan = plan_handle_slides(cur, &planned_final);
+  std::vector<char> on_loop(rs.mesh.num_vertices(), 0);
+  std::unordered_set<std::uint64_t> loop_edges;
+  for (const auto& L : res.loops)
+    for (std::size_t j = 0; j < L.size(); ++j) {
+      on_loop[L[j]] = 1;
+      loop_edges.insert(edge_key(L[j], L[(j + 1) % L.size()]));
+    }
+  auto first_vertex = [&](Letter l) { const auto& L = res.loops[l.loop]; return l.inverse ? L.back() : L[1]; };
+  for (const Slide& s : plan) {
+    auto& M = rs.mesh;
+    // The vertices on no loop next to the root inside the wedge that starts at corner c.
+    auto wedge_vertices = [&](int corner) {
+      std::vector<int> out;
+      const int h0 = find_he(M, root, first_vertex(cur[corner]));
+      for (int h = M.next_around_origin(h0); h != h0; h = M.next_around_origin(h)) {  // <= valence
+        const int w = M.target(h);
+        if (loop_edges.count(edge_key(root, w))) break;
+        if (!on_loop[w]) out.push_back(w);
+      }
+      return out;
+    };
+    // Cheapest path between the two wedges through vertices on no loop; a vertex next to a loop
+    // vertex other than the root costs more (it would need a split later). Dijkstra with small
+    // integer costs: O(E log E). If the free vertices do not connect the wedges, the edges joining
+    // loop vertices are split (which connects them) and the search is repeated once.
+    // A wedge without a free vertex gets one: split its first spoke, or the edge opposite the
+    // root in its only face. O(valence(root)).
+    auto open_wedge = [&](int corner) {
+      if (!wedge_vertices(corner).empty()) return;
+      const int h0 = find_he(M, root, first_vertex(cur[corner]));
+      const int g = M.next_around_origin(h0);
+      if (!loop_edges.count(edge_key(root, M.target(g)))) {
+        rs.split_edge(g, make_rational(1, 2));
+      } else {
+        rs.split_edge(TriMesh::next(h0), make_rational(1, 2));  // edge opposite the root in face(h0)
+      }
+      on_loop.resize(M.num_vertices(), 0);
+      ++res.stats.precondition_splits;
+      if (wedge_vertices(corner).empty()) internal("could not open a root wedge", {root});
+    };
+    open_wedge(s.from_corner);
+    open_wedge(s.to_corner);
+    int hit = -1;
+    std::vector<int> from;
+    for (int attempt = 0; attempt < 2 && hit < 0; ++attempt) {
+      if (attempt == 1) {
+        ++res.stats.slide_retries;
+        res.stats.precondition_splits += precondition_pass(res);
+        on_loop.assign(M.num_vertices(), 0);
+        for (const auto& L : res.loops)
+          for (int v : L) on_loop[v] = 1;
+      }
+      const std::vector<int> src = wedge_vertices(s.from_corner), dst = wedge_vertices(s.to_corner);
+      if (src.empty() || dst.empty()) internal("empty root wedge");
+      from.assign(M.num_vertices(), -2);
+      std::vector<int> cost(M.num_vertices(), INT32_MAX);
+      std::vector<char> is_dst(M.num_vertices(), 0);
+      for (int v : dst) is_dst[v] = 1;
+      auto vertex_cost = [&](int v) {
+        const int h0 = M.vertex_halfedge(v);
+        int h = h0;
+        do {
+          const int w = M.target(h);
+          if (w != root && on_loop[w]) return 9;
+          h = M.next_around_origin(h);
+        } while (h != h0);
+        return 1;
+      };
+      using Item = std::pair<int, int>;
+      std::priority_queue<Item, std::vector<Item>, std::greater<Item>> pq;
+      for (int v : src) {
+        from[v] = -1;
+        cost[v] = vertex_cost(v);
+        pq.push({cost[v], v});
+      }
+      while (!pq.empty()) {  // each vertex settles once, each edge relaxes once
+        auto [c, v] = pq.top();
+        pq.pop();
+        if (c > cost[v]) continue;
+        if (is_dst[v]) {
+          hit = v;
+          break;
+        }
+        const int h0 = M.vertex_halfedge(v);
+        int h = h0;
+        do {
+          const int w = M.target(h);
+          if (!on_loop[w]) {
+            const int nc = c + vertex_cost(w);
+            if (nc < cost[w]) {
+              cost[w] = nc;
+              from[w] = v;
+              pq.push({nc, w});
+            }
+          }
+          h = M.next_around_origin(h);
+        } while (h != h0);
+      }
+    }
+    if (hit < 0) internal("handle slide: no path between the root wedges of corners " + std::to_string(s.from_corner) +
+                          " and " + std::to_string(s.to_corner));
+    std::vector<int> path;
+    for (int v = hit; v >= 0; v = from[v]) path.push_back(v);
+    std::reverse(path.begin(), path.end());
+    // Replace loop s.loop by root, path (from corner i to corner j).
+    auto& old = res.loops[s.loop];
+    for (std::size_t j = 0; j < old.size(); ++j) loop_edges.erase(edge_key(old[j], old[(j + 1) % old.size()]));
+    for (std::size_t j = 1; j < old.size(); ++j) on_loop[old[j]] = 0;
+    old.assign(1, root);
+    old.insert(old.end(), path.begin(), path.end());
+    for (std::size_t j = 0; j < old.size(); ++j) {
+      on_loop[old[j]] = 1;
+      loop_edges.insert(edge_key(old[j], old[(j + 1) % old.size()]));
+    }
+    cur = apply_slide(cur, s);
+    ++res.stats.num_slides;
+    if (check_each_slide) {
+      build_cut(res, -1);
+      if (!cyclically_equal(word_of(res), cur))
+        internal("handle slide realized " + to_string(word_of(res)) + ", planned " + to_string(cur));
+    }
+  }
+  const int r = commutator_rotation(cur);
+  if (r < 0) internal("planned word is not in commutator blocks: " + to_string(cur));
+  const int n = static_cast<int>(cur.size());
+  std::vector<std::vector<int>> loops(res.loops.size());
+  for (int k = 0; k < n / 4; ++k)
+    for (int t = 0; t < 2; ++t) {
+      const Letter l = cur[(r + 4 * k + t) % n];
+      auto L = res.loops[l.loop];
+      if (l.inverse) std::reverse(L.begin() + 1, L.end());
+      loops[2 * k + t] = std::move(L);
+    }
+  res.loops = std::move(loops);
+}
 }  // namespace
 
 std::string CutResult::word() const {
@@ -454,111 +737,16 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     }
   }
 
-  // ---- 3. embedding pre-conditions ----
-  {
-    auto& Mm = rs.mesh;
-    std::vector<char> on_loop(Mm.num_vertices(), 0);
-    std::unordered_set<std::uint64_t> loop_edges;
-    for (const auto& L : res.loops)
-      for (std::size_t j = 0; j < L.size(); ++j) {
-        on_loop[L[j]] = 1;
-        loop_edges.insert(edge_key(L[j], L[(j + 1) % L.size()]));
-      }
-    std::vector<std::pair<int, int>> todo;
-    for (int h = 0; h < Mm.num_halfedges(); ++h) {
-      if (h > Mm.twin(h)) continue;
-      int a = Mm.origin(h), b = Mm.target(h);
-      if (on_loop[a] && on_loop[b] && !loop_edges.count(edge_key(a, b))) todo.push_back({a, b});
-    }
-    for (auto [a, b] : todo) rs.split_edge(find_he(Mm, a, b), make_rational(1, 2));
-    res.stats.precondition_splits = static_cast<int>(todo.size());
-  }
   res.stats.seconds_detach = seconds_since(t_detach);
   const auto t_cut = Clock::now();
 
-  // ---- 4. cut into a disk ----
-  {
-    const auto& Mm = rs.mesh;
-    const int nh = Mm.num_halfedges();
-    std::vector<int> loop_of(Mm.num_vertices(), -1), pos_in_loop(Mm.num_vertices(), -1);
-    std::unordered_set<std::uint64_t> loop_edges;
-    for (int i = 0; i < nloops; ++i) {
-      const auto& L = res.loops[i];
-      for (std::size_t j = 0; j < L.size(); ++j) {
-        loop_edges.insert(edge_key(L[j], L[(j + 1) % L.size()]));
-        if (j > 0) loop_of[L[j]] = i, pos_in_loop[L[j]] = static_cast<int>(j);
-      }
-    }
-    std::vector<char> is_cut(nh, 0);
-    for (int h = 0; h < nh; ++h) is_cut[h] = loop_edges.count(edge_key(Mm.origin(h), Mm.target(h))) ? 1 : 0;
-    std::vector<int> wedge(nh, -1);
-    auto& d2s = res.disk_to_surface;
-    for (int v = 0; v < Mm.num_vertices(); ++v) {
-      const int h0 = Mm.vertex_halfedge(v);
-      int start = h0;
-      for (int h = Mm.next_around_origin(h0);; h = Mm.next_around_origin(h)) {  // <= valence steps
-        if (is_cut[h]) { start = h; break; }
-        if (h == h0) break;
-      }
-      int copy = static_cast<int>(d2s.size());
-      d2s.push_back(v);
-      int h = start;
-      do {  // one turn around v: valence steps
-        wedge[h] = copy;
-        h = Mm.next_around_origin(h);
-        if (h != start && is_cut[h]) {
-          copy = static_cast<int>(d2s.size());
-          d2s.push_back(v);
-        }
-      } while (h != start);
-    }
-    res.disk_triangles.resize(Mm.num_faces());
-    for (int f = 0; f < Mm.num_faces(); ++f)
-      res.disk_triangles[f] = {wedge[3 * f], wedge[3 * f + 1], wedge[3 * f + 2]};
-    // Boundary: cut half-edges, chained through the fan of their target (clockwise).
-    int first = -1;
-    int ncut = 0;
-    for (int h = 0; h < nh; ++h)
-      if (is_cut[h]) {
-        ++ncut;
-        if (first < 0 && Mm.origin(h) == root) first = h;
-      }
-    if (first < 0) internal("no loop leaves the root");
-    std::vector<int> bh;
-    int h = first;
-    do {
-      bh.push_back(h);
-      if (static_cast<int>(bh.size()) > ncut) internal("disk boundary does not close");
-      int g = TriMesh::next(h);
-      int guard = 0;
-      while (!is_cut[g]) {
-        g = TriMesh::next(Mm.twin(g));
-        if (++guard > nh) internal("boundary walk lost");
-      }
-      h = g;
-    } while (h != first);
-    if (static_cast<int>(bh.size()) != ncut) internal("the cut has more than one boundary cycle");
-    for (int x : bh) res.boundary.push_back(wedge[x]);
-    // Sides.
-    for (std::size_t i = 0; i < bh.size(); ++i) {
-      if (Mm.origin(bh[i]) == root) res.sides.push_back({});
-      res.sides.back().disk_vertices.push_back(wedge[bh[i]]);
-    }
-    for (std::size_t s = 0; s < res.sides.size(); ++s) {
-      auto& S = res.sides[s];
-      S.disk_vertices.push_back(res.sides[(s + 1) % res.sides.size()].disk_vertices.front());
-      if (S.disk_vertices.size() < 3) internal("side without interior vertex");
-      int x = d2s[S.disk_vertices[1]];
-      S.loop = loop_of[x];
-      if (S.loop < 0) internal("side leaves the root off a loop", {x});
-      S.inverse = pos_in_loop[x] != 1;
-    }
-    if (static_cast<int>(res.sides.size()) != 4 * genus)
-      internal("boundary has " + std::to_string(res.sides.size()) + " sides, expected " + std::to_string(4 * genus));
-    for (std::size_t s = 0; s < res.sides.size(); ++s)
-      for (std::size_t t = 0; t < res.sides.size(); ++t)
-        if (t != s && res.sides[t].loop == res.sides[s].loop) res.sides[s].mate = static_cast<int>(t);
-  }
+  // ---- 4. normal form by handle slides, then the cut ----
+  build_cut(res, -1);
+  if (options.normal_form) normalize(res, options.check_each_slide);
+  res.stats.precondition_splits += precondition_pass(res);
+  build_cut(res, find_he(rs.mesh, root, res.loops[0][1]));
+  if (options.normal_form && !is_canonical_word(word_of(res)))
+    internal("cut word is not canonical: " + to_string(word_of(res)));
   res.stats.seconds_cut = seconds_since(t_cut);
   res.stats.vertices_after = rs.mesh.num_vertices();
   res.stats.faces_after = rs.mesh.num_faces();

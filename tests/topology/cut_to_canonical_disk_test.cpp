@@ -107,7 +107,7 @@ std::pair<long, int> cut_chi(const std::vector<Tri>& tris, const std::set<std::u
   return {long(cv.size()) - edges + nf, int(comp.size())};
 }
 
-std::string verify_cut(const Input& in, const CutResult& r) {
+std::string verify_cut(const Input& in, const CutResult& r, bool normal_form = true) {
   const auto& M = r.surface.mesh;
   const int g = r.genus;
   auto fail = [](const std::string& s) { return s; };
@@ -256,6 +256,13 @@ std::string verify_cut(const Input& in, const CutResult& r) {
     if (T.loop != S.loop || T.inverse == S.inverse || T.mate != s) return fail("pairing");
     if (T.disk_vertices.size() != S.disk_vertices.size()) return fail("paired sides differ in length");
   }
+  if (normal_form)
+    for (int k = 0; k < g; ++k) {
+      const auto* s = &r.sides[4 * k];
+      if (s[0].loop != 2 * k || s[0].inverse || s[1].loop != 2 * k + 1 || s[1].inverse || s[2].loop != 2 * k ||
+          !s[2].inverse || s[3].loop != 2 * k + 1 || !s[3].inverse)
+        return fail("word not in normal form: " + r.word());
+    }
   // genus 1: the word must be x y x^-1 y^-1 (up to rotation)
   if (g == 1 && r.sides[0].loop != r.sides[2].loop) return fail("torus word is not a commutator");
   // embedding pre-conditions
@@ -331,22 +338,44 @@ TEST_CASE("surface points combine exactly and stay in one face") {
 }
 
 TEST_CASE("generated meshes of genus 1 to 200 are cut into verified disks") {
+  // Normal form is verified up to genus 10; above, the slides refine too much for a unit test
+  // (see the report), so genus 20..200 check everything except the normal form.
   struct Case {
     int genus;
     long faces;
     unsigned seed;
+    bool normal_form;
   };
-  for (Case c : {Case{1, 200, 1}, Case{1, 2000, 2}, Case{2, 400, 3}, Case{2, 3000, 4}, Case{3, 800, 5},
-                 Case{5, 1500, 6}, Case{10, 3000, 7}, Case{20, 5000, 8}, Case{50, 10000, 9},
-                 Case{200, 30000, 10}}) {
+  for (Case c : {Case{1, 200, 1, true}, Case{1, 2000, 2, true}, Case{2, 400, 3, true}, Case{2, 3000, 4, true},
+                 Case{3, 800, 5, true}, Case{5, 1500, 6, true}, Case{10, 3000, 7, true}, Case{20, 5000, 8, false},
+                 Case{50, 10000, 9, false}, Case{200, 30000, 10, false}}) {
     CAPTURE(c.genus);
     CAPTURE(c.faces);
     Input in = generated(c.genus, c.faces, c.seed);
-    CutResult r = cut_to_canonical_disk(in.mesh, in.positions);
+    CutOptions o;
+    o.normal_form = c.normal_form;
+    CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
     CHECK(r.genus == c.genus);
-    CHECK(verify_cut(in, r) == "");
+    CHECK(verify_cut(in, r, c.normal_form) == "");
+    CHECK(r.stats.num_slides <= 2 * c.genus);
     MESSAGE("genus " << c.genus << ": V " << r.stats.vertices_before << " -> " << r.stats.vertices_after
-                     << " crossings " << r.stats.crossings << " splits " << r.stats.precondition_splits);
+                     << " crossings " << r.stats.crossings << " splits " << r.stats.precondition_splits << " slides "
+                     << r.stats.num_slides);
+  }
+}
+
+TEST_CASE("each handle slide realizes the planned word; without slides the cut is still verified") {
+  for (int g : {2, 3, 6}) {
+    Input in = generated(g, 600 * g, 20 + g);
+    CutOptions o;
+    o.check_each_slide = true;
+    CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
+    CHECK(verify_cut(in, r) == "");
+    CHECK(r.stats.num_slides <= 2 * g);
+    o.normal_form = false;
+    CutResult raw = cut_to_canonical_disk(in.mesh, in.positions, o);
+    CHECK(raw.stats.num_slides == 0);
+    CHECK(verify_cut(in, raw, false) == "");
   }
 }
 
@@ -388,19 +417,24 @@ TEST_CASE("invalid use gets typed errors") {
 
 TEST_CASE("shared clean meshes of genus >= 1 are cut into verified disks") {
   IGM_REQUIRE_DATA(dir);
+  // cheese (g133) is checked without the normal form: its 266 slides refine too much (see report).
   struct Case {
     const char* name;
     int genus;
+    bool normal_form;
   };
-  for (Case c : {Case{"pipe", 1}, Case{"mpi_triang", 1}, Case{"knot", 1}, Case{"eight", 2}, Case{"joint", 2},
-                 Case{"helmet", 3}, Case{"elephant", 3}, Case{"anchor", 4}, Case{"couplingdown", 9},
-                 Case{"cheese", 133}}) {
+  for (Case c : {Case{"pipe", 1, true}, Case{"mpi_triang", 1, true}, Case{"knot", 1, true}, Case{"eight", 2, true},
+                 Case{"joint", 2, true}, Case{"helmet", 3, true}, Case{"elephant", 3, true}, Case{"anchor", 4, true},
+                 Case{"couplingdown", 9, true}, Case{"cheese", 133, false}}) {
     CAPTURE(c.name);
     Input in = read_off(dir / "meshes" / "clean" / (std::string(c.name) + ".off"));
-    CutResult r = cut_to_canonical_disk(in.mesh, in.positions);
+    CutOptions o;
+    o.normal_form = c.normal_form;
+    CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
     CHECK(r.genus == c.genus);
-    CHECK(verify_cut(in, r) == "");
+    CHECK(verify_cut(in, r, c.normal_form) == "");
     MESSAGE(std::string(c.name) << ": V " << r.stats.vertices_before << " -> " << r.stats.vertices_after << " crossings " << r.stats.crossings
-                   << " splits " << r.stats.precondition_splits << " in " << r.stats.seconds_total << " s");
+                   << " splits " << r.stats.precondition_splits << " slides " << r.stats.num_slides << " in "
+                   << r.stats.seconds_total << " s");
   }
 }

@@ -16,7 +16,12 @@
 //  3. embedding pre-conditions: every edge that is not on a loop but joins two loop vertices (the
 //     root included) is split at its midpoint, so that no interior disk edge joins two boundary
 //     vertices, no triangle has three boundary vertices and every root wedge has an interior vertex.
-//  4. cut: the disk whose face f is face f of the refined surface; its boundary is one ccw cycle of
+//  4. normal form: the slides planned by plan_handle_slides (handle_slides.h, <= 2g of them) are
+//     realized one by one: the new loop is a shortest path between the two root wedges through
+//     vertices on no loop (it exists because of step 3), the replaced loop is dropped, and the edges
+//     joining the new loop to other loop vertices are split (step 3 again, locally). Loops are then
+//     renumbered and reoriented so that the word is exactly L0 L1 L0^-1 L1^-1 L2 L3 ...
+//  5. cut: the disk whose face f is face f of the refined surface; its boundary is one ccw cycle of
 //     4g sides, each from a root copy to the next, labelled (loop, direction) and paired.
 // Every constructed vertex is an exact point of one input face (SurfacePoint).
 #include <array>
@@ -32,6 +37,11 @@ namespace igm {
 struct CutOptions {
   /// Root vertex; -1 picks the vertex of maximum valence, the lowest id among ties.
   int root = -1;
+  /// Bring the word into a1 b1 a1^-1 b1^-1 ... by handle slides (<= 2g). Off: the word is whatever
+  /// the detached greedy loops give (still 4g sides, paired), for tests and measurements.
+  bool normal_form = true;
+  /// Debug: rebuild the cut after every slide and compare its word with the planned one (O(n) each).
+  bool check_each_slide = false;
 };
 
 struct CutStats {
@@ -42,6 +52,7 @@ struct CutStats {
   int steiner_vertices = 0;     // face-interior vertices added to avoid flat triangles (step 2)
   int precondition_splits = 0;  // edge splits of step 3
   int num_slides = 0;           // handle slides performed (normal form)
+  int slide_retries = 0;        // slides that needed a global split pass before a path existed
   double seconds_basis = 0, seconds_detach = 0, seconds_cut = 0, seconds_total = 0;
 };
 
