@@ -204,27 +204,51 @@ bool cyclically_equal(const Word& a, const Word& b) {
   return false;
 }
 
-// Splits every edge off the loops that joins two loop vertices (the root included), at its
-// midpoint: afterwards no interior disk edge joins two boundary vertices, no triangle has three
-// boundary vertices, and every root wedge holds a vertex on no loop. O(n).
-int precondition_pass(CutResult& res) {
+// Makes the embedding pre-conditions hold by edge splits at midpoints. `full`: split every edge off
+// the loops that joins two loop vertices (the root included); this also connects the vertices on
+// no loop (used before handle slides). Otherwise only what the disk needs: edges off the loops
+// joining two vertices of one loop or a loop vertex to the root, then one edge off the loops in
+// every triangle whose three vertices are on loops. Afterwards no interior disk edge joins two
+// vertices of one side, no triangle has three boundary vertices, and every root wedge holds a
+// vertex on no loop. Returns the number of splits. O(n).
+int precondition_pass(CutResult& res, bool full) {
   auto& rs = res.surface;
   auto& Mm = rs.mesh;
-  std::vector<char> on_loop(Mm.num_vertices(), 0);
+  const int root = res.root;
+  std::vector<int> loop_of(Mm.num_vertices(), -1);
   std::unordered_set<std::uint64_t> loop_edges;
-  for (const auto& L : res.loops)
+  for (int i = 0; i < static_cast<int>(res.loops.size()); ++i) {
+    const auto& L = res.loops[i];
     for (std::size_t j = 0; j < L.size(); ++j) {
-      on_loop[L[j]] = 1;
+      loop_of[L[j]] = i;
       loop_edges.insert(edge_key(L[j], L[(j + 1) % L.size()]));
     }
+  }
+  loop_of[root] = -2;
+  auto on_loop = [&](int v) { return v < static_cast<int>(loop_of.size()) && loop_of[v] != -1; };
   std::vector<std::pair<int, int>> todo;
   for (int h = 0; h < Mm.num_halfedges(); ++h) {
     if (h > Mm.twin(h)) continue;
-    int a = Mm.origin(h), b = Mm.target(h);
-    if (on_loop[a] && on_loop[b] && !loop_edges.count(edge_key(a, b))) todo.push_back({a, b});
+    const int a = Mm.origin(h), b = Mm.target(h);
+    if (!on_loop(a) || !on_loop(b) || loop_edges.count(edge_key(a, b))) continue;
+    if (full || loop_of[a] == loop_of[b] || a == root || b == root) todo.push_back({a, b});
   }
   for (auto [a, b] : todo) rs.split_edge(find_he(Mm, a, b), make_rational(1, 2));
-  return static_cast<int>(todo.size());
+  int splits = static_cast<int>(todo.size());
+  if (!full) {
+    // Faces created by a split hold the new vertex, so one pass in id order suffices: O(F).
+    for (int f = 0; f < Mm.num_faces(); ++f) {
+      const auto c = Mm.face_vertices(f);
+      if (!on_loop(c[0]) || !on_loop(c[1]) || !on_loop(c[2])) continue;
+      int h = -1;
+      for (int i = 0; i < 3 && h < 0; ++i)
+        if (!loop_edges.count(edge_key(c[i], c[(i + 1) % 3]))) h = 3 * f + i;
+      if (h < 0) internal("triangle bounded by loop edges only", {f});
+      rs.split_edge(h, make_rational(1, 2));
+      ++splits;
+    }
+  }
+  return splits;
 }
 
 // Brings the word into a1 b1 a1^-1 b1^-1 ... by the planned handle slides, each realized as a
@@ -284,7 +308,7 @@ void normalize(CutResult& res, bool check_each_slide) {
     for (int attempt = 0; attempt < 2 && hit < 0; ++attempt) {
       if (attempt == 1) {
         ++res.stats.slide_retries;
-        res.stats.precondition_splits += precondition_pass(res);
+        res.stats.precondition_splits += precondition_pass(res, true);
         on_loop.assign(M.num_vertices(), 0);
         for (const auto& L : res.loops)
           for (int v : L) on_loop[v] = 1;
@@ -743,7 +767,7 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
   // ---- 4. normal form by handle slides, then the cut ----
   build_cut(res, -1);
   if (options.normal_form) normalize(res, options.check_each_slide);
-  res.stats.precondition_splits += precondition_pass(res);
+  res.stats.precondition_splits += precondition_pass(res, false);
   build_cut(res, find_he(rs.mesh, root, res.loops[0][1]));
   if (options.normal_form && !is_canonical_word(word_of(res)))
     internal("cut word is not canonical: " + to_string(word_of(res)));
