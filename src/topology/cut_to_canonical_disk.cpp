@@ -601,6 +601,7 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
   std::vector<std::vector<int>> strand_points(leaves.size());  // point codes
   for (int k = 0; k < static_cast<int>(leaves.size()); ++k) {
     std::vector<int> path;
+    // The parent chain is acyclic (a shortest-path tree): at most V steps.
     for (int x = leaves[k]; x != root; x = parent[x]) path.push_back(x);
     path.push_back(root);
     std::reverse(path.begin(), path.end());

@@ -21,6 +21,10 @@
 //     vertices on no loop (it exists because of step 3), the replaced loop is dropped, and the edges
 //     joining the new loop to other loop vertices are split (step 3 again, locally). Loops are then
 //     renumbered and reoriented so that the word is exactly L0 L1 L0^-1 L1^-1 L2 L3 ...
+//     Known limitation: near the root the new loops run in thin strips between earlier loops, and
+//     each slide refines those strips again, so growth compounds with the number of slides
+//     (couplingdown g9: 1841 -> ~20k vertices; genus >= 20 is impractical). normal_form = false
+//     avoids it (growth of steps 2-3 only).
 //  5. cut: the disk whose face f is face f of the refined surface; its boundary is one ccw cycle of
 //     4g sides, each from a root copy to the next, labelled (loop, direction) and paired.
 // Every constructed vertex is an exact point of one input face (SurfacePoint).
