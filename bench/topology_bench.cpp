@@ -1,0 +1,113 @@
+// Topology stage measurements: time and mesh growth of cut_to_canonical_disk.
+// Usage: igm_bench_topology [shared_dir] [--normal-form-all]
+// By default the normal form (handle slides) is measured for genus <= 10 only; higher genus is
+// measured without it (the slides currently refine too much there, see the topology report).
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "igm/core/error.h"
+#include "igm/mesh/generate.h"
+#include "igm/topology/cut_to_canonical_disk.h"
+
+using namespace igm;
+
+namespace {
+struct Input {
+  TriMesh mesh;
+  std::vector<Vec3d> positions;
+};
+
+bool read_off(const std::filesystem::path& p, Input& out) {
+  std::ifstream in(p);
+  if (!in) return false;
+  std::stringstream ss;
+  std::string line;
+  while (std::getline(in, line)) {
+    auto k = line.find('#');
+    if (k != std::string::npos) line.resize(k);
+    ss << line << '\n';
+  }
+  std::string head;
+  long nv = 0, nf = 0, ne = 0;
+  ss >> head >> nv >> nf >> ne;
+  out.positions.resize(nv);
+  for (auto& q : out.positions) ss >> q.x >> q.y >> q.z;
+  std::vector<std::array<int, 3>> t(nf);
+  for (auto& f : t) {
+    int k;
+    ss >> k >> f[0] >> f[1] >> f[2];
+    if (k != 3) return false;
+  }
+  out.mesh = TriMesh::from_triangles(static_cast<int>(nv), t);
+  return true;
+}
+
+Input generated(int genus, long faces) {
+  GenerateOptions o;
+  o.genus = genus;
+  o.faces = faces;
+  o.seed = 3;
+  PolygonSoup s = generate_closed_mesh(o);
+  std::vector<std::array<int, 3>> t;
+  for (std::size_t f = 0; f < s.num_faces(); ++f) {
+    const auto* c = &s.corners[s.face_begin[f]];
+    t.push_back({int(c[0]), int(c[1]), int(c[2])});
+  }
+  return {TriMesh::from_triangles(static_cast<int>(s.positions.size()), t), s.positions};
+}
+
+void run(const std::string& name, const Input& in, bool normal_form) {
+  CutOptions o;
+  o.normal_form = normal_form;
+  try {
+    CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
+    const auto& s = r.stats;
+    std::printf("%-26s g=%-4d F=%-8d normal_form=%d  V %8d -> %8d (+%6.1f%%)  crossings %7d  splits %7d  slides %4d"
+                "  time %7.3f s (basis %.3f, detach %.3f, slides+cut %.3f)\n",
+                name.c_str(), s.genus, s.faces_before, normal_form ? 1 : 0, s.vertices_before, s.vertices_after,
+                100.0 * (s.vertices_after - s.vertices_before) / s.vertices_before, s.crossings, s.precondition_splits,
+                s.num_slides, s.seconds_total, s.seconds_basis, s.seconds_detach, s.seconds_cut);
+  } catch (const Error& e) {
+    std::printf("%-26s error: %s\n", name.c_str(), e.what());
+  }
+  std::fflush(stdout);
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::filesystem::path shared = "../shared";
+  bool all = false;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--normal-form-all") == 0) all = true;
+    else shared = argv[i];
+  }
+  struct Named {
+    const char* name;
+    int genus;
+  };
+  for (Named m : {Named{"elephant", 3}, Named{"couplingdown", 9}, Named{"cheese", 133}}) {
+    Input in;
+    if (!read_off(shared / "meshes" / "clean" / (std::string(m.name) + ".off"), in)) {
+      std::printf("%-26s skipped: not found under %s\n", m.name, shared.c_str());
+      continue;
+    }
+    run(m.name, in, false);
+    if (m.genus <= 10 || all) run(m.name, in, true);
+  }
+  {
+    Input in = generated(3, 52000);
+    run("generated g3 52k faces", in, false);
+    run("generated g3 52k faces", in, true);
+  }
+  {
+    Input in = generated(20, 1000000);
+    run("generated g20 1M faces", in, false);
+    if (all) run("generated g20 1M faces", in, true);
+  }
+  return 0;
+}
