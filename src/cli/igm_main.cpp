@@ -39,7 +39,7 @@ int cmd_generate(const Args& args);
 int cmd_run(const Args& args) { return igm_cli::run_command(args); }
 
 const Command kCommands[] = {
-    {"run", "igm run MESH [-o DIR] [--resolution N] [--root V]\n"
+    {"run", "igm run MESH [-o DIR] [--resolution N] [--root V] [--normal-form]\n"
             "                                the whole pipeline: certified IGM, quad mesh, certificate, schema picture\n"
             "                                (writes DIR/NAME.igm.obj .igm.exact .quad.obj .cert.json .schema.svg; DIR=out)",
      cmd_run},

@@ -30,7 +30,7 @@ bool parse_int(std::string_view s, long long& out) {
 
 int usage(const std::string& message) {
   std::fprintf(stderr,
-               "igm run: %s\nusage: igm run MESH [-o DIR] [--resolution N] [--root V]\n"
+               "igm run: %s\nusage: igm run MESH [-o DIR] [--resolution N] [--root V] [--normal-form]\n"
                "  writes DIR/NAME.igm.obj, NAME.igm.exact, NAME.quad.obj, NAME.cert.json, NAME.schema.svg\n",
                message.c_str());
   return kExitInput;
@@ -132,6 +132,8 @@ int run_command(const std::vector<std::string_view>& args) {
         if (n < 0 || n > 2000000000) return usage("--root must be a vertex id >= 0");
         options.root = static_cast<int>(n);
       }
+    } else if (a == "--normal-form") {
+      options.normal_form = true;
     } else if (!a.empty() && a[0] == '-') {
       return usage("unknown option '" + std::string(a) + "'");
     } else {

@@ -67,6 +67,7 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
   auto t0 = Clock::now();
   CutOptions cut_options;
   cut_options.root = options.root;
+  cut_options.normal_form = options.normal_form;
   CutResult cut = cut_to_canonical_disk(input.mesh, input.positions, cut_options);
   const int g = cut.genus;
   stats.cut = cut.stats;
@@ -150,7 +151,14 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
 
   // --- extract: N x N quads per layout quad, 3D positions by exact location ---
   t0 = Clock::now();
-  PlanarQuadMesh planar = extract_quads(layout, overlay, charts, options.resolution, SidePairing::canonical(g));
+  // Sides are glued as the cut says (any one-vertex word: every side is a whole edge of one
+  // layout quad, so the gluing is rigid with an integer translation whatever the word).
+  SidePairing pairing;
+  for (const BoundarySide& s : cut.sides) {
+    pairing.partner.push_back(s.mate);
+    pairing.reversed.push_back(1);
+  }
+  PlanarQuadMesh planar = extract_quads(layout, overlay, charts, options.resolution, pairing);
   QuadMesh& quads = result.quads;
   quads.quads = planar.quads;
   quads.positions.reserve(planar.vertices.size());

@@ -24,9 +24,10 @@ ValidMesh generated(int genus, std::int64_t faces, std::uint64_t seed) {
 }
 
 // Independent re-check of what a run promises, ending with the certifier on the written files.
-void check_run(const ValidMesh& mesh, int resolution) {
+void check_run(const ValidMesh& mesh, int resolution, bool normal_form = false) {
   PipelineOptions options;
   options.resolution = resolution;
+  options.normal_form = normal_form;
   const PipelineResult r = compute_igm(mesh, options);
   const int g = mesh.genus;
   INFO("genus " << g << ", resolution " << resolution);
@@ -68,6 +69,10 @@ TEST_CASE("genus 1 generated tori: certified IGM and N x N quads") {
 
 TEST_CASE("genus 2..6 generated meshes, odd and even: certified, 5g N^2 quads") {
   for (int g = 2; g <= 6; ++g) check_run(generated(g, 400 * g, std::uint64_t(g)), 3 + g % 2);
+}
+
+TEST_CASE("with the gluing word in normal form (handle slides) the outputs are certified too") {
+  for (int g = 2; g <= 4; ++g) check_run(generated(g, 500 * g, std::uint64_t(40 + g)), 3, true);
 }
 
 TEST_CASE("resolution 1 layout: 5g quads, 2+3g vertices, valences 8g, 3g and 3g vertices of valence 3") {

@@ -28,6 +28,12 @@ struct PipelineOptions {
   /// so only N >= 3 gives a certified quad mesh.
   int resolution = 4;
   int root = -1;       // root vertex of the loops (-1: deterministic default)
+  /// Bring the gluing word to the normal form a1 b1 a1^-1 b1^-1 ... by handle slides. Validity
+  /// does not need it: every polygon side is a whole edge of one layout quad mapped onto a
+  /// unit-square edge, so any pairing of sides glues by R^k x + t with integer t (the certifier
+  /// checks it). Off by default: the slides' paths grow the mesh a lot at high genus
+  /// (couplingdown g9: 1.8k -> 20k vertices; cheese g133 does not finish in 2 minutes).
+  bool normal_form = false;
   TutteOptions tutte;
   std::size_t max_witnesses = 20;
   std::function<void(const StageEvent&)> progress;  // optional
