@@ -45,6 +45,7 @@ PlanarQuadMesh extract_quads(const QuadTemplate& t, const OverlayResult& ov, con
   PlanarQuadMesh out;
   std::map<int, int> layout_id;                              // layout vertex -> quad-mesh vertex
   std::map<std::tuple<int, int, int>, int> edge_point_id;     // (a, b, m) canonical -> quad-mesh vertex
+  std::map<std::tuple<int, int, int>, int> edge_piece_id;     // (a, b, r) canonical -> quad-mesh edge
   const Rational invN(1, N);
   for (int q = 0; q < nq; ++q) {
     // The UV triangulation of quad q (local vertex ids).
@@ -143,8 +144,33 @@ PlanarQuadMesh extract_quads(const QuadTemplate& t, const OverlayResult& ov, con
         }
         grid[j * (N + 1) + i] = id;
       }
+    // Edge ids: sub-edge r (params r/N..(r+1)/N from Q_k) of quad edge k is shared through the
+    // same canonical key as the vertices; inner grid edges are new.
+    auto boundary_edge = [&](int k, int r) {
+      int a = Q[k], b = Q[(k + 1) % 4];
+      auto sit = side_of.find({q, k});
+      if (sit != side_of.end()) {
+        const int s = sit->second, p = pairing.partner[s];
+        if (p < s) {
+          if (pairing.reversed[s]) r = N - 1 - r;
+          a = p, b = (p + 1) % ns;
+        }
+      }
+      if (a > b) std::swap(a, b), r = N - 1 - r;
+      auto [it, fresh] = edge_piece_id.emplace(std::make_tuple(a, b, r), out.num_edges);
+      if (fresh) ++out.num_edges;
+      return it->second;
+    };
+    std::vector<int> H((N + 1) * N), V((N + 1) * N);  // H[j*N+i]: (i,j)-(i+1,j); V[j*(N+1)+i]: (i,j)-(i,j+1)
+    for (int j = 0; j <= N; ++j)
+      for (int i = 0; i < N; ++i)
+        H[j * N + i] = j == 0 ? boundary_edge(0, i) : (j == N ? boundary_edge(2, N - 1 - i) : out.num_edges++);
+    for (int j = 0; j < N; ++j)
+      for (int i = 0; i <= N; ++i)
+        V[j * (N + 1) + i] = i == N ? boundary_edge(1, j) : (i == 0 ? boundary_edge(3, N - 1 - j) : out.num_edges++);
     for (int j = 0; j < N; ++j)
       for (int i = 0; i < N; ++i) {
+        out.quad_edges.push_back({H[j * N + i], V[j * (N + 1) + i + 1], H[(j + 1) * N + i], V[j * (N + 1) + i]});
         out.quads.push_back({grid[j * (N + 1) + i], grid[j * (N + 1) + i + 1], grid[(j + 1) * (N + 1) + i + 1],
                              grid[(j + 1) * (N + 1) + i]});
         out.layout_quad.push_back(q);

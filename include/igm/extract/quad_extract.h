@@ -32,6 +32,11 @@ struct QuadVertexLocation {
 
 struct PlanarQuadMesh {
   std::vector<std::array<int, 4>> quads;  // counter-clockwise (in UV and in the plane)
+  /// Per quad: edge k (from quads[f][k] to quads[f][k+1]) as an edge id 0..num_edges-1. At
+  /// N = 1 and 2 the root carries loops and multi-edges (e.g. a side at N = 1 joins the root to
+  /// itself), so edges are NOT determined by their end vertices; these ids are.
+  std::vector<std::array<int, 4>> quad_edges;
+  int num_edges = 0;
   std::vector<int> layout_quad;           // per quad: the layout quad it subdivides
   std::vector<QuadVertexLocation> vertices;
 };
