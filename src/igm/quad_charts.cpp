@@ -112,16 +112,25 @@ QuadCharts compute_quad_charts(const QuadTemplate& t, const OverlayResult& ov, c
   for (const auto& r : regions) maps.push_back(region_map(t, r));
   ch.quad.resize(nf);
   ch.uv.resize(nf);
+  // Each vertex is mapped once per region around it (a vertex has ~6 corners, seams 2-3 regions).
+  std::vector<std::vector<std::pair<int, int>>> done(P.size());  // vertex -> (region, triangle*3+corner)
   for (int tri = 0; tri < nf; ++tri) {
     const int r = ch.region[tri];
     if (r < 0) throw Error(ErrorKind::Internal, "quad charts: triangle " + std::to_string(tri) + " got no region", {tri});
     ch.quad[tri] = regions[r].quad;
     for (int i = 0; i < 3; ++i) {
+      auto& d = done[F[tri][i]];
+      auto it = std::find_if(d.begin(), d.end(), [&](const auto& x) { return x.first == r; });
+      if (it != d.end()) {
+        ch.uv[tri][i] = ch.uv[it->second / 3][it->second % 3];
+        continue;
+      }
       ch.uv[tri][i] = maps[r](P[F[tri][i]]);
+      d.emplace_back(r, 3 * tri + i);
       ch.max_uv_bits = std::max({ch.max_uv_bits, bit_size(ch.uv[tri][i].x), bit_size(ch.uv[tri][i].y)});
     }
     if (options.check) {
-      if (orient2d(ch.uv[tri][0], ch.uv[tri][1], ch.uv[tri][2]) != Sign::Positive)
+      if (orient2q(ch.uv[tri][0], ch.uv[tri][1], ch.uv[tri][2]) != Sign::Positive)
         throw Error(ErrorKind::Internal, "quad charts: UV triangle " + std::to_string(tri) + " is not positive", {tri});
       for (const auto& u : ch.uv[tri])
         if (sign(u.x) == Sign::Negative || u.x > 1 || sign(u.y) == Sign::Negative || u.y > 1)
