@@ -2,6 +2,7 @@
 // extraction on synthetic disks (fan of a rational near-regular 4g-gon, midpoint-subdivided,
 // random face splits, half of the interior vertices perturbed exactly).
 // Usage: igm_bench_arrange [max_triangles=200000]. Times are CPU seconds.
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -18,8 +19,8 @@ static double since(std::clock_t t) { return double(std::clock() - t) / CLOCKS_P
 
 int main(int argc, char** argv) {
   const long max_tris = argc > 1 ? std::atol(argv[1]) : 200000;
-  std::printf("%5s %9s %9s %6s %9s %9s %9s %10s %9s %9s\n", "g", "in_tris", "out_tris", "ratio", "overlay_s", "charts_s",
-              "coordbits", "uv_bits", "N=8_s", "quads");
+  std::printf("%5s %9s %9s %6s %9s %9s %8s %9s %8s %9s %7s\n", "g", "in_tris", "out_tris", "ratio", "overlay_s", "charts_s",
+              "in_bits", "out_bits", "uv_bits", "N=8_s", "quads");
   for (int g : {2, 9, 133}) {
     for (long target : {10000L, 50000L, 200000L}) {
       if (target > max_tris) continue;
@@ -44,9 +45,11 @@ int main(int argc, char** argv) {
       t0 = std::clock();
       const PlanarQuadMesh qm = extract_quads(t, ov, ch, 8, SidePairing::canonical(g));
       const double t_extract = since(t0);
-      std::printf("%5d %9zu %9zu %6.3f %9.3f %9.3f %9zu %10zu %9.3f %9zu\n", g, disk.triangles.size(),
+      std::size_t in_bits = 0;
+      for (const auto& p : disk.positions) in_bits = std::max({in_bits, bit_size(p.x), bit_size(p.y)});
+      std::printf("%5d %9zu %9zu %6.3f %9.3f %9.3f %8zu %9zu %8zu %9.3f %7zu\n", g, disk.triangles.size(),
                   ov.mesh.triangles.size(), double(ov.mesh.triangles.size()) / double(disk.triangles.size()), t_overlay,
-                  t_charts, ov.stats.max_coordinate_bits, ch.max_uv_bits, t_extract, qm.quads.size());
+                  t_charts, in_bits, ov.stats.max_coordinate_bits, ch.max_uv_bits, t_extract, qm.quads.size());
       std::fflush(stdout);
     }
   }

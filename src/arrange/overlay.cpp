@@ -485,6 +485,24 @@ OverlayResult overlay_segments(const PlanarTriangulation& mesh, const std::vecto
   return res;
 }
 
+InputPoint to_input(const PlanarTriangulation& input, const OverlayResult& r, int t, const std::array<Rational, 3>& b) {
+  if (t < 0 || t >= static_cast<int>(r.mesh.triangles.size()))
+    throw Error(ErrorKind::InvalidArgument, "to_input: no output triangle " + std::to_string(t), {t});
+  const auto& T = r.mesh.triangles[t];
+  Point2q x{0, 0};
+  for (int i = 0; i < 3; ++i) {
+    x.x += b[i] * r.mesh.positions[T[i]].x;
+    x.y += b[i] * r.mesh.positions[T[i]].y;
+  }
+  InputPoint out;
+  out.input_triangle = r.input_triangle[t];
+  const auto& I = input.triangles[out.input_triangle];
+  const Point2q &A = input.positions[I[0]], &B = input.positions[I[1]], &C = input.positions[I[2]];
+  const Rational area = cross(A, B, C);
+  out.barycentric = {cross(x, B, C) / area, cross(A, x, C) / area, cross(A, B, x) / area};
+  return out;
+}
+
 std::string check_overlay(const PlanarTriangulation& input, const std::vector<Segment2>& segments,
                           const OverlayResult& r) {
   const auto& P = r.mesh.positions;

@@ -1,5 +1,7 @@
 #include <doctest/doctest.h>
 
+#include <set>
+
 #include "arrange_fixture.h"
 #include "igm/core/error.h"
 
@@ -154,4 +156,35 @@ TEST_CASE("overlay: larger genus, odd and even, up to ~50k triangles") {
                   << p.overlay.stats.max_coordinate_bits);
   CHECK(p.disk.triangles.size() > 40000);
   CHECK(check_overlay(p.disk, p.geometry, p.overlay) == "");
+}
+
+TEST_CASE("overlay: the edges of another triangulation of the same polygon (massively degenerate)") {
+  // Both disks share corners, side midpoints and (unperturbed) many edges; the segments are the
+  // edges of disk B, pairwise meeting only at shared end points by construction.
+  for (int g : {2, 3}) {
+    const auto corners = igm_test::schema_polygon(g);
+    const Point2q c = igm_test::schema_centre(g);
+    for (int variant = 0; variant < 4; ++variant) {
+      CAPTURE(g);
+      CAPTURE(variant);
+      SyntheticDiskOptions a, b;
+      a.subdivisions = 3;
+      a.insertions = 40;
+      a.perturb = variant & 1 ? 0.5 : 0.0;
+      a.seed = 11 + variant;
+      b.subdivisions = 2;
+      b.insertions = 25;
+      b.perturb = variant & 2 ? 0.5 : 0.0;
+      b.seed = 97 + variant;
+      const PlanarTriangulation A = make_synthetic_disk(corners, c, a), B = make_synthetic_disk(corners, c, b);
+      std::set<std::pair<int, int>> edges;
+      for (const auto& T : B.triangles)
+        for (int i = 0; i < 3; ++i) edges.emplace(std::min(T[i], T[(i + 1) % 3]), std::max(T[i], T[(i + 1) % 3]));
+      std::vector<Segment2> segs;
+      for (const auto& [u, v] : edges) segs.push_back({B.positions[u], B.positions[v]});
+      const OverlayResult r = overlay_segments(A, segs);
+      CHECK(check_overlay(A, segs, r) == "");
+      if (variant == 0) CHECK(r.stats.crossings > 0);  // different refinement levels still cross
+    }
+  }
 }

@@ -84,6 +84,15 @@ TEST_CASE("extract: counts, closed manifold of genus g, valences at N = 1") {
         }
         CHECK(s == 1);
         CHECK(same_point(v.position, {x, y}));
+        const InputPoint ip = to_input(p.disk, p.overlay, v.triangle, v.barycentric);
+        const auto& I = p.disk.triangles[ip.input_triangle];
+        Rational ix = 0, iy = 0;
+        for (int i = 0; i < 3; ++i) {
+          CHECK(sign(ip.barycentric[i]) != Sign::Negative);
+          ix += ip.barycentric[i] * p.disk.positions[I[i]].x;
+          iy += ip.barycentric[i] * p.disk.positions[I[i]].y;
+        }
+        CHECK(same_point(v.position, {ix, iy}));
         CHECK(Rational(u * N).get_den() == 1);
         CHECK(Rational(w * N).get_den() == 1);
       }

@@ -71,6 +71,15 @@ struct OverlayResult {
 OverlayResult overlay_segments(const PlanarTriangulation& mesh, const std::vector<Segment2>& segments,
                                const OverlayOptions& options = {});
 
+/// A point of output triangle `t` with barycentric coordinates `b` (w.r.t. t's corners),
+/// expressed in the input: the input triangle containing t and exact barycentric coordinates
+/// w.r.t. its corners (for composing with the input's 3D positions). Cost O(1) rational ops.
+struct InputPoint {
+  int input_triangle = -1;
+  std::array<Rational, 3> barycentric;
+};
+InputPoint to_input(const PlanarTriangulation& input, const OverlayResult& result, int t, const std::array<Rational, 3>& b);
+
 /// Independent check of every post-condition of overlay_segments (for tests and debugging):
 /// positivity, manifoldness, Euler characteristic 1, area equal to the input's, each triangle
 /// inside its input triangle, every origin reproducing the vertex position exactly, every chain
