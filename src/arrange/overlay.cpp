@@ -135,19 +135,15 @@ class LocalTriangulation {
     throw Error(ErrorKind::Internal, "overlay: an interior point lies in no local triangle");
   }
 
-  // Points strictly inside the edge from corner c0 to corner c1 of the input triangle, in
-  // order from c0: each splits the boundary triangle that holds the rest of the edge.
-  void insert_boundary(int c0, int c1, const std::vector<int>& pts) {
-    int last = c0;
-    for (int m : pts) {
-      int i = 0;
-      const int t = find_directed(last, c1, &i);
-      if (t < 0) throw Error(ErrorKind::Internal, "overlay: lost a boundary edge");
-      const int o = tris_[t][(i + 2) % 3];
-      tris_[t] = {last, m, o};
-      tris_.push_back({m, c1, o});
-      last = m;
-    }
+  // Point `m`, strictly inside the boundary sub-edge u -> v (u, v consecutive among the inserted
+  // points of an edge of the input triangle): splits the boundary triangle (u, v, o).
+  void insert_boundary(int u, int v, int m) {
+    int i = 0;
+    const int t = find_directed(u, v, &i);
+    if (t < 0) throw Error(ErrorKind::Internal, "overlay: lost a boundary edge");
+    const int o = tris_[t][(i + 2) % 3];
+    tris_[t] = {u, m, o};
+    tris_.push_back({m, v, o});
   }
 
   // Makes the segment a-b an edge. Pre: a, b present; the open segment inside the triangle.
@@ -239,6 +235,37 @@ class LocalTriangulation {
   std::map<int, int> local_;
   std::vector<std::array<int, 3>> tris_;
 };
+
+// Triangulates a convex polygon whose vertices (counter-clockwise, global ids) may include
+// points in the interior of its sides, with strictly positive triangles only: clips a strictly
+// convex corner whose removal leaves at least three strictly convex corners. O(m^2) ints, O(m)
+// orientations for m vertices.
+void triangulate_convex(const std::vector<Point2q>& P, std::vector<int> poly, std::vector<std::array<int, 3>>& out) {
+  std::vector<char> convex(poly.size());
+  auto flag = [&](std::size_t i) {
+    const std::size_t m = poly.size();
+    convex[i] = orient2q(P[poly[(i + m - 1) % m]], P[poly[i]], P[poly[(i + 1) % m]]) == Sign::Positive;
+  };
+  for (std::size_t i = 0; i < poly.size(); ++i) flag(i);
+  while (poly.size() > 3) {  // bounded: one vertex removed per iteration
+    const std::size_t m = poly.size();
+    std::size_t corners = 0;
+    for (char c : convex) corners += c;
+    std::size_t pick = m;
+    for (std::size_t i = 0; i < m && pick == m; ++i)
+      if (convex[i] && (corners >= 4 || !(convex[(i + m - 1) % m] && convex[(i + 1) % m]))) pick = i;
+    if (pick == m) throw Error(ErrorKind::Internal, "overlay: a cell is not a convex polygon");
+    out.push_back({poly[(pick + m - 1) % m], poly[pick], poly[(pick + 1) % m]});
+    poly.erase(poly.begin() + static_cast<std::ptrdiff_t>(pick));
+    convex.erase(convex.begin() + static_cast<std::ptrdiff_t>(pick));
+    const std::size_t n = poly.size();
+    flag((pick + n - 1) % n);
+    flag(pick % n);
+  }
+  if (orient2q(P[poly[0]], P[poly[1]], P[poly[2]]) != Sign::Positive)
+    throw Error(ErrorKind::Internal, "overlay: a cell triangle is not positive");
+  out.push_back({poly[0], poly[1], poly[2]});
+}
 
 struct AlongPiece {
   int edge;
@@ -465,17 +492,91 @@ OverlayResult overlay_segments(const PlanarTriangulation& mesh, const std::vecto
       continue;
     }
     ++res.stats.split_triangles;
+    std::size_t k = interior_points[t].size();
+    for (int i = 0; i < 3; ++i) k += edge_points[edge_id[t][i]].size();
+    res.stats.max_local_points = std::max(res.stats.max_local_points, k);
+    res.stats.max_local_pieces = std::max(res.stats.max_local_pieces, pieces[t].size());
+    if (interior_points[t].empty()) {
+      // Only chords between boundary points: they cut T into convex cells. Split the boundary
+      // polygon along each chord (the unique cell holding both ends), then triangulate cells.
+      std::vector<std::vector<int>> cells(1);
+      for (int i = 0; i < 3; ++i) {
+        cells[0].push_back(T[i]);
+        const int e = edge_id[t][i];
+        const auto& L = edge_points[e];
+        const int n = static_cast<int>(L.size());
+        for (int r = 0; r < n; ++r) cells[0].push_back(L[T[i] == edge_ends[e][0] ? r : n - 1 - r].second);
+      }
+      for (const Piece& pc : pieces[t]) {
+        std::size_t found = cells.size(), ia = 0, ib = 0;
+        for (std::size_t c = 0; c < cells.size() && found == cells.size(); ++c) {
+          const auto& C = cells[c];
+          auto pa = std::find(C.begin(), C.end(), pc.a);
+          if (pa == C.end()) continue;
+          auto pb = std::find(C.begin(), C.end(), pc.b);
+          if (pb == C.end()) continue;
+          found = c, ia = static_cast<std::size_t>(pa - C.begin()), ib = static_cast<std::size_t>(pb - C.begin());
+        }
+        if (found == cells.size()) {
+          // The chord's ends lie in no common cell: it crosses an earlier chord.
+          const int other = pieces[t].front().seg == pc.seg ? pieces[t].back().seg : pieces[t].front().seg;
+          throw Error(ErrorKind::InvalidArgument, seg_name(pc.seg) + " crosses another segment (e.g. " + seg_name(other) + ")",
+                      {pc.seg, other});
+        }
+        std::vector<int> C = std::move(cells[found]);
+        const std::size_t m = C.size();
+        if ((ia + 1) % m == ib || (ib + 1) % m == ia)
+          throw Error(ErrorKind::InvalidArgument, seg_name(pc.seg) + " overlaps another segment", {pc.seg});
+        std::vector<int> c1, c2;
+        for (std::size_t j = ia;; j = (j + 1) % m) {  // bounded by m steps
+          c1.push_back(C[j]);
+          if (j == ib) break;
+        }
+        for (std::size_t j = ib;; j = (j + 1) % m) {
+          c2.push_back(C[j]);
+          if (j == ia) break;
+        }
+        cells[found] = std::move(c1);
+        cells.push_back(std::move(c2));
+      }
+      const std::size_t before = out.size();
+      for (const auto& C : cells) triangulate_convex(P, C, out);
+      res.input_triangle.resize(out.size(), t);
+      (void)before;
+      continue;
+    }
     LocalTriangulation lt(P, T);
     for (int id : interior_points[t]) lt.insert_interior(lt.add(id));
+    // Edge points, most-used piece end points first: a point that many pieces leave (the
+    // template centre on an input edge) is then joined to the later points by the splits
+    // themselves, so its pieces need no flips. Each edge keeps its inserted points ordered.
+    std::map<int, int> degree;
+    for (const Piece& pc : pieces[t]) ++degree[pc.a], ++degree[pc.b];
+    struct Pending {
+      int deg, edge, rank, id;
+    };
+    std::vector<Pending> pending;
+    std::array<std::vector<int>, 3> ordered;  // per edge of T: local ids in order from corner i
     for (int i = 0; i < 3; ++i) {
       const int e = edge_id[t][i];
       const auto& L = edge_points[e];
-      if (L.empty()) continue;
-      std::vector<int> local;
-      local.reserve(L.size());
-      for (const auto& pr : L) local.push_back(lt.add(pr.second));
-      if (T[i] != edge_ends[e][0]) std::reverse(local.begin(), local.end());
-      lt.insert_boundary(i, (i + 1) % 3, local);
+      const int n = static_cast<int>(L.size());
+      for (int r = 0; r < n; ++r) {
+        const int id = L[T[i] == edge_ends[e][0] ? r : n - 1 - r].second;
+        ordered[i].push_back(lt.add(id));
+        auto it = degree.find(id);
+        pending.push_back({it == degree.end() ? 0 : it->second, i, r, id});
+      }
+    }
+    std::stable_sort(pending.begin(), pending.end(), [](const Pending& x, const Pending& y) { return x.deg > y.deg; });
+    std::array<std::set<int>, 3> done;  // inserted ranks per edge
+    for (const Pending& pd : pending) {
+      auto& D = done[pd.edge];
+      auto hi = D.upper_bound(pd.rank);
+      const int v = hi == D.end() ? (pd.edge + 1) % 3 : ordered[pd.edge][*hi];
+      const int u = hi == D.begin() ? pd.edge : ordered[pd.edge][*std::prev(hi)];
+      lt.insert_boundary(u, v, ordered[pd.edge][pd.rank]);
+      D.insert(pd.rank);
     }
     owner.clear();
     for (const Piece& pc : pieces[t]) lt.insert_constraint(lt.local_of(pc.a), lt.local_of(pc.b), pc.seg, owner, res.stats.local_flips);

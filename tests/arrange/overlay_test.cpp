@@ -110,6 +110,12 @@ TEST_CASE("overlay: invalid segments give typed errors") {
   CHECK(kind_of(m, {{P(0, 0), P(2, 2)}, {{Rational(1, 2), Rational(1, 2)}, P(2, 2)}}) == ErrorKind::InvalidArgument);  // overlap
   CHECK(kind_of(m, {{{Rational(1, 5), Rational(1, 5)}, {Rational(3, 5), Rational(3, 5)}},
                     {{Rational(2, 5), Rational(2, 5)}, {Rational(4, 5), Rational(4, 5)}}}) == ErrorKind::InvalidArgument);
+  PlanarTriangulation tri;  // one triangle: chords between boundary points only
+  tri.positions = {P(0, 0), P(4, 0), P(0, 4)};
+  tri.triangles = {{0, 1, 2}};
+  CHECK(kind_of(tri, {{P(1, 0), P(0, 3)}, {P(3, 0), P(0, 1)}}) == ErrorKind::InvalidArgument);  // chords cross
+  CHECK(kind_of(tri, {{P(2, 0), P(0, 2)}, {P(0, 2), P(2, 0)}}) == ErrorKind::InvalidArgument);  // same chord twice
+  checked(tri, {{P(1, 0), P(0, 1)}, {P(2, 0), P(0, 2)}, {P(3, 0), P(0, 3)}, {P(2, 0), P(2, 2)}, {P(0, 2), P(1, 3)}});
   CHECK(kind_of(m, {{P(0, 0), P(3, 1)}}) == ErrorKind::InvalidArgument);  // leaves the polygon
   CHECK(kind_of(m, {{P(5, 5), P(1, 1)}}) == ErrorKind::InvalidArgument);  // starts outside
   CHECK(kind_of(m, {{P(1, 1), P(1, 1)}}) == ErrorKind::InvalidArgument);  // zero length

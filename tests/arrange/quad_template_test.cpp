@@ -57,6 +57,21 @@ TEST_CASE("template: every quad strictly convex, counts and corners, genus 2..30
   }
 }
 
+TEST_CASE("template: every genus 2..300 gives strictly convex quads (independent exact check)") {
+  for (int g = 2; g <= 300; ++g) {
+    CAPTURE(g);
+    const QuadTemplate t = make_quad_template(rational_circle_polygon(4 * g), kOrigin);
+    int convex = 0;
+    for (const auto& Q : t.quads) {
+      bool ok = true;
+      for (int i = 0; i < 4; ++i)
+        ok = ok && orient2d(t.points[Q[i]], t.points[Q[(i + 1) % 4]], t.points[Q[(i + 2) % 4]]) == Sign::Positive;
+      convex += ok;
+    }
+    CHECK(convex == 5 * g);
+  }
+}
+
 TEST_CASE("template: odd and even genus on a rotated polygon (corners still coincide)") {
   for (int g : {3, 4, 7, 8}) {
     auto corners = rational_circle_polygon(4 * g);

@@ -34,6 +34,8 @@ struct OverlayStats {
   std::size_t endpoint_vertices = 0;  // distinct segment endpoints that are new vertices
   std::size_t split_triangles = 0;    // input triangles that were refined
   std::size_t local_flips = 0;        // edge flips inside refined input triangles
+  std::size_t max_local_points = 0;   // max over input triangles of points on/in it (k_T)
+  std::size_t max_local_pieces = 0;   // max over input triangles of segment pieces inside it
   std::size_t max_coordinate_bits = 0;  // max bit_size over output vertex coordinates
 };
 
