@@ -60,16 +60,22 @@ struct OverlayResult {
 /// Method: the input is never modified while walking. Each segment is walked through the input
 /// triangulation (walk_segment); its crossings with input edges become vertices whose exact
 /// coordinates are the intersection of the segment with the INPUT edge (so coordinates have
-/// bounded size: they never depend on other crossings). Then every input triangle with points
-/// on its edges or inside is retriangulated on its own: boundary points by edge splits,
-/// endpoints by face/edge splits, segment pieces by exact edge flips (Sloan 1993); every
-/// output triangle lies inside one input triangle and is strictly positive.
+/// bounded size: they never depend on other crossings, and every output vertex is an input
+/// vertex, a segment end point, or one segment/input-edge intersection). Then every input
+/// triangle T with points on its edges or inside is retriangulated on its own, so every output
+/// triangle lies inside one input triangle:
+///  - no end point inside T: the pieces are chords and cut T into convex cells; the boundary
+///    polygon is split along each chord and each cell triangulated by clipping strictly convex
+///    corners (no flips; O(k_T^2) integer work, O(k_T) orientations);
+///  - otherwise: end points by face/edge splits, edge points by edge splits (most-used piece
+///    ends first), pieces by exact edge flips (Sloan 1993); O(k_T^2) flips worst case.
 ///
 /// Post: every output triangle strictly positive; a manifold triangulation of the same polygon
-/// (same area, Euler characteristic 1); each segment's chain consists of output edges, in order.
-/// Cost: O(F log F) validation + O(sum over segments of walk length) + O(m * sqrt-ish locate
-/// walks) + O(sum over refined input triangles T of k_T^2) where k_T counts the points in T
-/// (k_T is small unless many segments meet inside one input triangle).
+/// (same area, Euler characteristic 1, same boundary vertices plus segment end points lying on
+/// the boundary); each segment's chain consists of output edges, in order.
+/// Cost: O(F log F) validation + O(sum over segments of walk length) + point location walks for
+/// the distinct end points + sum over refined input triangles of the local work above (k_T =
+/// points on/in T; small unless many segments cross one input triangle).
 OverlayResult overlay_segments(const PlanarTriangulation& mesh, const std::vector<Segment2>& segments,
                                const OverlayOptions& options = {});
 
