@@ -23,7 +23,7 @@ void validate_disk(const PlanarTriangulation& m, const PlanarAdjacency& adj) {
   if (nf == 0) throw Error(ErrorKind::NoFaces, "overlay: the triangulation has no triangles");
   for (int t = 0; t < nf; ++t) {
     const auto& T = m.triangles[t];
-    if (orient2q(m.positions[T[0]], m.positions[T[1]], m.positions[T[2]]) != Sign::Positive)
+    if (orient2d(m.positions[T[0]], m.positions[T[1]], m.positions[T[2]]) != Sign::Positive)
       throw Error(ErrorKind::InvalidArgument, "overlay: triangle " + std::to_string(t) + " is not strictly counter-clockwise",
                   {t});
   }
@@ -58,7 +58,7 @@ void validate_disk(const PlanarTriangulation& m, const PlanarAdjacency& adj) {
     if (w < 0) throw Error(ErrorKind::NonManifoldVertex, "overlay: the boundary is not a closed loop", {v});
     const int u = next[w];
     if (u < 0) throw Error(ErrorKind::NonManifoldVertex, "overlay: the boundary is not a closed loop", {w});
-    if (orient2q(m.positions[v], m.positions[w], m.positions[u]) == Sign::Negative)
+    if (orient2d(m.positions[v], m.positions[w], m.positions[u]) == Sign::Negative)
       throw Error(ErrorKind::InvalidArgument, "overlay: the boundary turns right at vertex " + std::to_string(w) +
                                                   " (the region is not convex)",
                   {w});
@@ -113,7 +113,7 @@ class LocalTriangulation {
       Sign o[3];
       bool out = false;
       for (int i = 0; i < 3 && !out; ++i) {
-        o[i] = orient2q(pt(T[i]), pt(T[(i + 1) % 3]), pt(m));
+        o[i] = orient2d(pt(T[i]), pt(T[(i + 1) % 3]), pt(m));
         out = o[i] == Sign::Negative;
       }
       if (out) continue;
@@ -156,7 +156,7 @@ class LocalTriangulation {
     const Point2q &pa = pt(a), &pb = pt(b);
     for (int w = 0; w < static_cast<int>(g_.size()); ++w) {
       if (w == a || w == b) continue;
-      if (orient2q(pa, pb, pt(w)) == Sign::Zero && sign(dot(pt(w), pa, pb)) == Sign::Negative)
+      if (orient2d(pa, pb, pt(w)) == Sign::Zero && sign(dot(pt(w), pa, pb)) == Sign::Negative)
         throw Error(ErrorKind::InvalidArgument,
                     seg_name(seg) + " passes through the end point of another segment or overlaps it", {seg});
     }
@@ -183,7 +183,7 @@ class LocalTriangulation {
       const int t1 = find_directed(x, y, &i1), t2 = find_directed(y, x, &i2);
       if (t1 < 0 || t2 < 0) throw Error(ErrorKind::Internal, "overlay: a crossed edge vanished");
       const int w1 = tris_[t1][(i1 + 2) % 3], w2 = tris_[t2][(i2 + 2) % 3];
-      if (orient2q(pt(x), pt(w2), pt(w1)) == Sign::Positive && orient2q(pt(w2), pt(y), pt(w1)) == Sign::Positive) {
+      if (orient2d(pt(x), pt(w2), pt(w1)) == Sign::Positive && orient2d(pt(w2), pt(y), pt(w1)) == Sign::Positive) {
         tris_[t1] = {x, w2, w1};
         tris_[t2] = {w2, y, w1};
         ++flips;
@@ -212,9 +212,9 @@ class LocalTriangulation {
   }
   // Do the open segments a-b and x-y cross at one interior point?
   bool crosses(int a, int b, int x, int y) const {
-    const Sign s1 = orient2q(pt(a), pt(b), pt(x)), s2 = orient2q(pt(a), pt(b), pt(y));
+    const Sign s1 = orient2d(pt(a), pt(b), pt(x)), s2 = orient2d(pt(a), pt(b), pt(y));
     if (s1 == Sign::Zero || s2 == Sign::Zero || s1 == s2) return false;
-    const Sign s3 = orient2q(pt(x), pt(y), pt(a)), s4 = orient2q(pt(x), pt(y), pt(b));
+    const Sign s3 = orient2d(pt(x), pt(y), pt(a)), s4 = orient2d(pt(x), pt(y), pt(b));
     return s3 != Sign::Zero && s4 != Sign::Zero && s3 != s4;
   }
   void split_edge(int t, int k, int m) {
@@ -244,7 +244,7 @@ void triangulate_convex(const std::vector<Point2q>& P, std::vector<int> poly, st
   std::vector<char> convex(poly.size());
   auto flag = [&](std::size_t i) {
     const std::size_t m = poly.size();
-    convex[i] = orient2q(P[poly[(i + m - 1) % m]], P[poly[i]], P[poly[(i + 1) % m]]) == Sign::Positive;
+    convex[i] = orient2d(P[poly[(i + m - 1) % m]], P[poly[i]], P[poly[(i + 1) % m]]) == Sign::Positive;
   };
   for (std::size_t i = 0; i < poly.size(); ++i) flag(i);
   while (poly.size() > 3) {  // bounded: one vertex removed per iteration
@@ -262,7 +262,7 @@ void triangulate_convex(const std::vector<Point2q>& P, std::vector<int> poly, st
     flag((pick + n - 1) % n);
     flag(pick % n);
   }
-  if (orient2q(P[poly[0]], P[poly[1]], P[poly[2]]) != Sign::Positive)
+  if (orient2d(P[poly[0]], P[poly[1]], P[poly[2]]) != Sign::Positive)
     throw Error(ErrorKind::Internal, "overlay: a cell triangle is not positive");
   out.push_back({poly[0], poly[1], poly[2]});
 }
@@ -631,7 +631,7 @@ std::string check_overlay(const PlanarTriangulation& input, const std::vector<Se
     const auto& I = input.triangles[it];
     for (int c = 0; c < 3; ++c)
       for (int i = 0; i < 3; ++i)
-        if (orient2q(input.positions[I[i]], input.positions[I[(i + 1) % 3]], P[T[c]]) == Sign::Negative)
+        if (orient2d(input.positions[I[i]], input.positions[I[(i + 1) % 3]], P[T[c]]) == Sign::Negative)
           return "output triangle " + std::to_string(t) + " leaves its input triangle " + std::to_string(it);
   }
   for (const auto& I : input.triangles) area_in += cross(input.positions[I[0]], input.positions[I[1]], input.positions[I[2]]);
@@ -671,7 +671,7 @@ std::string check_overlay(const PlanarTriangulation& input, const std::vector<Se
       return name + " does not join the segment's end points";
     for (std::size_t k = 0; k + 1 < c.size(); ++k) {
       if (!edges.count({std::min(c[k], c[k + 1]), std::max(c[k], c[k + 1])})) return name + " uses a non-edge";
-      if (orient2q(segments[s].a, segments[s].b, P[c[k + 1]]) != Sign::Zero) return name + " leaves the segment";
+      if (orient2d(segments[s].a, segments[s].b, P[c[k + 1]]) != Sign::Zero) return name + " leaves the segment";
       if (sign(dot(P[c[k]], P[c[k + 1]], segments[s].b)) != Sign::Positive)
         return name + " is not monotone";
     }

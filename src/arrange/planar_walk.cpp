@@ -23,71 +23,6 @@ Rational dot(const Point2q& o, const Point2q& a, const Point2q& b) {
 
 bool same_point(const Point2q& a, const Point2q& b) { return a.x == b.x && a.y == b.y; }
 
-namespace {
-
-// A closed interval of reals with double end points.
-struct Interval {
-  double lo, hi;
-};
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// Encloses a rational: mpq_get_d truncates toward zero, so q lies between the result and the
-// next double away from zero. Tiny non-zero values get a wide interval (no subnormal reasoning).
-Interval enclose(const Rational& q) {
-  const int s = sgn(q);
-  if (s == 0) return {0.0, 0.0};
-  const double d = mpq_get_d(q.get_mpq_t());
-  if (!std::isfinite(d)) return {-kInf, kInf};
-  if (std::fabs(d) < 0x1p-900) return s > 0 ? Interval{0.0, 0x1p-899} : Interval{-0x1p-899, 0.0};
-  return s > 0 ? Interval{d, std::nextafter(d, kInf)} : Interval{std::nextafter(d, -kInf), d};
-}
-
-// Round-to-nearest results widened by one ulp each way enclose the exact result.
-Interval sub(const Interval& a, const Interval& b) {
-  return {std::nextafter(a.lo - b.hi, -kInf), std::nextafter(a.hi - b.lo, kInf)};
-}
-Interval mul(const Interval& a, const Interval& b) {
-  const double p1 = a.lo * b.lo, p2 = a.lo * b.hi, p3 = a.hi * b.lo, p4 = a.hi * b.hi;
-  return {std::nextafter(std::min(std::min(p1, p2), std::min(p3, p4)), -kInf),
-          std::nextafter(std::max(std::max(p1, p2), std::max(p3, p4)), kInf)};
-}
-
-// a - c as an unnormalised fraction n/d with d > 0 (no gcd).
-void diff(const Rational& a, const Rational& c, Integer& n, Integer& d) {
-  n = a.get_num() * c.get_den();
-  n -= c.get_num() * a.get_den();
-  d = a.get_den() * c.get_den();
-}
-
-}  // namespace
-
-Sign orient2q(const Point2q& a, const Point2q& b, const Point2q& c) {
-  {
-    const Interval ax = enclose(a.x), ay = enclose(a.y), bx = enclose(b.x), by = enclose(b.y), cx = enclose(c.x),
-                   cy = enclose(c.y);
-    const Interval l = mul(sub(ax, cx), sub(by, cy)), r = mul(sub(ay, cy), sub(bx, cx));
-    const Interval det = sub(l, r);
-    if (std::isfinite(det.lo) && std::isfinite(det.hi)) {  // NaN fails both tests too
-      if (det.lo > 0) return Sign::Positive;
-      if (det.hi < 0) return Sign::Negative;
-    }
-  }
-  Integer n1, d1, n2, d2, n3, d3, n4, d4;
-  diff(a.x, c.x, n1, d1);
-  diff(b.y, c.y, n2, d2);
-  diff(a.y, c.y, n3, d3);
-  diff(b.x, c.x, n4, d4);
-  // sign(n1 n2 / (d1 d2) - n3 n4 / (d3 d4)) with positive denominators.
-  Integer l = n1 * n2;
-  l *= d3;
-  l *= d4;
-  Integer r = n3 * n4;
-  r *= d1;
-  r *= d2;
-  const int s = cmp(l, r);
-  return s > 0 ? Sign::Positive : (s < 0 ? Sign::Negative : Sign::Zero);
-}
 
 PlanarAdjacency PlanarAdjacency::build(int num_vertices, const std::vector<std::array<int, 3>>& triangles) {
   PlanarAdjacency adj;
@@ -212,7 +147,7 @@ PlanarLocation walk_segment(const std::vector<Point2q>& pos, const std::vector<s
       bool moved = false;
       for (const FanEntry& f : fan) {
         const Point2q &pu = pos[f.u], &pw = pos[f.w];
-        const Sign su = orient2q(x, pu, q), sw = orient2q(x, pw, q);
+        const Sign su = orient2d(x, pu, q), sw = orient2d(x, pw, q);
         int along = -1, along_tri = -1, along_edge = -1;
         if (su == Sign::Zero && sign(dot(x, pu, q)) == Sign::Positive) {
           along = f.u, along_tri = f.xu_tri, along_edge = f.xu_edge;
@@ -251,7 +186,7 @@ PlanarLocation walk_segment(const std::vector<Point2q>& pos, const std::vector<s
         if (su == Sign::Positive && sw == Sign::Negative) {  // through the interior of the fan triangle
           WalkStep s;
           s.medium = WalkStep::Medium::Face, s.triangle = f.tri;
-          const Sign o = orient2q(pu, pw, q);
+          const Sign o = orient2d(pu, pw, q);
           if (o == Sign::Positive) {
             s.next = WalkStep::Next::End;
             emit(s);
@@ -281,7 +216,7 @@ PlanarLocation walk_segment(const std::vector<Point2q>& pos, const std::vector<s
       const auto& T = tris[cur];
       const int j = cur_edge;
       const int b = T[j], a = T[(j + 1) % 3], c = T[(j + 2) % 3];
-      const Sign o1 = orient2q(pos[a], pos[c], q), o2 = orient2q(pos[c], pos[b], q);
+      const Sign o1 = orient2d(pos[a], pos[c], q), o2 = orient2d(pos[c], pos[b], q);
       WalkStep s;
       s.medium = WalkStep::Medium::Face, s.triangle = cur;
       if (o1 != Sign::Negative && o2 != Sign::Negative) {
@@ -296,7 +231,7 @@ PlanarLocation walk_segment(const std::vector<Point2q>& pos, const std::vector<s
         if (o2 == Sign::Zero) return {PlanarLocation::Kind::Edge, cur, (j + 2) % 3};
         return {PlanarLocation::Kind::Face, cur, 0};
       }
-      const Sign sc = orient2q(p, q, pos[c]);
+      const Sign sc = orient2d(p, q, pos[c]);
       if (sc == Sign::Zero) {
         s.next = WalkStep::Next::Vertex, s.vertex = c;
         emit(s);
@@ -305,7 +240,7 @@ PlanarLocation walk_segment(const std::vector<Point2q>& pos, const std::vector<s
         at_point = true;
         continue;
       }
-      const Sign sa = orient2q(p, q, pos[a]);
+      const Sign sa = orient2d(p, q, pos[a]);
       const int e = (sc == sa) ? (j + 2) % 3 : (j + 1) % 3;  // exit edge: (c, b) or (a, c)
       s.next = WalkStep::Next::Crossing, s.cross_triangle = cur, s.cross_edge = e;
       emit(s);

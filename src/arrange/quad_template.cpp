@@ -27,7 +27,7 @@ bool strictly_convex_ccw(const std::vector<Point2q>& p) {
   };
   for (int k = 0; k < n; ++k) {
     const int a = k, b = (k + 1) % n, c = (k + 2) % n;
-    if (orient2q(p[a], p[b], p[c]) != Sign::Positive) return false;
+    if (orient2d(p[a], p[b], p[c]) != Sign::Positive) return false;
     if (!upper(a, b) && upper(b, c)) ++entries;
   }
   return entries == 1;
@@ -42,7 +42,7 @@ QuadTemplate make_quad_template(const std::vector<Point2q>& corners, const Point
   if (!strictly_convex_ccw(corners))
     throw Error(ErrorKind::InvalidArgument, "quad template: the polygon is not strictly convex and counter-clockwise");
   for (int k = 0; k < n; ++k)
-    if (orient2q(corners[k], corners[(k + 1) % n], centre) != Sign::Positive)
+    if (orient2d(corners[k], corners[(k + 1) % n], centre) != Sign::Positive)
       throw Error(ErrorKind::InvalidArgument, "quad template: the centre is not strictly inside the polygon (side " +
                                                   std::to_string(k) + ")",
                   {k});
@@ -77,7 +77,7 @@ QuadTemplate make_quad_template(const std::vector<Point2q>& corners, const Point
   for (std::size_t q = 0; q < t.quads.size(); ++q) {
     const auto& Q = t.quads[q];
     for (int i = 0; i < 4; ++i)
-      if (orient2q(t.points[Q[i]], t.points[Q[(i + 1) % 4]], t.points[Q[(i + 2) % 4]]) != Sign::Positive)
+      if (orient2d(t.points[Q[i]], t.points[Q[(i + 1) % 4]], t.points[Q[(i + 2) % 4]]) != Sign::Positive)
         throw Error(ErrorKind::Internal, "quad template: quad " + std::to_string(q) + " is not strictly convex for genus " +
                                              std::to_string(t.genus),
                     {static_cast<std::int64_t>(q)});

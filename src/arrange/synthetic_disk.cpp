@@ -85,7 +85,7 @@ PlanarTriangulation make_synthetic_disk(const std::vector<Point2q>& corners, con
         bool ok = true;
         for (int k = adj.star_begin[v]; k < adj.star_begin[v + 1] && ok; ++k) {
           const auto& T = m.triangles[adj.star[k]];
-          ok = orient2q(m.positions[T[0]], m.positions[T[1]], m.positions[T[2]]) == Sign::Positive;
+          ok = orient2d(m.positions[T[0]], m.positions[T[1]], m.positions[T[2]]) == Sign::Positive;
         }
         if (ok) break;
         m.positions[v] = old;

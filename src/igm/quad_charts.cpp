@@ -130,7 +130,7 @@ QuadCharts compute_quad_charts(const QuadTemplate& t, const OverlayResult& ov, c
       ch.max_uv_bits = std::max({ch.max_uv_bits, bit_size(ch.uv[tri][i].x), bit_size(ch.uv[tri][i].y)});
     }
     if (options.check) {
-      if (orient2q(ch.uv[tri][0], ch.uv[tri][1], ch.uv[tri][2]) != Sign::Positive)
+      if (orient2d(ch.uv[tri][0], ch.uv[tri][1], ch.uv[tri][2]) != Sign::Positive)
         throw Error(ErrorKind::Internal, "quad charts: UV triangle " + std::to_string(tri) + " is not positive", {tri});
       for (const auto& u : ch.uv[tri])
         if (sign(u.x) == Sign::Negative || u.x > 1 || sign(u.y) == Sign::Negative || u.y > 1)

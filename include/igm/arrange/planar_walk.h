@@ -70,11 +70,6 @@ PlanarLocation walk_segment(const std::vector<Point2q>& positions, const std::ve
 PlanarLocation locate_point(const std::vector<Point2q>& positions, const std::vector<std::array<int, 3>>& triangles,
                             const PlanarAdjacency& adjacency, int from, const Point2q& q);
 
-/// Exact orientation of rational points, faster than orient2d(Point2q...): an interval filter
-/// on double enclosures of the coordinates (each operation widened by one ulp, so the enclosure
-/// is rigorous; inconclusive or non-finite intervals fall through), then an exact integer
-/// evaluation without gcd normalisation. Same result as orient2d(Point2q...) always.
-Sign orient2q(const Point2q& a, const Point2q& b, const Point2q& c);
 
 /// Exact helpers.
 Rational cross(const Point2q& o, const Point2q& a, const Point2q& b);  // (a-o) x (b-o)
