@@ -37,9 +37,11 @@ int cmd_info(const Args& args);
 int cmd_generate(const Args& args);
 
 const Command kCommands[] = {
-    {"info", "igm info MESH                 read MESH (.obj .off .ply .stl), validate it, print what was found", cmd_info},
-    {"generate", "igm generate --genus G --faces N [--seed S] OUT.(obj|off)\n"
-                 "                                write a generated closed mesh of genus G with about N faces",
+    {"info", "igm info MESH                 read MESH (.obj .off .ply .stl), validate it, print what was found",
+     cmd_info},
+    {"generate",
+     "igm generate --genus G --faces N [--seed S] OUT.(obj|off)\n"
+     "                                write a generated closed mesh of genus G with about N faces",
      cmd_generate},
     {"help", "igm help | igm --help         this text", cmd_help},
 };
@@ -99,8 +101,10 @@ int print_report(const std::string& name, const igm::MeshReport& r) {
   } else if (r.faces > 0 && r.vertices > 0) {
     std::printf("topology: not checked (the faces are malformed, see problems)\n");
   }
-  if (r.genus >= 0) std::printf("genus: %d\n", r.genus);
-  else std::printf("genus: undefined (invalid mesh)\n");
+  if (r.genus >= 0)
+    std::printf("genus: %d\n", r.genus);
+  else
+    std::printf("genus: undefined (invalid mesh)\n");
   for (const std::string& w : r.warnings) std::printf("warning: %s\n", w.c_str());
   for (const igm::MeshProblem& p : r.problems) {
     std::printf("problem: %s (%lld): %s\n", igm::to_string(p.kind), static_cast<long long>(p.count), p.message.c_str());
@@ -112,7 +116,8 @@ int print_report(const std::string& name, const igm::MeshReport& r) {
   }
   std::printf("status: invalid (%zu problem kinds)\n", r.problems.size());
   const igm::MeshProblem& first = r.problems.front();
-  std::fprintf(stderr, "igm: %s: invalid mesh: %s: %s\n", name.c_str(), igm::to_string(first.kind), first.message.c_str());
+  std::fprintf(stderr, "igm: %s: invalid mesh: %s: %s\n", name.c_str(), igm::to_string(first.kind),
+               first.message.c_str());
   return kExitInvalid;
 }
 
@@ -131,8 +136,9 @@ int cmd_info(const Args& args) {
 }
 
 int cmd_default() {
-  std::printf("igm: no arguments: running `info` on a built-in generated mesh (genus 2, ~2000 faces); "
-              "see `igm --help`\n");
+  std::printf(
+      "igm: no arguments: running `info` on a built-in generated mesh (genus 2, ~2000 faces); "
+      "see `igm --help`\n");
   igm::GenerateOptions o;
   o.genus = 2;
   o.faces = 2000;
@@ -154,7 +160,8 @@ int cmd_generate(const Args& args) {
     if (a == "--genus" || a == "--faces" || a == "--seed") {
       if (i + 1 >= args.size()) return usage_error(std::string(a) + " needs a value");
       std::int64_t v = 0;
-      if (!parse_int(args[i + 1], v)) return usage_error(std::string(a) + " needs an integer, got '" + std::string(args[i + 1]) + "'");
+      if (!parse_int(args[i + 1], v))
+        return usage_error(std::string(a) + " needs an integer, got '" + std::string(args[i + 1]) + "'");
       ++i;
       if (a == "--genus") {
         if (v < 0 || v > 100000) return usage_error("--genus must be in 0..100000");
@@ -185,9 +192,12 @@ int cmd_generate(const Args& args) {
     const igm::ValidMesh m = igm::validate(soup);  // the generator's contract, checked
     std::vector<std::array<int, 3>> tris(m.mesh.num_faces());
     for (int f = 0; f < m.mesh.num_faces(); ++f) tris[f] = m.mesh.face_vertices(f);
-    if (ext == ".obj") igm::write_obj(path, m.positions, tris);
-    else igm::write_off(path, m.positions, tris);
-    std::printf("wrote %s: %d vertices, %d faces, genus %d\n", out.c_str(), m.mesh.num_vertices(), m.mesh.num_faces(), m.genus);
+    if (ext == ".obj")
+      igm::write_obj(path, m.positions, tris);
+    else
+      igm::write_off(path, m.positions, tris);
+    std::printf("wrote %s: %d vertices, %d faces, genus %d\n", out.c_str(), m.mesh.num_vertices(), m.mesh.num_faces(),
+                m.genus);
   } catch (const igm::Error& e) {
     std::fprintf(stderr, "igm: generate: %s\n", e.what());
     return kExitInvalid;

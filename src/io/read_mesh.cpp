@@ -22,10 +22,14 @@ MeshFormat format_from_path(const std::filesystem::path& path) {
 
 PolygonSoup read_soup(std::string_view bytes, MeshFormat format) {
   switch (format) {
-    case MeshFormat::Obj: return detail::read_obj(bytes);
-    case MeshFormat::Off: return detail::read_off(bytes);
-    case MeshFormat::Ply: return detail::read_ply(bytes);
-    case MeshFormat::Stl: return detail::read_stl(bytes);
+    case MeshFormat::Obj:
+      return detail::read_obj(bytes);
+    case MeshFormat::Off:
+      return detail::read_off(bytes);
+    case MeshFormat::Ply:
+      return detail::read_ply(bytes);
+    case MeshFormat::Stl:
+      return detail::read_stl(bytes);
   }
   throw Error(ErrorKind::InvalidArgument, "unknown mesh format");
 }

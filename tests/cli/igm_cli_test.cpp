@@ -41,7 +41,8 @@ std::string quote(const std::string& s) {
 
 Run igm(const std::string& args) {
   const auto d = tmp_dir();
-  const std::string cmd = quote(IGM_CLI_PATH) + " " + args + " >" + quote((d / "out").string()) + " 2>" + quote((d / "err").string());
+  const std::string cmd =
+      quote(IGM_CLI_PATH) + " " + args + " >" + quote((d / "out").string()) + " 2>" + quote((d / "err").string());
   const int status = std::system(cmd.c_str());
   Run r;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -70,10 +71,11 @@ TEST_CASE("help and usage errors") {
     CHECK(has(r.out, "igm info MESH"));
     CHECK(has(r.out, "igm generate --genus G --faces N"));
   }
-  for (const char* a : {"--bogus", "bogus", "info", "info a.off b.off", "info --x", "generate", "generate --genus 2 x.obj",
-                        "generate --genus 2 --faces 100", "generate --genus two --faces 100 x.obj",
-                        "generate --genus 2 --faces 100 --seed", "generate --genus 2 --faces 100 x.ply",
-                        "generate --genus 2 --faces 100 --color red x.obj", "help me"}) {
+  for (const char* a :
+       {"--bogus", "bogus", "info", "info a.off b.off", "info --x", "generate", "generate --genus 2 x.obj",
+        "generate --genus 2 --faces 100", "generate --genus two --faces 100 x.obj",
+        "generate --genus 2 --faces 100 --seed", "generate --genus 2 --faces 100 x.ply",
+        "generate --genus 2 --faces 100 --color red x.obj", "help me"}) {
     CAPTURE(a);
     const Run r = igm(a);
     CHECK(r.code == 2);
@@ -150,8 +152,12 @@ TEST_CASE("info on shared meshes: exit codes and the named problems") {
       {"degtri_sliding.off", "boundary", {"boundary loops: 1\n"}},
       {"double-torus-3-holes.off", "boundary", {"boundary loops: 3\n"}},
       {"knot2.off", "several_components", {"components: 2\n"}},
-      {"pig.stl", "non_manifold_vertex", {"non-manifold vertices: 421\n", "boundary loops: 5\n", "problem: boundary (5)"}},
-      {"polygon_mesh.off", "non_manifold_vertex", {"non-manifold vertices: 2\n", "boundary loops: 14\n", "  elements: 4113 4349\n"}},
+      {"pig.stl",
+       "non_manifold_vertex",
+       {"non-manifold vertices: 421\n", "boundary loops: 5\n", "problem: boundary (5)"}},
+      {"polygon_mesh.off",
+       "non_manifold_vertex",
+       {"non-manifold vertices: 2\n", "boundary loops: 14\n", "  elements: 4113 4349\n"}},
   };
   for (const Case& c : cases) {
     CAPTURE(c.file);
@@ -179,7 +185,7 @@ TEST_CASE("info on unreadable files: exit 2 with the reason on stderr") {
   }
   {
     std::ofstream(d / "trunc.off") << "OFF\n4 4 0\n0.0000 0.0000 0.0000\n1.0000 0.0000 0.0000\n0.0000 1.0000 0.0000\n"
-                                       "0.0000 0.0000 1.0000\n3 0 1 2\n3 0";
+                                      "0.0000 0.0000 1.0000\n3 0 1 2\n3 0";
     const Run r = igm("info " + quote((d / "trunc.off").string()));
     CHECK(r.code == 2);
     CHECK(has(r.err, "parse: line 8: face 1: expected 3 vertex indices"));

@@ -44,15 +44,15 @@ namespace igm {
 /// One problem found in the input, with the offending elements (ids as in the input file).
 struct MeshProblem {
   ErrorKind kind;
-  std::string message;              // names the count and the first few offending elements
+  std::string message;                 // names the count and the first few offending elements
   std::vector<std::int64_t> elements;  // the first (at most 100) offending ids, see validate.h top
-  std::int64_t count = 0;           // exact number of offending items (faces, edges, vertices, loops, components)
+  std::int64_t count = 0;              // exact number of offending items (faces, edges, vertices, loops, components)
 };
 
 /// What `igm info` prints: counts and every problem found (no exception).
 struct MeshReport {
   std::int64_t vertices = 0, faces = 0, triangles = 0, edges = 0;  // input vertices/polygons; after triangulation
-  std::int64_t polygons = 0;  // input faces with more than 3 corners
+  std::int64_t polygons = 0;                                       // input faces with more than 3 corners
   std::int64_t components = 0, boundary_loops = 0;
   std::int64_t boundary_edges = 0, non_manifold_edges = 0, non_manifold_vertices = 0;
   std::int64_t unreferenced_vertices = 0;
@@ -67,17 +67,17 @@ struct MeshReport {
 };
 
 struct ValidateOptions {
-  bool repair_orientation = true;   // re-orient faces of an orientable surface (with a warning)
-  bool drop_unreferenced = true;    // drop vertices used by no face (with a warning)
+  bool repair_orientation = true;  // re-orient faces of an orientable surface (with a warning)
+  bool drop_unreferenced = true;   // drop vertices used by no face (with a warning)
 };
 
 /// A validated mesh: closed, edge- and vertex-manifold, consistently oriented, connected.
 struct ValidMesh {
   TriMesh mesh;
-  std::vector<Vec3d> positions;         // per vertex of `mesh`
+  std::vector<Vec3d> positions;            // per vertex of `mesh`
   std::vector<std::int64_t> input_vertex;  // vertex of `mesh` -> vertex id in the input soup
   std::vector<std::int64_t> input_face;    // face of `mesh` -> polygon id in the input soup
-  std::vector<std::string> warnings;    // repairs applied
+  std::vector<std::string> warnings;       // repairs applied
   int genus = 0;
 };
 
