@@ -129,7 +129,7 @@ int cmd_info(const Args& args) {
   try {
     soup = igm::read_soup(std::filesystem::path(path));
   } catch (const igm::Error& e) {
-    std::fprintf(stderr, "igm: %s: cannot read: %s\n", path.c_str(), e.what());
+    std::fprintf(stderr, "igm: cannot read the mesh: %s\n", e.what());  // the message names the path
     return kExitInvalid;
   }
   return print_report(path, igm::inspect(soup));

@@ -56,7 +56,18 @@ std::string read_file_bytes(const std::filesystem::path& path) {
 PolygonSoup read_soup(const std::filesystem::path& path) {
   const MeshFormat format = format_from_path(path);
   const std::string bytes = read_file_bytes(path);
-  return read_soup(std::string_view(bytes), format);
+  try {
+    return read_soup(std::string_view(bytes), format);
+  } catch (const Error& e) {
+    throw with_path(e, path);
+  }
+}
+
+Error with_path(const Error& e, const std::filesystem::path& path) {
+  std::string message = e.what();
+  const std::string prefix = std::string(to_string(e.kind())) + ": ";
+  if (message.compare(0, prefix.size(), prefix) == 0) message.erase(0, prefix.size());
+  return Error(e.kind(), path.string() + ": " + message, e.elements());
 }
 
 }  // namespace igm

@@ -514,7 +514,12 @@ ValidMesh validate(const PolygonSoup& soup, const ValidateOptions& options) {
 }
 
 ValidMesh load_mesh(const std::filesystem::path& path, const ValidateOptions& options) {
-  return validate(read_soup(path), options);
+  const PolygonSoup soup = read_soup(path);  // its errors name the path already
+  try {
+    return validate(soup, options);
+  } catch (const Error& e) {
+    throw with_path(e, path);
+  }
 }
 
 }  // namespace igm

@@ -188,12 +188,12 @@ TEST_CASE("info on unreadable files: exit 2 with the reason on stderr") {
                                       "0.0000 0.0000 1.0000\n3 0 1 2\n3 0";
     const Run r = igm("info " + quote((d / "trunc.off").string()));
     CHECK(r.code == 2);
-    CHECK(has(r.err, "parse: line 8: face 1: expected 3 vertex indices"));
+    CHECK(has(r.err, "parse: " + (d / "trunc.off").string() + ": line 8: face 1: expected 3 vertex indices"));
     // So short that the declared counts cannot fit: rejected before reading on.
     std::ofstream(d / "short.off") << "OFF\n4 4 0\n0 0 0\n";
     const Run s = igm("info " + quote((d / "short.off").string()));
     CHECK(s.code == 2);
-    CHECK(has(s.err, "too_large: OFF header declares 4 vertices and 4 faces but only"));
+    CHECK(has(s.err, "too_large: " + (d / "short.off").string() + ": OFF header declares 4 vertices and 4 faces but only"));
   }
   {
     std::ofstream(d / "huge.ply", std::ios::binary)

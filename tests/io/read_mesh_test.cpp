@@ -2,6 +2,7 @@
 
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <string>
@@ -581,6 +582,35 @@ TEST_CASE("shared invalid meshes are rejected naming the problem, with the READM
     CHECK(find_problem(r, ErrorKind::NonManifoldVertex)->elements == std::vector<std::int64_t>{4113, 4349});
     CHECK(first_kind("polygon_mesh.off") == ErrorKind::NonManifoldVertex);
   }
+}
+
+TEST_CASE("errors from files name the path") {
+  IGM_REQUIRE_DATA(dir);
+  const auto pig = dir / "meshes" / "invalid" / "pig.stl";
+  try {
+    load_mesh(pig);
+    FAIL("pig.stl accepted");
+  } catch (const Error& e) {
+    CHECK(e.kind() == ErrorKind::NonManifoldVertex);
+    CHECK(std::string(e.what()).rfind("non_manifold_vertex: " + pig.string() + ": 421 vertices", 0) == 0);
+    CHECK(e.elements().size() == 100);  // the first 100 of 421
+  }
+  const auto tmp = std::filesystem::temp_directory_path() / "igm-read-test-bad.obj";
+  {
+    std::FILE* f = std::fopen(tmp.string().c_str(), "wb");
+    REQUIRE(f);
+    std::fputs("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n", f);
+    std::fclose(f);
+  }
+  try {
+    read_soup(tmp);
+    FAIL("bad OBJ accepted");
+  } catch (const Error& e) {
+    CHECK(e.kind() == ErrorKind::Parse);
+    CHECK(std::string(e.what()) == "parse: " + tmp.string() + ": line 4: face corner is not an integer vertex index");
+    CHECK(e.elements() == std::vector<std::int64_t>{4});
+  }
+  std::filesystem::remove(tmp);
 }
 
 TEST_CASE("truncated and bit-flipped shared files give typed errors or reports, never crashes") {

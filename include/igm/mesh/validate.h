@@ -91,7 +91,7 @@ MeshReport inspect(const PolygonSoup& soup, const ValidateOptions& options = {})
 /// is used, genus = (2 - V + E - F) / 2. Cost O(C log C).
 ValidMesh validate(const PolygonSoup& soup, const ValidateOptions& options = {});
 
-/// read_soup + validate.
+/// read_soup + validate; error messages start with the path.
 ValidMesh load_mesh(const std::filesystem::path& path, const ValidateOptions& options = {});
 
 }  // namespace igm
