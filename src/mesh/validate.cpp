@@ -142,6 +142,31 @@ std::uint64_t edge_key(int a, int b) {
 
 int hnext(int h) { return h % 3 == 2 ? h - 2 : h + 1; }
 
+// A half-edge keyed by its undirected edge: hd = 2 h + (origin > target).
+struct HalfKey {
+  std::uint64_t key;
+  std::uint32_t hd;
+};
+
+// Stable LSD radix sort by key, 11-bit digits; digits that are zero in every key are skipped
+// (edge keys use about 2 log2(V) bits). Cost O(n) per pass, at most 6 passes.
+void radix_sort(std::vector<HalfKey>& v) {
+  std::uint64_t all = 0;
+  for (const HalfKey& x : v) all |= x.key;
+  std::vector<HalfKey> tmp(v.size());
+  constexpr int kBits = 11;
+  constexpr std::size_t kBuckets = std::size_t{1} << kBits;
+  std::vector<std::size_t> start(kBuckets + 1);
+  for (int shift = 0; shift < 64; shift += kBits) {
+    if (((all >> shift) & (kBuckets - 1)) == 0) continue;
+    std::fill(start.begin(), start.end(), 0);
+    for (const HalfKey& x : v) ++start[((x.key >> shift) & (kBuckets - 1)) + 1];
+    for (std::size_t b = 0; b < kBuckets; ++b) start[b + 1] += start[b];
+    for (const HalfKey& x : v) tmp[start[(x.key >> shift) & (kBuckets - 1)]++] = x;
+    v.swap(tmp);
+  }
+}
+
 Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
   Analysis a;
   MeshReport& r = a.report;
@@ -286,39 +311,47 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
                          " with more than 3 corners (fans): " + std::to_string(r.faces) + " faces became " +
                          std::to_string(T) + " triangles");
 
-  // --- edges: sort half-edges by undirected key ---
+  // --- edges: sort half-edges by undirected key (the key carries the endpoints, so the
+  // grouping below reads no triangle: it streams through the sorted array) ---
   const auto origin = [&](int h) { return a.tris[h / 3][h % 3]; };
-  std::vector<std::pair<std::uint64_t, int>> keys(3 * T);
-  for (std::size_t h = 0; h < 3 * T; ++h) keys[h] = {edge_key(origin(int(h)), origin(hnext(int(h)))), int(h)};
-  std::sort(keys.begin(), keys.end());
+  std::vector<HalfKey> keys(3 * T);
+  for (std::size_t h = 0; h < 3 * T; ++h) {
+    const int o = origin(int(h)), t = origin(hnext(int(h)));
+    keys[h] = {edge_key(o, t), static_cast<std::uint32_t>(2 * h + (o > t ? 1 : 0))};
+  }
+  radix_sort(keys);
 
-  Dsu corners(3 * T);         // corner h = (triangle h/3, vertex origin(h)); joined across manifold edges
-  std::vector<int> boundary;  // boundary half-edges
+  Dsu corners(3 * T);   // corner h = (triangle h/3, vertex origin(h)); joined across manifold edges
+  ParityDsu orient(T);  // flip(t1) xor flip(t2) == "same direction" on every manifold edge
+  std::vector<std::pair<int, int>> witness;  // (h1, h2) of each orientation contradiction
+  std::vector<int> boundary;                 // boundary half-edges
   Collector nm_edges, inconsistent;
   for (std::size_t i = 0; i < keys.size();) {  // each round consumes one group of equal keys
     std::size_t j = i;
-    while (j < keys.size() && keys[j].first == keys[i].first) ++j;
+    while (j < keys.size() && keys[j].key == keys[i].key) ++j;
     ++r.edges;
-    const int h1 = keys[i].second;
-    const int u = origin(h1), w = origin(hnext(h1));
-    auto edge = [&] { return "edge (" + std::to_string(std::min(u, w)) + ", " + std::to_string(std::max(u, w)) + ")"; };
+    const int h1 = static_cast<int>(keys[i].hd >> 1);
+    const int lo = static_cast<int>(keys[i].key >> 32), hi = static_cast<int>(keys[i].key & 0xffffffffu);
+    auto edge = [&] { return "edge (" + std::to_string(lo) + ", " + std::to_string(hi) + ")"; };
     if (j - i == 1) {
       boundary.push_back(h1);
     } else if (j - i == 2) {
-      const int h2 = keys[i + 1].second;
-      const bool same = origin(h2) == u;
+      const int h2 = static_cast<int>(keys[i + 1].hd >> 1);
+      const bool same = (keys[i].hd & 1) == (keys[i + 1].hd & 1);
       corners.unite(h1, same ? h2 : hnext(h2));
       corners.unite(hnext(h1), same ? hnext(h2) : h2);
-      const int f1 = a.tri_face[h1 / 3], f2 = a.tri_face[h2 / 3];
-      if (same)
+      if (!orient.unite(h1 / 3, h2 / 3, same ? 1 : 0)) witness.push_back({h1, h2});
+      if (same) {
+        const int f1 = a.tri_face[h1 / 3], f2 = a.tri_face[h2 / 3];
         inconsistent.add_ids({f1, f2}, !inconsistent.named()
                                            ? std::string()
                                            : edge() + " in faces " + std::to_string(f1) + " and " + std::to_string(f2));
+      }
     } else {
       std::vector<std::int64_t> faces;
       int diag_face = -1;
       for (std::size_t k = i; k < j; ++k) {
-        const int h = keys[k].second;
+        const int h = static_cast<int>(keys[k].hd >> 1);
         faces.push_back(a.tri_face[h / 3]);
         if (diagonal[h]) diag_face = a.tri_face[h / 3];
       }
@@ -352,21 +385,9 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
        plural(nm_vertices.count, "vertex has", "vertices have") +
            " faces forming more than one fan: " + nm_vertices.list());
 
-  // --- 10: orientation: flip(t1) xor flip(t2) must equal "same direction" on every manifold edge ---
+  // --- 10: orientation (the parity unions were made with the edges above) ---
   {
-    ParityDsu orient(T);
     std::vector<char> bad_root(T, 0);
-    std::vector<std::pair<int, int>> witness;  // (h1, h2) of each contradiction
-    for (std::size_t i = 0; i + 1 < keys.size();) {
-      std::size_t j = i;
-      while (j < keys.size() && keys[j].first == keys[i].first) ++j;
-      if (j - i == 2) {
-        const int h1 = keys[i].second, h2 = keys[i + 1].second;
-        const bool same = origin(h2) == origin(h1);
-        if (!orient.unite(h1 / 3, h2 / 3, same ? 1 : 0)) witness.push_back({h1, h2});
-      }
-      i = j;
-    }
     Collector non_orientable;
     for (auto [h1, h2] : witness) {
       const int root = orient.find(h1 / 3).first;
