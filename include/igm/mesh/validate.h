@@ -10,8 +10,8 @@
 //   5. index_out_of_range  a face uses a vertex id < 0 or >= #vertices
 //   6. repeated_vertex  a face uses the same vertex twice
 //   7. non_finite       a coordinate of a vertex used by a face is NaN or Inf
-//      (if any of 3..6 is found, the topological checks 8..12 are skipped: the faces are not
-//       a well-defined complex; report.topology_checked is false)
+//      (too_large stops all checks; if any of 4..6 is found, the topological checks 8..12 are
+//       skipped: the faces are not a well-defined complex; report.topology_checked is false)
 //   8. non_manifold_edge   an edge with more than two faces (also when the edge is a diagonal
 //                          made by the fan triangulation of a polygon; the message says so)
 //   9. non_manifold_vertex the faces around a vertex form more than one fan (edge-connected
@@ -29,7 +29,10 @@
 //   - vertices used by no face are dropped;
 //   - polygons are fan-triangulated (apex chosen, for polygons of up to 64 corners, so that no
 //     diagonal coincides with an existing edge when possible).
-// Element ids in problems refer to the input soup (0-based vertex and polygon ids).
+// Element ids in problems refer to the input soup (0-based vertex and polygon ids): faces for
+// 4, 5, 6, 8 (all faces of each edge), 10 (the two faces of one contradicting edge per
+// component), 11 (one face per loop), 12 (the first face of each component); vertices for 7, 9.
+// With repair_orientation off, inconsistent edges are a non_manifold_edge problem placed after 10.
 #include <cstdint>
 #include <filesystem>
 #include <string>
