@@ -49,10 +49,11 @@ Timing measure(const std::filesystem::path& path, int runs, igm::ValidMesh& out)
 }
 
 void report(const char* name, const std::filesystem::path& path, const Timing& t, const igm::ValidMesh& m) {
-  std::printf("%-26s %6.1f MB  V=%-7d F=%-7d genus=%-2d  wall: file %.3f s  parse %.3f s  validate %.3f s  total %.3f s"
-              "  (cpu %.3f s)\n",
-              name, static_cast<double>(std::filesystem::file_size(path)) / 1e6, m.mesh.num_vertices(), m.mesh.num_faces(),
-              m.genus, t.read, t.parse, t.validate, t.read + t.parse + t.validate, t.cpu);
+  std::printf(
+      "%-26s %6.1f MB  V=%-7d F=%-7d genus=%-2d  wall: file %.3f s  parse %.3f s  validate %.3f s  total %.3f s"
+      "  (cpu %.3f s)\n",
+      name, static_cast<double>(std::filesystem::file_size(path)) / 1e6, m.mesh.num_vertices(), m.mesh.num_faces(),
+      m.genus, t.read, t.parse, t.validate, t.read + t.parse + t.validate, t.cpu);
 }
 
 }  // namespace
@@ -60,7 +61,8 @@ void report(const char* name, const std::filesystem::path& path, const Timing& t
 int main(int argc, char** argv) {
   try {
     std::filesystem::path arm;
-    if (argc > 1) arm = argv[1];
+    if (argc > 1)
+      arm = argv[1];
     else {
       const char* env = std::getenv("IGM_DATA_DIR");
       arm = std::filesystem::path(env && *env ? env : "/work/shared") / "meshes" / "clean" / "armadillo.off";

@@ -30,7 +30,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (m.genus != report.genus || chi != 2 - 2LL * m.genus) std::abort();
     std::vector<std::array<int, 3>> tris(static_cast<std::size_t>(m.mesh.num_faces()));
     for (int f = 0; f < m.mesh.num_faces(); ++f) tris[static_cast<std::size_t>(f)] = m.mesh.face_vertices(f);
-    const igm::ValidMesh again = igm::validate(igm::read_soup(igm::format_obj(m.positions, tris), igm::MeshFormat::Obj));
+    const igm::ValidMesh again =
+        igm::validate(igm::read_soup(igm::format_obj(m.positions, tris), igm::MeshFormat::Obj));
     if (again.genus != m.genus || again.mesh.num_faces() != m.mesh.num_faces() || !again.warnings.empty()) std::abort();
   } catch (const igm::Error& e) {
     if (report.problems.empty() || e.kind() != report.problems.front().kind) std::abort();

@@ -106,8 +106,10 @@ int print_report(const std::string& name, const igm::MeshReport& r) {
   } else if (r.faces > 0 && r.vertices > 0) {
     std::printf("topology: not checked (the faces are malformed, see problems)\n");
   }
-  if (r.genus >= 0) std::printf("genus: %d\n", r.genus);
-  else std::printf("genus: undefined (invalid mesh)\n");
+  if (r.genus >= 0)
+    std::printf("genus: %d\n", r.genus);
+  else
+    std::printf("genus: undefined (invalid mesh)\n");
   for (const std::string& w : r.warnings) std::printf("warning: %s\n", w.c_str());
   for (const igm::MeshProblem& p : r.problems) {
     std::printf("problem: %s (%lld): %s\n", igm::to_string(p.kind), static_cast<long long>(p.count), p.message.c_str());
@@ -119,7 +121,8 @@ int print_report(const std::string& name, const igm::MeshReport& r) {
   }
   std::printf("status: invalid (%zu problem kinds)\n", r.problems.size());
   const igm::MeshProblem& first = r.problems.front();
-  std::fprintf(stderr, "igm: %s: invalid mesh: %s: %s\n", name.c_str(), igm::to_string(first.kind), first.message.c_str());
+  std::fprintf(stderr, "igm: %s: invalid mesh: %s: %s\n", name.c_str(), igm::to_string(first.kind),
+               first.message.c_str());
   return kExitInvalid;
 }
 
@@ -131,7 +134,7 @@ int cmd_info(const Args& args) {
   try {
     soup = igm::read_soup(std::filesystem::path(path));
   } catch (const igm::Error& e) {
-    std::fprintf(stderr, "igm: %s: cannot read: %s\n", path.c_str(), e.what());
+    std::fprintf(stderr, "igm: cannot read the mesh: %s\n", e.what());  // the message names the path
     return kExitInvalid;
   }
   return print_report(path, igm::inspect(soup));
@@ -151,7 +154,8 @@ int cmd_generate(const Args& args) {
     if (a == "--genus" || a == "--faces" || a == "--seed") {
       if (i + 1 >= args.size()) return usage_error(std::string(a) + " needs a value");
       std::int64_t v = 0;
-      if (!parse_int(args[i + 1], v)) return usage_error(std::string(a) + " needs an integer, got '" + std::string(args[i + 1]) + "'");
+      if (!parse_int(args[i + 1], v))
+        return usage_error(std::string(a) + " needs an integer, got '" + std::string(args[i + 1]) + "'");
       ++i;
       if (a == "--genus") {
         if (v < 0 || v > 100000) return usage_error("--genus must be in 0..100000");
@@ -182,9 +186,12 @@ int cmd_generate(const Args& args) {
     const igm::ValidMesh m = igm::validate(soup);  // the generator's contract, checked
     std::vector<std::array<int, 3>> tris(m.mesh.num_faces());
     for (int f = 0; f < m.mesh.num_faces(); ++f) tris[f] = m.mesh.face_vertices(f);
-    if (ext == ".obj") igm::write_obj(path, m.positions, tris);
-    else igm::write_off(path, m.positions, tris);
-    std::printf("wrote %s: %d vertices, %d faces, genus %d\n", out.c_str(), m.mesh.num_vertices(), m.mesh.num_faces(), m.genus);
+    if (ext == ".obj")
+      igm::write_obj(path, m.positions, tris);
+    else
+      igm::write_off(path, m.positions, tris);
+    std::printf("wrote %s: %d vertices, %d faces, genus %d\n", out.c_str(), m.mesh.num_vertices(), m.mesh.num_faces(),
+                m.genus);
   } catch (const igm::Error& e) {
     std::fprintf(stderr, "igm: generate: %s\n", e.what());
     return kExitInvalid;

@@ -22,10 +22,14 @@ MeshFormat format_from_path(const std::filesystem::path& path) {
 
 PolygonSoup read_soup(std::string_view bytes, MeshFormat format) {
   switch (format) {
-    case MeshFormat::Obj: return detail::read_obj(bytes);
-    case MeshFormat::Off: return detail::read_off(bytes);
-    case MeshFormat::Ply: return detail::read_ply(bytes);
-    case MeshFormat::Stl: return detail::read_stl(bytes);
+    case MeshFormat::Obj:
+      return detail::read_obj(bytes);
+    case MeshFormat::Off:
+      return detail::read_off(bytes);
+    case MeshFormat::Ply:
+      return detail::read_ply(bytes);
+    case MeshFormat::Stl:
+      return detail::read_stl(bytes);
   }
   throw Error(ErrorKind::InvalidArgument, "unknown mesh format");
 }
@@ -52,7 +56,18 @@ std::string read_file_bytes(const std::filesystem::path& path) {
 PolygonSoup read_soup(const std::filesystem::path& path) {
   const MeshFormat format = format_from_path(path);
   const std::string bytes = read_file_bytes(path);
-  return read_soup(std::string_view(bytes), format);
+  try {
+    return read_soup(std::string_view(bytes), format);
+  } catch (const Error& e) {
+    throw with_path(e, path);
+  }
+}
+
+Error with_path(const Error& e, const std::filesystem::path& path) {
+  std::string message = e.what();
+  const std::string prefix = std::string(to_string(e.kind())) + ": ";
+  if (message.compare(0, prefix.size(), prefix) == 0) message.erase(0, prefix.size());
+  return Error(e.kind(), path.string() + ": " + message, e.elements());
 }
 
 }  // namespace igm

@@ -66,11 +66,11 @@ PolygonSoup read_off(std::string_view bytes) {
     }
     if (!prefix.empty()) c.fail(ErrorKind::Parse, "unknown OFF keyword '" + std::string(key) + "'");
     c.take_token();
-    if (more_on_line(c) && c.peek_token() == "BINARY")
-      c.fail(ErrorKind::Unsupported, "binary OFF is not supported");
+    if (more_on_line(c) && c.peek_token() == "BINARY") c.fail(ErrorKind::Unsupported, "binary OFF is not supported");
     if (dim_given) {
       const std::int64_t dim = read_count(c, "dimension");
-      if (dim != 3) c.fail(ErrorKind::Unsupported, "OFF of dimension " + std::to_string(dim) + " (only 3 is supported)");
+      if (dim != 3)
+        c.fail(ErrorKind::Unsupported, "OFF of dimension " + std::to_string(dim) + " (only 3 is supported)");
     }
   } else if (!(key.size() > 0 && (key[0] >= '0' && key[0] <= '9'))) {
     c.fail(ErrorKind::Parse, "not an OFF file (no OFF keyword)");
@@ -111,7 +111,9 @@ PolygonSoup read_off(std::string_view bytes) {
     if (c.at_end())
       c.fail(ErrorKind::Parse, "unexpected end of file in face " + std::to_string(f) + " of " + std::to_string(nf));
     const std::int64_t k = read_count(c, "face size");
-    if (k < 3) c.fail(ErrorKind::Parse, "face " + std::to_string(f) + " has " + std::to_string(k) + " corners (at least 3 needed)");
+    if (k < 3)
+      c.fail(ErrorKind::Parse,
+             "face " + std::to_string(f) + " has " + std::to_string(k) + " corners (at least 3 needed)");
     // Nothing is reserved for the k corners: each is pushed after it was parsed, and each
     // parse consumes at least one byte or throws, so the loop ends within the file.
     for (std::int64_t j = 0; j < k; ++j) {

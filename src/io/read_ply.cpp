@@ -24,10 +24,10 @@ bool type_from_name(std::string_view s, Type& t) {
     Type type;
   };
   static const Entry table[] = {
-      {"char", Type::I8},    {"int8", Type::I8},      {"uchar", Type::U8},   {"uint8", Type::U8},
-      {"short", Type::I16},  {"int16", Type::I16},    {"ushort", Type::U16}, {"uint16", Type::U16},
-      {"int", Type::I32},    {"int32", Type::I32},    {"uint", Type::U32},   {"uint32", Type::U32},
-      {"int64", Type::I64},  {"uint64", Type::U64},   {"float", Type::F32},  {"float32", Type::F32},
+      {"char", Type::I8},    {"int8", Type::I8},     {"uchar", Type::U8},   {"uint8", Type::U8},
+      {"short", Type::I16},  {"int16", Type::I16},   {"ushort", Type::U16}, {"uint16", Type::U16},
+      {"int", Type::I32},    {"int32", Type::I32},   {"uint", Type::U32},   {"uint32", Type::U32},
+      {"int64", Type::I64},  {"uint64", Type::U64},  {"float", Type::F32},  {"float32", Type::F32},
       {"double", Type::F64}, {"float64", Type::F64},
   };
   for (const Entry& e : table)
@@ -40,10 +40,20 @@ bool type_from_name(std::string_view s, Type& t) {
 
 std::size_t type_size(Type t) {
   switch (t) {
-    case Type::I8: case Type::U8: return 1;
-    case Type::I16: case Type::U16: return 2;
-    case Type::I32: case Type::U32: case Type::F32: return 4;
-    case Type::I64: case Type::U64: case Type::F64: return 8;
+    case Type::I8:
+    case Type::U8:
+      return 1;
+    case Type::I16:
+    case Type::U16:
+      return 2;
+    case Type::I32:
+    case Type::U32:
+    case Type::F32:
+      return 4;
+    case Type::I64:
+    case Type::U64:
+    case Type::F64:
+      return 8;
   }
   return 1;
 }
@@ -87,21 +97,39 @@ struct Value {
 Value load_value(const unsigned char* p, Type t, bool swap) {
   Value v;
   switch (t) {
-    case Type::I8: v.i = load<std::int8_t>(p, swap); break;
-    case Type::U8: v.i = load<std::uint8_t>(p, swap); break;
-    case Type::I16: v.i = load<std::int16_t>(p, swap); break;
-    case Type::U16: v.i = load<std::uint16_t>(p, swap); break;
-    case Type::I32: v.i = load<std::int32_t>(p, swap); break;
-    case Type::U32: v.i = load<std::uint32_t>(p, swap); break;
-    case Type::I64: v.i = load<std::int64_t>(p, swap); break;
+    case Type::I8:
+      v.i = load<std::int8_t>(p, swap);
+      break;
+    case Type::U8:
+      v.i = load<std::uint8_t>(p, swap);
+      break;
+    case Type::I16:
+      v.i = load<std::int16_t>(p, swap);
+      break;
+    case Type::U16:
+      v.i = load<std::uint16_t>(p, swap);
+      break;
+    case Type::I32:
+      v.i = load<std::int32_t>(p, swap);
+      break;
+    case Type::U32:
+      v.i = load<std::uint32_t>(p, swap);
+      break;
+    case Type::I64:
+      v.i = load<std::int64_t>(p, swap);
+      break;
     case Type::U64: {
       std::uint64_t u = load<std::uint64_t>(p, swap);
       v.i = u > static_cast<std::uint64_t>(INT64_MAX) ? INT64_MAX : static_cast<std::int64_t>(u);
       v.d = static_cast<double>(u);
       return v;
     }
-    case Type::F32: v.d = load<float>(p, swap); return v;
-    case Type::F64: v.d = load<double>(p, swap); return v;
+    case Type::F32:
+      v.d = load<float>(p, swap);
+      return v;
+    case Type::F64:
+      v.d = load<double>(p, swap);
+      return v;
   }
   v.d = static_cast<double>(v.i);
   return v;
@@ -128,10 +156,14 @@ PolygonSoup read_ply(std::string_view bytes) {
     c.skip_inline_space();
     if (key == "format") {
       const std::string_view f = c.take_token();
-      if (f == "ascii") format = Format::Ascii;
-      else if (f == "binary_little_endian") format = Format::BinaryLE;
-      else if (f == "binary_big_endian") format = Format::BinaryBE;
-      else c.fail(ErrorKind::Parse, "unknown PLY format '" + std::string(f) + "'");
+      if (f == "ascii")
+        format = Format::Ascii;
+      else if (f == "binary_little_endian")
+        format = Format::BinaryLE;
+      else if (f == "binary_big_endian")
+        format = Format::BinaryBE;
+      else
+        c.fail(ErrorKind::Parse, "unknown PLY format '" + std::string(f) + "'");
       c.skip_inline_space();
       if (c.take_token() != "1.0") c.fail(ErrorKind::Unsupported, "PLY version other than 1.0");
       have_format = true;
@@ -172,7 +204,8 @@ PolygonSoup read_ply(std::string_view bytes) {
       c.fail(ErrorKind::Parse, "unknown PLY header keyword '" + std::string(key) + "'");
     }
     c.skip_inline_space();
-    if (key != "comment" && key != "obj_info" && !c.at_eol()) c.fail(ErrorKind::Parse, "unexpected text at the end of a header line");
+    if (key != "comment" && key != "obj_info" && !c.at_eol())
+      c.fail(ErrorKind::Parse, "unexpected text at the end of a header line");
     c.next_line();
   }
   if (!have_end) c.fail(ErrorKind::Parse, "PLY header without end_header (truncated?)");
@@ -235,7 +268,8 @@ PolygonSoup read_ply(std::string_view bytes) {
             if (!q || q != t.data() + t.size() || n < 0)
               throw_at_line(ErrorKind::Parse, bytes, t.data(), "bad list count '" + std::string(t) + "'");
             if (n > (c.end - c.p) / 2 + 1)
-              throw_at_line(ErrorKind::TooLarge, bytes, t.data(), "list of " + std::to_string(n) + " items is longer than the file");
+              throw_at_line(ErrorKind::TooLarge, bytes, t.data(),
+                            "list of " + std::to_string(n) + " items is longer than the file");
             if (role == Role::Indices) face.clear();
             for (std::int64_t j = 0; j < n; ++j) {  // bounded by n, bounded by the bytes
               const std::string_view v = next_token("a list item");
@@ -250,7 +284,8 @@ PolygonSoup read_ply(std::string_view bytes) {
             if (role == Role::Indices) {
               if (face.size() < 3)
                 throw_at_line(ErrorKind::Parse, bytes, t.data(),
-                              "face " + std::to_string(i) + " has " + std::to_string(face.size()) + " corners (at least 3 needed)");
+                              "face " + std::to_string(i) + " has " + std::to_string(face.size()) +
+                                  " corners (at least 3 needed)");
               soup.add_face(face.begin(), face.end());
             }
           } else {
@@ -259,9 +294,12 @@ PolygonSoup read_ply(std::string_view bytes) {
             const char* q = parse_double(t.data(), t.data() + t.size(), d);
             if (!q || q != t.data() + t.size())
               throw_at_line(ErrorKind::Parse, bytes, t.data(), "bad number '" + std::string(t) + "'");
-            if (role == Role::X) pos.x = d;
-            else if (role == Role::Y) pos.y = d;
-            else if (role == Role::Z) pos.z = d;
+            if (role == Role::X)
+              pos.x = d;
+            else if (role == Role::Y)
+              pos.y = d;
+            else if (role == Role::Z)
+              pos.z = d;
           }
         }
         if (is_vertex) soup.positions.push_back(pos);
@@ -283,7 +321,8 @@ PolygonSoup read_ply(std::string_view bytes) {
     if (static_cast<std::uint64_t>(el.count) > (size - pos) / min_size)
       throw_at_byte(ErrorKind::TooLarge, pos,
                     "PLY element '" + el.name + "' declares " + std::to_string(el.count) + " items of at least " +
-                        std::to_string(min_size) + " bytes but only " + std::to_string(size - pos) + " bytes follow (truncated?)");
+                        std::to_string(min_size) + " bytes but only " + std::to_string(size - pos) +
+                        " bytes follow (truncated?)");
     const bool is_vertex = el.name == "vertex", is_face = el.name == "face";
     if (is_vertex) soup.positions.reserve(soup.positions.size() + static_cast<std::size_t>(el.count));
     if (is_face) soup.face_begin.reserve(soup.face_begin.size() + static_cast<std::size_t>(el.count));
@@ -294,16 +333,19 @@ PolygonSoup read_ply(std::string_view bytes) {
         const Role role = roles[e][k];
         if (pr.is_list) {
           const std::size_t cs = type_size(pr.count_type);
-          if (size - pos < cs) throw_at_byte(ErrorKind::Parse, pos, "unexpected end of file in a list count (truncated?)");
+          if (size - pos < cs)
+            throw_at_byte(ErrorKind::Parse, pos, "unexpected end of file in a list count (truncated?)");
           const std::int64_t n = load_value(data + pos, pr.count_type, swap).i;
           if (n < 0) throw_at_byte(ErrorKind::Parse, pos, "negative list count");
           pos += cs;
           const std::size_t is = type_size(pr.type);
           if (static_cast<std::uint64_t>(n) > (size - pos) / is)
-            throw_at_byte(ErrorKind::TooLarge, pos, "list of " + std::to_string(n) + " items is longer than the file (truncated?)");
+            throw_at_byte(ErrorKind::TooLarge, pos,
+                          "list of " + std::to_string(n) + " items is longer than the file (truncated?)");
           if (role == Role::Indices) {
             if (n < 3)
-              throw_at_byte(ErrorKind::Parse, pos - cs, "face " + std::to_string(i) + " has " + std::to_string(n) + " corners (at least 3 needed)");
+              throw_at_byte(ErrorKind::Parse, pos - cs,
+                            "face " + std::to_string(i) + " has " + std::to_string(n) + " corners (at least 3 needed)");
             face.clear();
             for (std::int64_t j = 0; j < n; ++j) face.push_back(load_value(data + pos + j * is, pr.type, swap).i);
             soup.add_face(face.begin(), face.end());
@@ -314,9 +356,12 @@ PolygonSoup read_ply(std::string_view bytes) {
           if (size - pos < s) throw_at_byte(ErrorKind::Parse, pos, "unexpected end of file (truncated?)");
           if (role != Role::Skip) {
             const double d = load_value(data + pos, pr.type, swap).d;
-            if (role == Role::X) p3.x = d;
-            else if (role == Role::Y) p3.y = d;
-            else p3.z = d;
+            if (role == Role::X)
+              p3.x = d;
+            else if (role == Role::Y)
+              p3.y = d;
+            else
+              p3.z = d;
           }
           pos += s;
         }

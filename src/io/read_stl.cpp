@@ -1,7 +1,8 @@
 // STL reader, ascii and binary. Detection: a file is binary when its size is exactly
 // 84 + 50 * (the triangle count at byte 80), unless it starts with "solid" and every byte is
 // printable text (an ascii file whose size happens to match); otherwise it is ascii when it
-// starts with "solid", and rejected when not. Vertices with identical coordinates are
+// starts with "solid" and is text (or has "facet" in its first KB: non-ASCII names), and
+// rejected when not. Vertices with identical coordinates are
 // welded (compared as values: -0 and +0 weld; NaN never welds). Cost O(bytes + T log T).
 #include <algorithm>
 #include <bit>
@@ -68,7 +69,8 @@ bool starts_with_solid(std::string_view b) {
 
 bool all_text(std::string_view b) {
   for (unsigned char ch : b)
-    if (!(ch == '\n' || ch == '\r' || ch == '\t' || ch == '\v' || ch == '\f' || (ch >= 0x20 && ch < 0x7f))) return false;
+    if (!(ch == '\n' || ch == '\r' || ch == '\t' || ch == '\v' || ch == '\f' || (ch >= 0x20 && ch < 0x7f)))
+      return false;
   return true;
 }
 
@@ -81,7 +83,7 @@ PolygonSoup read_binary(std::string_view bytes, std::uint32_t n) {
   };
   std::vector<Vec3d> corners(3 * static_cast<std::size_t>(n));
   std::vector<std::size_t> face_begin(static_cast<std::size_t>(n) + 1);
-  for (std::size_t t = 0; t < n; ++t) {  // bounded by n; the size check guarantees the bytes
+  for (std::size_t t = 0; t < n; ++t) {         // bounded by n; the size check guarantees the bytes
     const std::size_t base = 84 + 50 * t + 12;  // skip the normal
     for (std::size_t k = 0; k < 3; ++k)
       corners[3 * t + k] = {f32(base + 12 * k), f32(base + 12 * k + 4), f32(base + 12 * k + 8)};
@@ -135,7 +137,8 @@ PolygonSoup read_ascii(std::string_view bytes) {
     }
     c.next_line();
   }
-  if (in_loop || in_solid) throw_at_line(ErrorKind::Parse, bytes, c.end, "unexpected end of file (missing 'endloop' or 'endsolid')");
+  if (in_loop || in_solid)
+    throw_at_line(ErrorKind::Parse, bytes, c.end, "unexpected end of file (missing 'endloop' or 'endsolid')");
   if (corners.size() > UINT32_MAX) throw Error(ErrorKind::TooLarge, "too many STL vertices");
   return weld(corners, std::move(face_begin));
 }
@@ -151,16 +154,20 @@ PolygonSoup read_stl(std::string_view bytes) {
                             static_cast<std::uint32_t>(d[82]) << 16 | static_cast<std::uint32_t>(d[83]) << 24;
     const std::uint64_t expected = 84 + 50 * static_cast<std::uint64_t>(n);
     if (expected == bytes.size() && !text) {
-      if (3 * static_cast<std::uint64_t>(n) > UINT32_MAX) throw_at_byte(ErrorKind::TooLarge, 80, "too many STL triangles");
+      if (3 * static_cast<std::uint64_t>(n) > UINT32_MAX)
+        throw_at_byte(ErrorKind::TooLarge, 80, "too many STL triangles");
       return read_binary(bytes, n);
     }
-    if (!text)
+    // A size mismatch: ascii if it starts with "solid" and looks like text (a non-ASCII byte in
+    // a solid's name is allowed when "facet" appears early), else a broken binary file.
+    const bool ascii = text || (solid && bytes.substr(0, 1024).find("facet") != std::string_view::npos);
+    if (!ascii)
       throw_at_byte(expected > bytes.size() ? ErrorKind::TooLarge : ErrorKind::Parse, 80,
                     "binary STL declares " + std::to_string(n) + " triangles (" + std::to_string(expected) +
                         " bytes) but the file has " + std::to_string(bytes.size()) + " bytes" +
                         (expected > bytes.size() ? " (truncated?)" : " (trailing data)"));
   }
-  if (!text) throw Error(ErrorKind::Parse, "not an STL file (too short for binary STL, not ascii STL text)");
+  if (!solid) throw Error(ErrorKind::Parse, "not an STL file (too short for binary STL, no 'solid' keyword)");
   return read_ascii(bytes);
 }
 

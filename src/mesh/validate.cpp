@@ -44,7 +44,9 @@ struct Dsu {
 struct ParityDsu {
   std::vector<int> parent, size;
   std::vector<char> parity;  // relative to parent
-  explicit ParityDsu(std::size_t n) : parent(n), size(n, 1), parity(n, 0) { std::iota(parent.begin(), parent.end(), 0); }
+  explicit ParityDsu(std::size_t n) : parent(n), size(n, 1), parity(n, 0) {
+    std::iota(parent.begin(), parent.end(), 0);
+  }
   std::pair<int, int> find(int x) {  // (root, parity of x relative to root)
     int p = 0, r = x;
     while (parent[r] != r) {  // bounded by the height, O(log n) with union by size
@@ -140,6 +142,31 @@ std::uint64_t edge_key(int a, int b) {
 
 int hnext(int h) { return h % 3 == 2 ? h - 2 : h + 1; }
 
+// A half-edge keyed by its undirected edge: hd = 2 h + (origin > target).
+struct HalfKey {
+  std::uint64_t key;
+  std::uint32_t hd;
+};
+
+// Stable LSD radix sort by key, 11-bit digits; digits that are zero in every key are skipped
+// (edge keys use about 2 log2(V) bits). Cost O(n) per pass, at most 6 passes.
+void radix_sort(std::vector<HalfKey>& v) {
+  std::uint64_t all = 0;
+  for (const HalfKey& x : v) all |= x.key;
+  std::vector<HalfKey> tmp(v.size());
+  constexpr int kBits = 11;
+  constexpr std::size_t kBuckets = std::size_t{1} << kBits;
+  std::vector<std::size_t> start(kBuckets + 1);
+  for (int shift = 0; shift < 64; shift += kBits) {
+    if (((all >> shift) & (kBuckets - 1)) == 0) continue;
+    std::fill(start.begin(), start.end(), 0);
+    for (const HalfKey& x : v) ++start[((x.key >> shift) & (kBuckets - 1)) + 1];
+    for (std::size_t b = 0; b < kBuckets; ++b) start[b + 1] += start[b];
+    for (const HalfKey& x : v) tmp[start[(x.key >> shift) & (kBuckets - 1)]++] = x;
+    v.swap(tmp);
+  }
+}
+
 Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
   Analysis a;
   MeshReport& r = a.report;
@@ -156,8 +183,11 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
     return a;
   }
   if (nf == 0) {
-    r.problems.push_back({ErrorKind::NoFaces, "the mesh has " + plural(static_cast<std::int64_t>(nv), "vertex", "vertices") +
-                                                  " but no faces (a point cloud)", {}, 1});
+    r.problems.push_back({ErrorKind::NoFaces,
+                          "the mesh has " + plural(static_cast<std::int64_t>(nv), "vertex", "vertices") +
+                              " but no faces (a point cloud)",
+                          {},
+                          1});
     r.unreferenced_vertices = static_cast<std::int64_t>(nv);
     return a;
   }
@@ -166,7 +196,8 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
   bool malformed = soup.face_begin.front() != 0 || soup.face_begin.back() != soup.corners.size();
   for (std::size_t f = 0; f < nf && !malformed; ++f) malformed = soup.face_begin[f] > soup.face_begin[f + 1];
   if (malformed) {
-    r.problems.push_back({ErrorKind::InvalidArgument, "malformed polygon soup (face_begin does not index corners)", {}, 1});
+    r.problems.push_back(
+        {ErrorKind::InvalidArgument, "malformed polygon soup (face_begin does not index corners)", {}, 1});
     return a;
   }
   std::uint64_t num_tris = 0;
@@ -179,12 +210,13 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
     r.problems.push_back({ErrorKind::TooLarge,
                           "the mesh has " + std::to_string(nv) + " vertices and " + std::to_string(num_tris) +
                               " triangles: more than 32-bit half-edge ids hold",
-                          {}, 1});
+                          {},
+                          1});
     return a;
   }
   r.triangles = static_cast<std::int64_t>(num_tris);
 
-  // --- 4, 5, 6: per face (O(k) for k <= 16 corners, O(k log k) above) ---
+  // --- 4, 5, 6: per face, O(k log k) for k corners ---
   Collector small, out_of_range, repeated;
   std::vector<char> referenced(nv, 0);
   std::vector<std::int64_t> sorted;
@@ -192,13 +224,16 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
     const std::int64_t* c = soup.corners.data() + soup.face_begin[f];
     const std::size_t k = soup.face_size(f);
     const auto fid = static_cast<std::int64_t>(f);
-    if (k < 3) small.add(fid, !small.named() ? std::string() : "face " + std::to_string(f) + " has " + std::to_string(k) + " corners");
+    if (k < 3)
+      small.add(
+          fid, !small.named() ? std::string() : "face " + std::to_string(f) + " has " + std::to_string(k) + " corners");
     bool bad = false;
     for (std::size_t i = 0; i < k; ++i)
       if (c[i] < 0 || c[i] >= static_cast<std::int64_t>(nv)) {
         if (!bad)
-          out_of_range.add(fid, !out_of_range.named() ? std::string() : "face " + std::to_string(f) + " uses vertex " + std::to_string(c[i]) +
-                                    (c[i] < 0 ? " (negative)" : ""));
+          out_of_range.add(fid, !out_of_range.named() ? std::string()
+                                                      : "face " + std::to_string(f) + " uses vertex " +
+                                                            std::to_string(c[i]) + (c[i] < 0 ? " (negative)" : ""));
         bad = true;
       } else {
         referenced[c[i]] = 1;
@@ -207,13 +242,15 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
     std::sort(sorted.begin(), sorted.end());
     const auto dup = std::adjacent_find(sorted.begin(), sorted.end());
     if (dup != sorted.end())
-      repeated.add(fid, !repeated.named() ? std::string() : "face " + std::to_string(f) + " uses vertex " + std::to_string(*dup) + " twice");
+      repeated.add(fid, !repeated.named()
+                            ? std::string()
+                            : "face " + std::to_string(f) + " uses vertex " + std::to_string(*dup) + " twice");
   }
   emit(ErrorKind::InvalidArgument, small,
        plural(small.count, "face has", "faces have") + " fewer than 3 corners: " + small.list());
   emit(ErrorKind::IndexOutOfRange, out_of_range,
-       plural(out_of_range.count, "face uses", "faces use") + " a vertex id outside 0.." + std::to_string(nv - 1) + ": " +
-           out_of_range.list());
+       plural(out_of_range.count, "face uses", "faces use") + " a vertex id outside 0.." + std::to_string(nv - 1) +
+           ": " + out_of_range.list());
   emit(ErrorKind::RepeatedVertex, repeated,
        plural(repeated.count, "face uses", "faces use") + " a vertex twice: " + repeated.list());
 
@@ -223,7 +260,8 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
   for (std::size_t v = 0; v < nv; ++v) {
     a.keep_vertex[v] = referenced[v] || !opt.drop_unreferenced;
     if (!referenced[v]) ++r.unreferenced_vertices;
-    if (a.keep_vertex[v] && !is_finite(soup.positions[v])) non_finite.add(static_cast<std::int64_t>(v), !non_finite.named() ? std::string() : "vertex " + std::to_string(v));
+    if (a.keep_vertex[v] && !is_finite(soup.positions[v]))
+      non_finite.add(static_cast<std::int64_t>(v), !non_finite.named() ? std::string() : "vertex " + std::to_string(v));
   }
   emit(ErrorKind::NonFinite, non_finite,
        plural(non_finite.count, "vertex has", "vertices have") + " a NaN or infinite coordinate: " + non_finite.list());
@@ -273,37 +311,47 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
                          " with more than 3 corners (fans): " + std::to_string(r.faces) + " faces became " +
                          std::to_string(T) + " triangles");
 
-  // --- edges: sort half-edges by undirected key ---
+  // --- edges: sort half-edges by undirected key (the key carries the endpoints, so the
+  // grouping below reads no triangle: it streams through the sorted array) ---
   const auto origin = [&](int h) { return a.tris[h / 3][h % 3]; };
-  std::vector<std::pair<std::uint64_t, int>> keys(3 * T);
-  for (std::size_t h = 0; h < 3 * T; ++h) keys[h] = {edge_key(origin(int(h)), origin(hnext(int(h)))), int(h)};
-  std::sort(keys.begin(), keys.end());
+  std::vector<HalfKey> keys(3 * T);
+  for (std::size_t h = 0; h < 3 * T; ++h) {
+    const int o = origin(int(h)), t = origin(hnext(int(h)));
+    keys[h] = {edge_key(o, t), static_cast<std::uint32_t>(2 * h + (o > t ? 1 : 0))};
+  }
+  radix_sort(keys);
 
-  Dsu corners(3 * T);       // corner h = (triangle h/3, vertex origin(h)); joined across manifold edges
-  std::vector<int> boundary;  // boundary half-edges
+  Dsu corners(3 * T);   // corner h = (triangle h/3, vertex origin(h)); joined across manifold edges
+  ParityDsu orient(T);  // flip(t1) xor flip(t2) == "same direction" on every manifold edge
+  std::vector<std::pair<int, int>> witness;  // (h1, h2) of each orientation contradiction
+  std::vector<int> boundary;                 // boundary half-edges
   Collector nm_edges, inconsistent;
   for (std::size_t i = 0; i < keys.size();) {  // each round consumes one group of equal keys
     std::size_t j = i;
-    while (j < keys.size() && keys[j].first == keys[i].first) ++j;
+    while (j < keys.size() && keys[j].key == keys[i].key) ++j;
     ++r.edges;
-    const int h1 = keys[i].second;
-    const int u = origin(h1), w = origin(hnext(h1));
-    auto edge = [&] { return "edge (" + std::to_string(std::min(u, w)) + ", " + std::to_string(std::max(u, w)) + ")"; };
+    const int h1 = static_cast<int>(keys[i].hd >> 1);
+    const int lo = static_cast<int>(keys[i].key >> 32), hi = static_cast<int>(keys[i].key & 0xffffffffu);
+    auto edge = [&] { return "edge (" + std::to_string(lo) + ", " + std::to_string(hi) + ")"; };
     if (j - i == 1) {
       boundary.push_back(h1);
     } else if (j - i == 2) {
-      const int h2 = keys[i + 1].second;
-      const bool same = origin(h2) == u;
+      const int h2 = static_cast<int>(keys[i + 1].hd >> 1);
+      const bool same = (keys[i].hd & 1) == (keys[i + 1].hd & 1);
       corners.unite(h1, same ? h2 : hnext(h2));
       corners.unite(hnext(h1), same ? hnext(h2) : h2);
-      const int f1 = a.tri_face[h1 / 3], f2 = a.tri_face[h2 / 3];
-      if (same)
-        inconsistent.add_ids({f1, f2}, !inconsistent.named() ? std::string() : edge() + " in faces " + std::to_string(f1) + " and " + std::to_string(f2));
+      if (!orient.unite(h1 / 3, h2 / 3, same ? 1 : 0)) witness.push_back({h1, h2});
+      if (same) {
+        const int f1 = a.tri_face[h1 / 3], f2 = a.tri_face[h2 / 3];
+        inconsistent.add_ids({f1, f2}, !inconsistent.named()
+                                           ? std::string()
+                                           : edge() + " in faces " + std::to_string(f1) + " and " + std::to_string(f2));
+      }
     } else {
       std::vector<std::int64_t> faces;
       int diag_face = -1;
       for (std::size_t k = i; k < j; ++k) {
-        const int h = keys[k].second;
+        const int h = static_cast<int>(keys[k].hd >> 1);
         faces.push_back(a.tri_face[h / 3]);
         if (diagonal[h]) diag_face = a.tri_face[h / 3];
       }
@@ -328,26 +376,18 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
     if (corners.find(int(h)) == int(h)) ++fans[origin(int(h))];
   Collector nm_vertices;
   for (std::size_t v = 0; v < nv; ++v)
-    if (fans[v] > 1) nm_vertices.add(static_cast<std::int64_t>(v), !nm_vertices.named() ? std::string() : "vertex " + std::to_string(v) + " (" + std::to_string(fans[v]) + " fans)");
+    if (fans[v] > 1)
+      nm_vertices.add(static_cast<std::int64_t>(v),
+                      !nm_vertices.named() ? std::string()
+                                           : "vertex " + std::to_string(v) + " (" + std::to_string(fans[v]) + " fans)");
   r.non_manifold_vertices = nm_vertices.count;
   emit(ErrorKind::NonManifoldVertex, nm_vertices,
-       plural(nm_vertices.count, "vertex has", "vertices have") + " faces forming more than one fan: " + nm_vertices.list());
+       plural(nm_vertices.count, "vertex has", "vertices have") +
+           " faces forming more than one fan: " + nm_vertices.list());
 
-  // --- 10: orientation: flip(t1) xor flip(t2) must equal "same direction" on every manifold edge ---
+  // --- 10: orientation (the parity unions were made with the edges above) ---
   {
-    ParityDsu orient(T);
     std::vector<char> bad_root(T, 0);
-    std::vector<std::pair<int, int>> witness;  // (h1, h2) of each contradiction
-    for (std::size_t i = 0; i + 1 < keys.size();) {
-      std::size_t j = i;
-      while (j < keys.size() && keys[j].first == keys[i].first) ++j;
-      if (j - i == 2) {
-        const int h1 = keys[i].second, h2 = keys[i + 1].second;
-        const bool same = origin(h2) == origin(h1);
-        if (!orient.unite(h1 / 3, h2 / 3, same ? 1 : 0)) witness.push_back({h1, h2});
-      }
-      i = j;
-    }
     Collector non_orientable;
     for (auto [h1, h2] : witness) {
       const int root = orient.find(h1 / 3).first;
@@ -355,9 +395,10 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
       bad_root[root] = 1;
       const int f1 = a.tri_face[h1 / 3], f2 = a.tri_face[h2 / 3];
       const int u = origin(h1), w = origin(hnext(h1));
-      non_orientable.add_ids({f1, f2}, "the component of face " + std::to_string(f1) + " (orientation contradiction at edge (" +
-                                           std::to_string(std::min(u, w)) + ", " + std::to_string(std::max(u, w)) +
-                                           ") between faces " + std::to_string(f1) + " and " + std::to_string(f2) + ")");
+      non_orientable.add_ids({f1, f2}, "the component of face " + std::to_string(f1) +
+                                           " (orientation contradiction at edge (" + std::to_string(std::min(u, w)) +
+                                           ", " + std::to_string(std::max(u, w)) + ") between faces " +
+                                           std::to_string(f1) + " and " + std::to_string(f2) + ")");
     }
     r.orientable = non_orientable.count == 0;
     emit(ErrorKind::NonOrientable, non_orientable,
@@ -387,8 +428,8 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
                            " two faces of the same direction (" + inconsistent.list() + ")");
     } else {
       emit(ErrorKind::NonManifoldEdge, inconsistent,
-           plural(inconsistent.count, "edge joins", "edges join") + " two faces of the same direction (repair_orientation is off): " +
-               inconsistent.list());
+           plural(inconsistent.count, "edge joins", "edges join") +
+               " two faces of the same direction (repair_orientation is off): " + inconsistent.list());
     }
   }
 
@@ -404,8 +445,10 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
       const int root = loops.find(origin(h));
       if (length[root] == 0) continue;  // loop already reported
       const int u = origin(h), w = origin(hnext(h));
-      bl.add(a.tri_face[h / 3], !bl.named() ? std::string() : "a loop of " + plural(length[root], "edge", "edges") + " through edge (" + std::to_string(u) +
-                                    ", " + std::to_string(w) + ") of face " + std::to_string(a.tri_face[h / 3]));
+      bl.add(a.tri_face[h / 3], !bl.named() ? std::string()
+                                            : "a loop of " + plural(length[root], "edge", "edges") + " through edge (" +
+                                                  std::to_string(u) + ", " + std::to_string(w) + ") of face " +
+                                                  std::to_string(a.tri_face[h / 3]));
       length[root] = 0;
     }
     r.boundary_loops = bl.count;
@@ -431,20 +474,23 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
     for (std::size_t v = 0; v < nv; ++v)
       if (a.keep_vertex[v] && comp.find(int(v)) == int(v)) {
         if (first_face[v] >= 0)
-          cc.add(first_face[v], plural(tri_count[v], "triangle", "triangles") + " from face " + std::to_string(first_face[v]));
+          cc.add(first_face[v],
+                 plural(tri_count[v], "triangle", "triangles") + " from face " + std::to_string(first_face[v]));
         else
           cc.add_without_id("unreferenced vertex " + std::to_string(v));
       }
     r.components = cc.count;
-    if (cc.count > 1) emit(ErrorKind::SeveralComponents, cc, "the mesh has " + std::to_string(cc.count) + " connected components: " + cc.list());
+    if (cc.count > 1)
+      emit(ErrorKind::SeveralComponents, cc,
+           "the mesh has " + std::to_string(cc.count) + " connected components: " + cc.list());
   }
 
   if (r.unreferenced_vertices > 0 && opt.drop_unreferenced) {
     std::vector<std::int64_t> unused;
     for (std::size_t v = 0; v < nv && unused.size() <= kMaxNamed; ++v)
       if (!referenced[v]) unused.push_back(static_cast<std::int64_t>(v));
-    r.warnings.push_back("dropped " + plural(r.unreferenced_vertices, "unreferenced vertex", "unreferenced vertices") + " (" +
-                         ids_text(unused) + ")");
+    r.warnings.push_back("dropped " + plural(r.unreferenced_vertices, "unreferenced vertex", "unreferenced vertices") +
+                         " (" + ids_text(unused) + ")");
   }
 
   std::int64_t kept = 0;
@@ -489,7 +535,12 @@ ValidMesh validate(const PolygonSoup& soup, const ValidateOptions& options) {
 }
 
 ValidMesh load_mesh(const std::filesystem::path& path, const ValidateOptions& options) {
-  return validate(read_soup(path), options);
+  const PolygonSoup soup = read_soup(path);  // its errors name the path already
+  try {
+    return validate(soup, options);
+  } catch (const Error& e) {
+    throw with_path(e, path);
+  }
 }
 
 }  // namespace igm

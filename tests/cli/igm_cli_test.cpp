@@ -41,7 +41,8 @@ std::string quote(const std::string& s) {
 
 Run igm(const std::string& args) {
   const auto d = tmp_dir();
-  const std::string cmd = quote(IGM_CLI_PATH) + " " + args + " >" + quote((d / "out").string()) + " 2>" + quote((d / "err").string());
+  const std::string cmd =
+      quote(IGM_CLI_PATH) + " " + args + " >" + quote((d / "out").string()) + " 2>" + quote((d / "err").string());
   const int status = std::system(cmd.c_str());
   Run r;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -54,12 +55,62 @@ bool has(const std::string& text, const std::string& needle) { return text.find(
 
 }  // namespace
 
-TEST_CASE("igm without arguments runs info on a generated genus-2 mesh") {
-  const Run r = igm("");
+// Runs a command line in a fresh working folder; returns it with the run's result.
+Run in_folder(const std::filesystem::path& cwd, const std::string& command) {
+  std::filesystem::create_directories(cwd);
+  const auto d = tmp_dir();
+  const std::string cmd = "cd " + quote(cwd.string()) + " && " + command + " >" + quote((d / "stdout").string()) +
+                          " 2>" + quote((d / "stderr").string());
+  const int status = std::system(cmd.c_str());
+  Run r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(d / "stdout");
+  r.err = slurp(d / "stderr");
+  return r;
+}
+
+TEST_CASE("igm without arguments runs the pipeline on a generated genus-2 mesh; igm-certify accepts its files") {
+  const auto cwd = tmp_dir() / "default-run";
+  const Run r = in_folder(cwd, quote(IGM_CLI_PATH));
   CHECK(r.code == 0);
   CHECK(has(r.out, "built-in generated mesh"));
-  CHECK(has(r.out, "genus: 2\n"));
-  CHECK(has(r.out, "status: valid"));
+  CHECK(has(r.out, "genus 2"));
+  CHECK(has(r.out, "[topology]"));
+  CHECK(has(r.out, "[certify ]"));
+  CHECK(has(r.out, "certified: VALID"));
+  const auto out = cwd / "out";
+  for (const char* suffix : {".igm.obj", ".igm.exact", ".quad.obj", ".cert.json", ".schema.svg"})
+    CHECK(std::filesystem::file_size(out / (std::string("default-genus2") + suffix)) > 0);
+  // The independent CLI on the written artefacts.
+  const Run exact = in_folder(cwd, quote(IGM_CERTIFY_CLI_PATH) + " out/default-genus2.igm.exact");
+  CHECK(exact.code == 0);
+  CHECK(has(exact.out, "\"verdict\": \"valid\""));
+  const Run quads = in_folder(cwd, quote(IGM_CERTIFY_CLI_PATH) + " --quad --genus 2 out/default-genus2.quad.obj");
+  CHECK(quads.code == 0);
+  CHECK(has(slurp(out / "default-genus2.cert.json"), "\"certified\": true"));
+}
+
+TEST_CASE("igm run: shared torus certified; invalid mesh, genus 0 and bad options exit 2") {
+  IGM_REQUIRE_DATA(data);
+  const auto cwd = tmp_dir() / "run";
+  const std::string igm_cmd = quote(IGM_CLI_PATH);
+  const Run ok = in_folder(cwd, igm_cmd + " run " + quote((data / "meshes/clean/pipe.off").string()) +
+                                    " -o res --resolution 5");
+  CHECK(ok.code == 0);
+  CHECK(has(ok.out, "certified: VALID"));
+  const Run cert = in_folder(cwd, quote(IGM_CERTIFY_CLI_PATH) + " --quad --genus 1 res/pipe.quad.obj");
+  CHECK(cert.code == 0);
+  CHECK(has(cert.out, "\"faces\": 25"));  // one layout quad, 5 x 5
+  const Run bad = in_folder(cwd, igm_cmd + " run " + quote((data / "meshes/invalid/knot2.off").string()));
+  CHECK(bad.code == 2);
+  CHECK(has(bad.err, "several_components"));
+  const Run sphere = in_folder(cwd, igm_cmd + " run " + quote((data / "meshes/clean/cube.off").string()));
+  CHECK(sphere.code == 2);
+  CHECK(has(sphere.err, "unsupported"));
+  for (const char* a : {" run", " run x.off --resolution 1", " run x.off --root -3", " run x.off --bogus"}) {
+    CAPTURE(a);
+    CHECK(in_folder(cwd, igm_cmd + a).code == 2);
+  }
 }
 
 TEST_CASE("help and usage errors") {
@@ -70,10 +121,11 @@ TEST_CASE("help and usage errors") {
     CHECK(has(r.out, "igm info MESH"));
     CHECK(has(r.out, "igm generate --genus G --faces N"));
   }
-  for (const char* a : {"--bogus", "bogus", "info", "info a.off b.off", "info --x", "generate", "generate --genus 2 x.obj",
-                        "generate --genus 2 --faces 100", "generate --genus two --faces 100 x.obj",
-                        "generate --genus 2 --faces 100 --seed", "generate --genus 2 --faces 100 x.ply",
-                        "generate --genus 2 --faces 100 --color red x.obj", "help me"}) {
+  for (const char* a :
+       {"--bogus", "bogus", "info", "info a.off b.off", "info --x", "generate", "generate --genus 2 x.obj",
+        "generate --genus 2 --faces 100", "generate --genus two --faces 100 x.obj",
+        "generate --genus 2 --faces 100 --seed", "generate --genus 2 --faces 100 x.ply",
+        "generate --genus 2 --faces 100 --color red x.obj", "help me"}) {
     CAPTURE(a);
     const Run r = igm(a);
     CHECK(r.code == 2);
@@ -150,8 +202,12 @@ TEST_CASE("info on shared meshes: exit codes and the named problems") {
       {"degtri_sliding.off", "boundary", {"boundary loops: 1\n"}},
       {"double-torus-3-holes.off", "boundary", {"boundary loops: 3\n"}},
       {"knot2.off", "several_components", {"components: 2\n"}},
-      {"pig.stl", "non_manifold_vertex", {"non-manifold vertices: 421\n", "boundary loops: 5\n", "problem: boundary (5)"}},
-      {"polygon_mesh.off", "non_manifold_vertex", {"non-manifold vertices: 2\n", "boundary loops: 14\n", "  elements: 4113 4349\n"}},
+      {"pig.stl",
+       "non_manifold_vertex",
+       {"non-manifold vertices: 421\n", "boundary loops: 5\n", "problem: boundary (5)"}},
+      {"polygon_mesh.off",
+       "non_manifold_vertex",
+       {"non-manifold vertices: 2\n", "boundary loops: 14\n", "  elements: 4113 4349\n"}},
   };
   for (const Case& c : cases) {
     CAPTURE(c.file);
@@ -179,15 +235,15 @@ TEST_CASE("info on unreadable files: exit 2 with the reason on stderr") {
   }
   {
     std::ofstream(d / "trunc.off") << "OFF\n4 4 0\n0.0000 0.0000 0.0000\n1.0000 0.0000 0.0000\n0.0000 1.0000 0.0000\n"
-                                       "0.0000 0.0000 1.0000\n3 0 1 2\n3 0";
+                                      "0.0000 0.0000 1.0000\n3 0 1 2\n3 0";
     const Run r = igm("info " + quote((d / "trunc.off").string()));
     CHECK(r.code == 2);
-    CHECK(has(r.err, "parse: line 8: face 1: expected 3 vertex indices"));
+    CHECK(has(r.err, "parse: " + (d / "trunc.off").string() + ": line 8: face 1: expected 3 vertex indices"));
     // So short that the declared counts cannot fit: rejected before reading on.
     std::ofstream(d / "short.off") << "OFF\n4 4 0\n0 0 0\n";
     const Run s = igm("info " + quote((d / "short.off").string()));
     CHECK(s.code == 2);
-    CHECK(has(s.err, "too_large: OFF header declares 4 vertices and 4 faces but only"));
+    CHECK(has(s.err, "too_large: " + (d / "short.off").string() + ": OFF header declares 4 vertices and 4 faces but only"));
   }
   {
     std::ofstream(d / "huge.ply", std::ios::binary)

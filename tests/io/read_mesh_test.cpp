@@ -2,6 +2,7 @@
 
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <string>
@@ -177,11 +178,13 @@ TEST_CASE("OFF: errors") {
   CHECK(kind_of_read("OFF\n1000000000000 1 0\n0 0 0\n", MeshFormat::Off) == ErrorKind::TooLarge);
   CHECK(kind_of_read("OFF\n1 1000000000000 0\n0 0 0\n", MeshFormat::Off) == ErrorKind::TooLarge);
   // Truncated in the middle of a face: names the face and the line.
-  Error e = error_of([] { read_soup("OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1\n", MeshFormat::Off); }, ErrorKind::Parse);
+  Error e = error_of([] { read_soup("OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1\n", MeshFormat::Off); },
+                     ErrorKind::Parse);
   CHECK(std::string(e.what()).find("face 1") != std::string::npos);
   error_of([] { read_soup("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n", MeshFormat::Off); }, ErrorKind::Parse);
   error_of([] { read_soup("OFF\n3 1 0\n0 0 0\n1 x 0\n0 1 0\n3 0 1 2\n", MeshFormat::Off); }, ErrorKind::Parse);
-  error_of([] { read_soup("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n1000000000000 0 1 2\n", MeshFormat::Off); }, ErrorKind::Parse);
+  error_of([] { read_soup("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n1000000000000 0 1 2\n", MeshFormat::Off); },
+           ErrorKind::Parse);
 }
 
 namespace {
@@ -191,28 +194,39 @@ std::string make_ply(const char* format, const char* vtype, const char* ctype, c
   std::string h = std::string("ply\nformat ") + format + " 1.0\ncomment made by a test\nobj_info x\n" +
                   "element junk 2\nproperty uchar a\nproperty list uchar float b\n" + "element vertex 4\nproperty " +
                   vtype + " x\nproperty " + vtype + " y\nproperty uchar red\nproperty " + vtype + " z\n" +
-                  "property list ushort int extra\n" + "element face 4\nproperty float q\nproperty list " + ctype + " " +
-                  itype + " vertex_indices\n" + "element edge 1\nproperty int v1\nproperty int v2\nend_header\n";
+                  "property list ushort int extra\n" + "element face 4\nproperty float q\nproperty list " + ctype +
+                  " " + itype + " vertex_indices\n" + "element edge 1\nproperty int v1\nproperty int v2\nend_header\n";
   const double pos[4][3] = {{0, 0, 0}, {1.5, 0, 0}, {0, 1, 0}, {0, 0, -2}};
   const int faces[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
   if (!binary) {
     std::string b = "1 2 0.5 0.25\n7 0\n";
-    for (auto& p : pos) b += std::to_string(p[0]) + " " + std::to_string(p[1]) + " 9 " + std::to_string(p[2]) + " 2 5 6\n";
-    for (auto& f : faces) b += "0.5 3 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) + "\n";
+    for (auto& p : pos)
+      b += std::to_string(p[0]) + " " + std::to_string(p[1]) + " 9 " + std::to_string(p[2]) + " 2 5 6\n";
+    for (auto& f : faces)
+      b += "0.5 3 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) + "\n";
     return h + b + "0 1\n";
   }
   Bin b;
   b.big = big;
   auto put_num = [&](const std::string& type, double v) {
-    if (type == "float" || type == "float32") b.put(static_cast<float>(v));
-    else if (type == "double" || type == "float64") b.put(v);
-    else if (type == "char" || type == "int8") b.put(static_cast<std::int8_t>(v));
-    else if (type == "uchar" || type == "uint8") b.put(static_cast<std::uint8_t>(v));
-    else if (type == "short" || type == "int16") b.put(static_cast<std::int16_t>(v));
-    else if (type == "ushort" || type == "uint16") b.put(static_cast<std::uint16_t>(v));
-    else if (type == "int" || type == "int32") b.put(static_cast<std::int32_t>(v));
-    else if (type == "uint" || type == "uint32") b.put(static_cast<std::uint32_t>(v));
-    else FAIL("bad type");
+    if (type == "float" || type == "float32")
+      b.put(static_cast<float>(v));
+    else if (type == "double" || type == "float64")
+      b.put(v);
+    else if (type == "char" || type == "int8")
+      b.put(static_cast<std::int8_t>(v));
+    else if (type == "uchar" || type == "uint8")
+      b.put(static_cast<std::uint8_t>(v));
+    else if (type == "short" || type == "int16")
+      b.put(static_cast<std::int16_t>(v));
+    else if (type == "ushort" || type == "uint16")
+      b.put(static_cast<std::uint16_t>(v));
+    else if (type == "int" || type == "int32")
+      b.put(static_cast<std::int32_t>(v));
+    else if (type == "uint" || type == "uint32")
+      b.put(static_cast<std::uint32_t>(v));
+    else
+      FAIL("bad type");
   };
   b.put(std::uint8_t{1}), b.put(std::uint8_t{2}), b.put(0.5f), b.put(0.25f);
   b.put(std::uint8_t{7}), b.put(std::uint8_t{0});
@@ -244,15 +258,18 @@ void check_ply_tetra(const PolygonSoup& s, bool integer_coords) {
 
 TEST_CASE("PLY: ascii and binary, every type, extra properties and elements skipped") {
   check_ply_tetra(read_soup(make_ply("ascii", "float", "uchar", "int", false, false), MeshFormat::Ply), false);
-  const char* coord_types[] = {"float", "double", "float32", "float64", "char", "short", "int", "int8", "int16", "int32"};
+  const char* coord_types[] = {"float", "double", "float32", "float64", "char",
+                               "short", "int",    "int8",    "int16",   "int32"};
   const char* count_types[] = {"uchar", "char", "ushort", "short", "int", "uint", "uint8", "int32", "uint32"};
-  const char* index_types[] = {"int", "uint", "uchar", "char", "short", "ushort", "int8", "uint8", "int16", "uint16", "int32", "uint32"};
+  const char* index_types[] = {"int",  "uint",  "uchar", "char",   "short", "ushort",
+                               "int8", "uint8", "int16", "uint16", "int32", "uint32"};
   for (bool big : {false, true}) {
     const char* fmt = big ? "binary_big_endian" : "binary_little_endian";
     for (const char* vt : coord_types) {
       CAPTURE(vt);
       const std::string ply = make_ply(fmt, vt, "uchar", "int", big, true);
-      const bool integral = std::string(vt).find("int") != std::string::npos || std::string(vt) == "char" || std::string(vt) == "short";
+      const bool integral =
+          std::string(vt).find("int") != std::string::npos || std::string(vt) == "char" || std::string(vt) == "short";
       check_ply_tetra(read_soup(ply, MeshFormat::Ply), integral);
     }
     for (const char* ct : count_types)
@@ -272,7 +289,8 @@ TEST_CASE("PLY: declared counts are checked against the bytes before allocating"
       "property float z\nend_header\n";
   Error e = error_of([&] { read_soup(head + std::string(64, '\0'), MeshFormat::Ply); }, ErrorKind::TooLarge);
   CHECK(std::string(e.what()).find("1000000000000") != std::string::npos);
-  CHECK(kind_of_read("ply\nformat ascii 1.0\nelement vertex 1000000000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n",
+  CHECK(kind_of_read("ply\nformat ascii 1.0\nelement vertex 1000000000000\nproperty float x\nproperty float "
+                     "y\nproperty float z\nend_header\n0 0 0\n",
                      MeshFormat::Ply) == ErrorKind::TooLarge);
   // An element without properties costs nothing to skip, whatever its count.
   const PolygonSoup s = read_soup(
@@ -285,7 +303,8 @@ TEST_CASE("PLY: declared counts are checked against the bytes before allocating"
   b.put(0.f), b.put(0.f), b.put(0.f);
   b.put(std::uint32_t{1000000000});
   CHECK(kind_of_read("ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
-                     "property float z\nelement face 1\nproperty list uint int vertex_indices\nend_header\n" + b.s,
+                     "property float z\nelement face 1\nproperty list uint int vertex_indices\nend_header\n" +
+                         b.s,
                      MeshFormat::Ply) == ErrorKind::TooLarge);
   // Truncated binary body.
   const std::string full = make_ply("binary_little_endian", "float", "uchar", "int", false, true);
@@ -295,16 +314,19 @@ TEST_CASE("PLY: declared counts are checked against the bytes before allocating"
 
 TEST_CASE("PLY: header errors") {
   CHECK(kind_of_read("", MeshFormat::Ply) == ErrorKind::Parse);
-  CHECK(kind_of_read("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n", MeshFormat::Ply) == ErrorKind::Parse);
+  CHECK(kind_of_read("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n", MeshFormat::Ply) ==
+        ErrorKind::Parse);
   CHECK(kind_of_read("ply\nformat ascii 2.0\nend_header\n", MeshFormat::Ply) == ErrorKind::Unsupported);
   CHECK(kind_of_read("ply\nformat weird 1.0\nend_header\n", MeshFormat::Ply) == ErrorKind::Parse);
   CHECK(kind_of_read("ply\nformat ascii 1.0\nproperty float x\nend_header\n", MeshFormat::Ply) == ErrorKind::Parse);
   CHECK(kind_of_read("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n",
                      MeshFormat::Ply) == ErrorKind::Parse);
-  CHECK(kind_of_read("ply\nformat ascii 1.0\nelement face 1\nproperty list float int vertex_indices\nend_header\n3 0 1 2\n",
-                     MeshFormat::Ply) == ErrorKind::Parse);
-  CHECK(kind_of_read("ply\nformat ascii 1.0\nelement face 1\nproperty list uchar float vertex_indices\nend_header\n3 0 1 2\n",
-                     MeshFormat::Ply) == ErrorKind::Parse);
+  CHECK(kind_of_read(
+            "ply\nformat ascii 1.0\nelement face 1\nproperty list float int vertex_indices\nend_header\n3 0 1 2\n",
+            MeshFormat::Ply) == ErrorKind::Parse);
+  CHECK(kind_of_read(
+            "ply\nformat ascii 1.0\nelement face 1\nproperty list uchar float vertex_indices\nend_header\n3 0 1 2\n",
+            MeshFormat::Ply) == ErrorKind::Parse);
   CHECK(kind_of_read("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
                      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 1 0 0 0 1 0 2 0 1\n",
                      MeshFormat::Ply) == ErrorKind::Parse);
@@ -318,7 +340,8 @@ std::string stl_binary(const std::vector<std::array<Vec3d, 3>>& tris, const std:
   b.put(static_cast<std::uint32_t>(tris.size()));
   for (const auto& t : tris) {
     b.put(0.f), b.put(0.f), b.put(1.f);
-    for (const Vec3d& p : t) b.put(static_cast<float>(p.x)), b.put(static_cast<float>(p.y)), b.put(static_cast<float>(p.z));
+    for (const Vec3d& p : t)
+      b.put(static_cast<float>(p.x)), b.put(static_cast<float>(p.y)), b.put(static_cast<float>(p.z));
     b.put(std::uint16_t{0});
   }
   return b.s;
@@ -327,7 +350,8 @@ std::string stl_ascii(const std::vector<std::array<Vec3d, 3>>& tris) {
   std::string s = "solid t\n";
   for (const auto& t : tris) {
     s += " facet normal 0 0 1\n  outer loop\n";
-    for (const Vec3d& p : t) s += "   vertex " + std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
+    for (const Vec3d& p : t)
+      s += "   vertex " + std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
     s += "  endloop\n endfacet\n";
   }
   return s + "endsolid t\n";
@@ -342,8 +366,8 @@ std::vector<std::array<Vec3d, 3>> tetra_tris() {
 }  // namespace
 
 TEST_CASE("STL: binary (also with a 'solid' header) and ascii, welded") {
-  for (const std::string& bytes : {stl_binary(tetra_tris(), "binary"), stl_binary(tetra_tris(), "solid looks like ascii"),
-                                   stl_ascii(tetra_tris())}) {
+  for (const std::string& bytes : {stl_binary(tetra_tris(), "binary"),
+                                   stl_binary(tetra_tris(), "solid looks like ascii"), stl_ascii(tetra_tris())}) {
     const PolygonSoup s = read_soup(bytes, MeshFormat::Stl);
     CHECK(s.positions.size() == 4);  // 12 corners welded into 4 vertices
     CHECK(s.num_faces() == 4);
@@ -359,6 +383,10 @@ TEST_CASE("STL: binary (also with a 'solid' header) and ascii, welded") {
   t[1][0].x = std::nextafter(0.0f, 1.0f);
   CHECK(read_soup(stl_binary(t, "x"), MeshFormat::Stl).positions.size() == 5);
   CHECK(read_soup(to_crlf(stl_ascii(tetra_tris())), MeshFormat::Stl).positions.size() == 4);
+  // A non-ASCII solid name does not make an ascii file binary.
+  std::string named = stl_ascii(tetra_tris());
+  named.replace(0, 7, "solid caf\xc3\xa9\n");
+  CHECK(read_soup(named, MeshFormat::Stl).positions.size() == 4);
 }
 
 TEST_CASE("STL: errors") {
@@ -366,14 +394,18 @@ TEST_CASE("STL: errors") {
   CHECK(kind_of_read(bin.substr(0, bin.size() - 1), MeshFormat::Stl) == ErrorKind::TooLarge);
   CHECK(kind_of_read(bin + "x", MeshFormat::Stl) == ErrorKind::Parse);
   CHECK(kind_of_read("abc", MeshFormat::Stl) == ErrorKind::Parse);
+  // A truncated binary file whose header starts with "solid": a binary size error, not ascii noise.
+  const std::string solid_bin = stl_binary(tetra_tris(), "solid binary");
+  CHECK(kind_of_read(solid_bin.substr(0, solid_bin.size() - 7), MeshFormat::Stl) == ErrorKind::TooLarge);
   CHECK(kind_of_read("", MeshFormat::Stl) == ErrorKind::Parse);
   std::string huge = bin.substr(0, 84);
   huge[80] = huge[81] = huge[82] = huge[83] = '\xff';
   CHECK(kind_of_read(huge, MeshFormat::Stl) == ErrorKind::TooLarge);
   const std::string asc = stl_ascii(tetra_tris());
   CHECK(kind_of_read(asc.substr(0, asc.size() / 2), MeshFormat::Stl) == ErrorKind::Parse);
-  CHECK(kind_of_read("solid x\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\nendsolid\n",
-                     MeshFormat::Stl) == ErrorKind::Parse);
+  CHECK(
+      kind_of_read("solid x\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\nendsolid\n",
+                   MeshFormat::Stl) == ErrorKind::Parse);
   CHECK(kind_of_read("solid x\nvertex 0 0 0\nendsolid\n", MeshFormat::Stl) == ErrorKind::Parse);
 }
 
@@ -407,11 +439,11 @@ struct Expect {
 TEST_CASE("shared clean meshes read with the README's V, F and genus") {
   IGM_REQUIRE_DATA(dir);
   const Expect clean[] = {
-      {"tetrahedron.off", 4, 4, 0},      {"icosahedron.off", 12, 20, 0}, {"cube.off", 8, 12, 0},
-      {"sphere.off", 162, 320, 0},       {"armadillo.off", 26002, 52000, 0}, {"bull.off", 6200, 12396, 0},
-      {"pipe.off", 160, 320, 1},         {"mpi_triang.off", 90, 180, 1}, {"knot.off", 2080, 4160, 1},
-      {"eight.off", 315, 634, 2},        {"joint.off", 221, 446, 2},     {"helmet.off", 496, 1000, 3},
-      {"elephant.off", 2775, 5558, 3},   {"anchor.off", 519, 1050, 4},   {"couplingdown.off", 1841, 3714, 9},
+      {"tetrahedron.off", 4, 4, 0},     {"icosahedron.off", 12, 20, 0},     {"cube.off", 8, 12, 0},
+      {"sphere.off", 162, 320, 0},      {"armadillo.off", 26002, 52000, 0}, {"bull.off", 6200, 12396, 0},
+      {"pipe.off", 160, 320, 1},        {"mpi_triang.off", 90, 180, 1},     {"knot.off", 2080, 4160, 1},
+      {"eight.off", 315, 634, 2},       {"joint.off", 221, 446, 2},         {"helmet.off", 496, 1000, 3},
+      {"elephant.off", 2775, 5558, 3},  {"anchor.off", 519, 1050, 4},       {"couplingdown.off", 1841, 3714, 9},
       {"cheese.off", 8629, 17786, 133},
   };
   for (const Expect& e : clean) {
@@ -552,10 +584,40 @@ TEST_CASE("shared invalid meshes are rejected naming the problem, with the READM
   }
 }
 
+TEST_CASE("errors from files name the path") {
+  IGM_REQUIRE_DATA(dir);
+  const auto pig = dir / "meshes" / "invalid" / "pig.stl";
+  try {
+    load_mesh(pig);
+    FAIL("pig.stl accepted");
+  } catch (const Error& e) {
+    CHECK(e.kind() == ErrorKind::NonManifoldVertex);
+    CHECK(std::string(e.what()).rfind("non_manifold_vertex: " + pig.string() + ": 421 vertices", 0) == 0);
+    CHECK(e.elements().size() == 100);  // the first 100 of 421
+  }
+  const auto tmp = std::filesystem::temp_directory_path() / "igm-read-test-bad.obj";
+  {
+    std::FILE* f = std::fopen(tmp.string().c_str(), "wb");
+    REQUIRE(f);
+    std::fputs("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n", f);
+    std::fclose(f);
+  }
+  try {
+    read_soup(tmp);
+    FAIL("bad OBJ accepted");
+  } catch (const Error& e) {
+    CHECK(e.kind() == ErrorKind::Parse);
+    CHECK(std::string(e.what()) == "parse: " + tmp.string() + ": line 4: face corner is not an integer vertex index");
+    CHECK(e.elements() == std::vector<std::int64_t>{4});
+  }
+  std::filesystem::remove(tmp);
+}
+
 TEST_CASE("truncated and bit-flipped shared files give typed errors or reports, never crashes") {
   IGM_REQUIRE_DATA(dir);
   std::uint64_t x = 0x9E3779B97F4A7C15ULL;
-  for (const char* rel : {"clean/cube.off", "polygonal/hole.off", "invalid/pig.stl", "invalid/b9.ply", "repairable/prim.off"}) {
+  for (const char* rel :
+       {"clean/cube.off", "polygonal/hole.off", "invalid/pig.stl", "invalid/b9.ply", "repairable/prim.off"}) {
     const auto path = dir / "meshes" / rel;
     const std::string bytes = read_file_bytes(path);
     const MeshFormat fmt = format_from_path(path);

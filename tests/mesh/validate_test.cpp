@@ -30,7 +30,8 @@ std::vector<Vec3d> points(int n) {
 std::vector<std::vector<std::int64_t>> tetra(std::int64_t a) {
   return {{a, a + 2, a + 1}, {a, a + 1, a + 3}, {a, a + 3, a + 2}, {a + 1, a + 2, a + 3}};
 }
-std::vector<std::vector<std::int64_t>> join(std::vector<std::vector<std::int64_t>> a, const std::vector<std::vector<std::int64_t>>& b) {
+std::vector<std::vector<std::int64_t>> join(std::vector<std::vector<std::int64_t>> a,
+                                            const std::vector<std::vector<std::int64_t>>& b) {
   a.insert(a.end(), b.begin(), b.end());
   return a;
 }
@@ -53,7 +54,8 @@ void check_faces_match(const PolygonSoup& s, const ValidMesh& m) {
   for (int f = 0; f < m.mesh.num_faces(); ++f) {
     const auto fv = m.mesh.face_vertices(f);
     const std::size_t pf = static_cast<std::size_t>(m.input_face[f]);
-    std::set<std::int64_t> poly(s.corners.begin() + std::ptrdiff_t(s.face_begin[pf]), s.corners.begin() + std::ptrdiff_t(s.face_begin[pf + 1]));
+    std::set<std::int64_t> poly(s.corners.begin() + std::ptrdiff_t(s.face_begin[pf]),
+                                s.corners.begin() + std::ptrdiff_t(s.face_begin[pf + 1]));
     for (int v : fv) CHECK(poly.count(m.input_vertex[v]) == 1);
   }
 }
@@ -70,11 +72,11 @@ TEST_CASE("element problems: empty, no faces, few corners, out of range, repeate
   pos[2].y = nan;
   pos[5].z = -inf;
   auto faces = tetra(0);
-  faces.push_back({0, 1});             // face 4: 2 corners
-  faces.push_back({0, 1, 8});          // face 5: out of range
-  faces.push_back({0, -1, 2});         // face 6: negative
-  faces.push_back({3, 1, 3});          // face 7: repeated
-  faces.push_back({0, 1, 2, 3, 1});    // face 8: repeated in a polygon
+  faces.push_back({0, 1});           // face 4: 2 corners
+  faces.push_back({0, 1, 8});        // face 5: out of range
+  faces.push_back({0, -1, 2});       // face 6: negative
+  faces.push_back({3, 1, 3});        // face 7: repeated
+  faces.push_back({0, 1, 2, 3, 1});  // face 8: repeated in a polygon
   const MeshReport r = inspect(soup_of(pos, faces));
   REQUIRE(kinds(r) == std::vector<ErrorKind>{ErrorKind::InvalidArgument, ErrorKind::IndexOutOfRange,
                                              ErrorKind::RepeatedVertex, ErrorKind::NonFinite});
@@ -122,8 +124,9 @@ TEST_CASE("non-manifold vertex: two closed tetrahedra sharing one vertex") {
 }
 
 TEST_CASE("non-orientable: the 6-vertex projective plane and a Moebius strip") {
-  const auto rp2 = soup_of(points(6), {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}, {0, 5, 1},
-                                       {1, 2, 4}, {2, 3, 5}, {3, 4, 1}, {4, 5, 2}, {5, 1, 3}});
+  const auto rp2 = soup_of(
+      points(6),
+      {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}, {0, 5, 1}, {1, 2, 4}, {2, 3, 5}, {3, 4, 1}, {4, 5, 2}, {5, 1, 3}});
   const MeshReport r = inspect(rp2);
   CHECK(kinds(r) == std::vector<ErrorKind>{ErrorKind::NonOrientable});
   CHECK_FALSE(r.orientable);
@@ -232,8 +235,10 @@ TEST_CASE("unreferenced vertices are dropped with a warning; input ids kept") {
 
 TEST_CASE("polygons: fan triangulation avoids diagonals that exist, reports those it cannot avoid") {
   // Cube of quads.
-  const std::vector<Vec3d> cube = {{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}, {0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}};
-  const auto quads = soup_of(cube, {{0, 1, 2, 3}, {4, 7, 6, 5}, {0, 4, 5, 1}, {1, 5, 6, 2}, {2, 6, 7, 3}, {3, 7, 4, 0}});
+  const std::vector<Vec3d> cube = {{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0},
+                                   {0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}};
+  const auto quads =
+      soup_of(cube, {{0, 1, 2, 3}, {4, 7, 6, 5}, {0, 4, 5, 1}, {1, 5, 6, 2}, {2, 6, 7, 3}, {3, 7, 4, 0}});
   const ValidMesh m = validate(quads);
   CHECK(m.mesh.num_faces() == 12);
   CHECK(m.genus == 0);

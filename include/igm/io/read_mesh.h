@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <string_view>
 
+#include "igm/core/error.h"
 #include "igm/mesh/soup.h"
 
 namespace igm {
@@ -33,8 +34,12 @@ MeshFormat format_from_path(const std::filesystem::path& path);
 /// sort of the corners for welding).
 PolygonSoup read_soup(std::string_view bytes, MeshFormat format);
 
-/// Reads a file (format from its extension). Throws igm::Error(Io) if it cannot be read.
+/// Reads a file (format from its extension). Throws igm::Error(Io) if it cannot be read;
+/// parse errors are those of read_soup(bytes, format) with the path put in front.
 PolygonSoup read_soup(const std::filesystem::path& path);
+
+/// The same error (kind, elements) with "PATH: " put in front of its message.
+Error with_path(const Error& e, const std::filesystem::path& path);
 
 /// The whole content of a file. Throws igm::Error(Io) naming the path if it cannot be read.
 std::string read_file_bytes(const std::filesystem::path& path);

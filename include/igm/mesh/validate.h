@@ -10,8 +10,8 @@
 //   5. index_out_of_range  a face uses a vertex id < 0 or >= #vertices
 //   6. repeated_vertex  a face uses the same vertex twice
 //   7. non_finite       a coordinate of a vertex used by a face is NaN or Inf
-//      (if any of 3..6 is found, the topological checks 8..12 are skipped: the faces are not
-//       a well-defined complex; report.topology_checked is false)
+//      (too_large stops all checks; if any of 4..6 is found, the topological checks 8..12 are
+//       skipped: the faces are not a well-defined complex; report.topology_checked is false)
 //   8. non_manifold_edge   an edge with more than two faces (also when the edge is a diagonal
 //                          made by the fan triangulation of a polygon; the message says so)
 //   9. non_manifold_vertex the faces around a vertex form more than one fan (edge-connected
@@ -29,7 +29,10 @@
 //   - vertices used by no face are dropped;
 //   - polygons are fan-triangulated (apex chosen, for polygons of up to 64 corners, so that no
 //     diagonal coincides with an existing edge when possible).
-// Element ids in problems refer to the input soup (0-based vertex and polygon ids).
+// Element ids in problems refer to the input soup (0-based vertex and polygon ids): faces for
+// 4, 5, 6, 8 (all faces of each edge), 10 (the two faces of one contradicting edge per
+// component), 11 (one face per loop), 12 (the first face of each component); vertices for 7, 9.
+// With repair_orientation off, inconsistent edges are a non_manifold_edge problem placed after 10.
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -44,15 +47,15 @@ namespace igm {
 /// One problem found in the input, with the offending elements (ids as in the input file).
 struct MeshProblem {
   ErrorKind kind;
-  std::string message;              // names the count and the first few offending elements
+  std::string message;                 // names the count and the first few offending elements
   std::vector<std::int64_t> elements;  // the first (at most 100) offending ids, see validate.h top
-  std::int64_t count = 0;           // exact number of offending items (faces, edges, vertices, loops, components)
+  std::int64_t count = 0;              // exact number of offending items (faces, edges, vertices, loops, components)
 };
 
 /// What `igm info` prints: counts and every problem found (no exception).
 struct MeshReport {
   std::int64_t vertices = 0, faces = 0, triangles = 0, edges = 0;  // input vertices/polygons; after triangulation
-  std::int64_t polygons = 0;  // input faces with more than 3 corners
+  std::int64_t polygons = 0;                                       // input faces with more than 3 corners
   std::int64_t components = 0, boundary_loops = 0;
   std::int64_t boundary_edges = 0, non_manifold_edges = 0, non_manifold_vertices = 0;
   std::int64_t unreferenced_vertices = 0;
@@ -67,17 +70,17 @@ struct MeshReport {
 };
 
 struct ValidateOptions {
-  bool repair_orientation = true;   // re-orient faces of an orientable surface (with a warning)
-  bool drop_unreferenced = true;    // drop vertices used by no face (with a warning)
+  bool repair_orientation = true;  // re-orient faces of an orientable surface (with a warning)
+  bool drop_unreferenced = true;   // drop vertices used by no face (with a warning)
 };
 
 /// A validated mesh: closed, edge- and vertex-manifold, consistently oriented, connected.
 struct ValidMesh {
   TriMesh mesh;
-  std::vector<Vec3d> positions;         // per vertex of `mesh`
+  std::vector<Vec3d> positions;            // per vertex of `mesh`
   std::vector<std::int64_t> input_vertex;  // vertex of `mesh` -> vertex id in the input soup
   std::vector<std::int64_t> input_face;    // face of `mesh` -> polygon id in the input soup
-  std::vector<std::string> warnings;    // repairs applied
+  std::vector<std::string> warnings;       // repairs applied
   int genus = 0;
 };
 
@@ -91,7 +94,7 @@ MeshReport inspect(const PolygonSoup& soup, const ValidateOptions& options = {})
 /// is used, genus = (2 - V + E - F) / 2. Cost O(C log C).
 ValidMesh validate(const PolygonSoup& soup, const ValidateOptions& options = {});
 
-/// read_soup + validate.
+/// read_soup + validate; error messages start with the path.
 ValidMesh load_mesh(const std::filesystem::path& path, const ValidateOptions& options = {});
 
 }  // namespace igm
