@@ -69,6 +69,20 @@ TEST_CASE("extract: counts, closed manifold of genus g, valences at N = 1") {
       const PlanarQuadMesh qm = extract_quads(p.tmpl, p.overlay, ch, N, SidePairing::canonical(g));
       CHECK(qm.quads.size() == static_cast<std::size_t>(nq * N * N));
       CHECK(closed_manifold_euler(qm) == 2 - 2 * g);
+      if (N >= 3) {  // from N = 3 on, edges are determined by their end vertices (no loops or multi-edges)
+        std::map<int, std::pair<int, int>> ends;
+        for (std::size_t f = 0; f < qm.quads.size(); ++f)
+          for (int k = 0; k < 4; ++k) {
+            const int a = qm.quads[f][k], b = qm.quads[f][(k + 1) % 4];
+            ends[qm.quad_edges[f][k]] = {std::min(a, b), std::max(a, b)};
+          }
+        std::set<std::pair<int, int>> pairs;
+        for (const auto& [e, ab] : ends) {
+          CHECK(ab.first != ab.second);
+          pairs.insert(ab);
+        }
+        CHECK(pairs.size() == ends.size());
+      }
       // Locations: non-negative barycentrics summing to 1, reproducing the position, and the
       // position maps through its triangle's chart onto the grid (1/N) Z^2.
       for (const auto& v : qm.vertices) {
