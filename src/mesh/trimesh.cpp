@@ -40,17 +40,17 @@ TriMesh TriMesh::from_triangles(int num_vertices, const std::vector<std::array<i
   for (std::size_t i = 0; i < nh;) {
     std::size_t j = i;
     while (j < nh && keys[j].a == keys[i].a && keys[j].b == keys[i].b) ++j;
-    const std::string edge = "edge (" + std::to_string(keys[i].a) + ", " + std::to_string(keys[i].b) + ")";
+    auto edge_name = [&] { return "edge (" + std::to_string(keys[i].a) + ", " + std::to_string(keys[i].b) + ")"; };
     if (j - i == 1)
-      throw Error(ErrorKind::Boundary, edge + " has one face", {keys[i].h / 3});
+      throw Error(ErrorKind::Boundary, edge_name() + " has one face", {keys[i].h / 3});
     if (j - i > 2) {
       std::vector<std::int64_t> faces;
       for (std::size_t k = i; k < j; ++k) faces.push_back(keys[k].h / 3);
-      throw Error(ErrorKind::NonManifoldEdge, edge + " has " + std::to_string(j - i) + " faces", faces);
+      throw Error(ErrorKind::NonManifoldEdge, edge_name() + " has " + std::to_string(j - i) + " faces", faces);
     }
     int h0 = keys[i].h, h1 = keys[i + 1].h;
     if (m.origin_[h0] == m.origin_[h1])
-      throw Error(ErrorKind::NonManifoldEdge, edge + ": its two faces have the same orientation",
+      throw Error(ErrorKind::NonManifoldEdge, edge_name() + ": its two faces have the same orientation",
                   {h0 / 3, h1 / 3});
     m.link(h0, h1);
     i = j;
