@@ -32,6 +32,7 @@ void write_schema_svg(std::ostream& out, const SchemaDrawing& d, std::size_t max
   for (std::size_t i = 0; i < d.mesh_edges.size(); i += stride)
     line(d.mesh_edges[i][0], d.mesh_edges[i][1], "stroke=\"#b0b0b0\" stroke-width=\"0.3\"");
   out << "</g>\n<g>\n";
+  for (const auto& e : d.diagonals) line(e[0], e[1], "stroke=\"#555555\" stroke-width=\"1\" stroke-dasharray=\"6,4\"");
   for (const auto& e : d.template_edges) line(e[0], e[1], "stroke=\"black\" stroke-width=\"2.5\"");
   out << "</g>\n<g>\n";
   const std::size_t n = d.polygon.size();

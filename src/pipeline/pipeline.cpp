@@ -199,7 +199,9 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
   SchemaDrawing& d = result.schema;
   for (const Point2q& c : corners) d.polygon.push_back(to_vec2d(c));
   for (const BoundarySide& s : cut.sides) d.side_pair.push_back(s.mate);
-  for (const Segment2& s : segments) d.template_edges.push_back({to_vec2d(s.a), to_vec2d(s.b)});
+  for (std::size_t i = 0; i < segments.size(); ++i)
+    (layout_segments[i].diagonal ? d.diagonals : d.template_edges)
+        .push_back({to_vec2d(segments[i].a), to_vec2d(segments[i].b)});
   for (const Point2q& p : layout.points) d.cones.push_back(to_vec2d(p));
   for (const auto& t : overlay.mesh.triangles)
     for (int i = 0; i < 3; ++i)

@@ -14,6 +14,7 @@ struct SchemaDrawing {
   std::vector<Vec2d> polygon;                          // corners, counter-clockwise
   std::vector<int> side_pair;                          // side s (corner s -> s+1) glues to side_pair[s]
   std::vector<std::array<Vec2d, 2>> template_edges;    // layout edges
+  std::vector<std::array<Vec2d, 2>> diagonals;         // quad diagonals of the piecewise-affine map (dashed)
   std::vector<std::array<Vec2d, 2>> mesh_edges;        // embedded mesh edges (drawn faintly)
   std::vector<Vec2d> cones;                            // layout vertices (drawn as dots)
 };
