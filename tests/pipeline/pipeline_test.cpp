@@ -71,6 +71,10 @@ TEST_CASE("genus 2..6 generated meshes, odd and even: certified, 5g N^2 quads") 
   for (int g = 2; g <= 6; ++g) check_run(generated(g, 400 * g, std::uint64_t(g)), 3 + g % 2);
 }
 
+TEST_CASE("generated genus 12, 25 and 50 (odd and even): certified") {
+  for (int g : {12, 25, 50}) check_run(generated(g, 200 * g, std::uint64_t(g)), 3);
+}
+
 TEST_CASE("with the gluing word in normal form (handle slides) the outputs are certified too") {
   for (int g = 2; g <= 4; ++g) check_run(generated(g, 500 * g, std::uint64_t(40 + g)), 3, true);
 }
@@ -132,4 +136,9 @@ TEST_CASE("shared clean meshes of genus >= 1 are certified") {
     INFO(name);
     check_run(load_mesh(dir / "meshes" / "polygonal" / name), 3);
   }
+}
+
+TEST_CASE("cheese (genus 133, 17.8k faces) is certified") {
+  IGM_REQUIRE_DATA(dir);
+  check_run(load_mesh(dir / "meshes" / "clean" / "cheese.off"), 3);
 }
