@@ -142,3 +142,18 @@ TEST_CASE("cheese (genus 133, 17.8k faces) is certified") {
   IGM_REQUIRE_DATA(dir);
   check_run(load_mesh(dir / "meshes" / "clean" / "cheese.off"), 3);
 }
+
+TEST_CASE("a generated 1M-face torus: every triangle certified, N x N quads") {
+  const ValidMesh torus = generated(1, 1000000, 77);
+  REQUIRE(torus.mesh.num_faces() >= 1000000);
+  PipelineOptions o;
+  o.resolution = 3;
+  const PipelineResult r = compute_igm(torus, o);
+  CHECK(r.stats.tutte.interior_vertices > 490000);
+  CHECK(r.igm_report.valid());
+  const certify::CheckResult* flips = r.igm_report.check(2);
+  REQUIRE(flips != nullptr);
+  CHECK(flips->passed());
+  CHECK(r.quad_report.valid());
+  CHECK(r.quads.quads.size() == 9);
+}
