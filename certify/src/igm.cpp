@@ -563,6 +563,11 @@ Report quads_from_text(const std::string& text, const Options& opt, const std::s
 }  // namespace
 
 Report certify_igm(const IgmInput& in, const Options& opt) {
+  IgmInput copy = in;
+  return certify_igm(std::move(copy), opt);
+}
+
+Report certify_igm(IgmInput&& in, const Options& opt) {
   auto num = [](std::int64_t x) { return std::to_string(x); };
   const std::string src = "<memory>";
   const std::int64_t F = std::int64_t(in.faces.size());
@@ -599,8 +604,8 @@ Report certify_igm(const IgmInput& in, const Options& opt) {
   for (std::int64_t c = 0; c < 3 * F; ++c) {                         // bound: 3F
     d.corner_vertex[c] = in.faces[c / 3][c % 3];
     d.corner_uv[c] = static_cast<int>(c);
-    d.uv[c].x = in.corner_uv[c][0];
-    d.uv[c].y = in.corner_uv[c][1];
+    mpq_swap(d.uv[c].x.get_mpq_t(), in.corner_uv[c][0].get_mpq_t());  // the input is consumed
+    mpq_swap(d.uv[c].y.get_mpq_t(), in.corner_uv[c][1].get_mpq_t());
   }
   return certify_igm_data(d, opt, src);
 }

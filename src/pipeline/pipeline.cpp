@@ -101,7 +101,7 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
   const QuadTemplate layout = make_quad_template(corners, centre);
   const std::vector<TemplateSegment> layout_segments = template_segments(layout);
   const std::vector<Segment2> segments = template_geometry(layout, layout_segments);
-  PlanarTriangulation disk{tutte.uv, cut.disk_triangles};
+  PlanarTriangulation disk{std::move(tutte.uv), cut.disk_triangles};
   OverlayResult overlay = overlay_segments(disk, segments);
   stage.done("arrange", t0,
              format("%.0f layout quads, %.0f crossings, %.0f -> %.0f triangles", static_cast<double>(layout.quads.size()),
@@ -141,7 +141,6 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
   for (const SurfacePoint& p : new_points) igm.positions.push_back(evaluate(p, surface.input_positions));
   igm.triangles.reserve(overlay.mesh.triangles.size());
   for (const auto& t : overlay.mesh.triangles) igm.triangles.push_back({out_vertex[t[0]], out_vertex[t[1]], out_vertex[t[2]]});
-  igm.corner_uv = charts.uv;
   stats.output_vertices = static_cast<int>(igm.positions.size());
   stats.output_triangles = static_cast<int>(igm.triangles.size());
   stats.layout_quads = static_cast<int>(layout.quads.size());
@@ -172,28 +171,10 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
     quads.positions.push_back(evaluate(p, surface.input_positions));
   }
   stats.quads = static_cast<int>(quads.quads.size());
+  igm.corner_uv = std::move(charts.uv);  // charts are not needed after extraction
   stage.done("extract", t0,
              format("resolution %.0f: %.0f quads, %.0f vertices", options.resolution, stats.quads,
                     double(quads.positions.size())));
-
-  // --- certify: the independent judge, on both outputs ---
-  t0 = Clock::now();
-  certify::Options copt;
-  copt.max_witnesses = options.max_witnesses;
-  certify::IgmInput cin;
-  cin.faces = igm.triangles;
-  cin.num_vertices = static_cast<std::int64_t>(igm.positions.size());
-  cin.corner_uv.reserve(3 * igm.corner_uv.size());
-  for (const auto& tri : igm.corner_uv)
-    for (const Point2q& uv : tri) cin.corner_uv.push_back({uv.x, uv.y});
-  result.igm_report = certify::certify_igm(cin, copt);
-  certify::QuadInput qin;
-  qin.quads = quads.quads;
-  qin.num_vertices = static_cast<std::int64_t>(quads.positions.size());
-  certify::Options qopt = copt;
-  qopt.expected_genus = g;
-  result.quad_report = certify::certify_quads(qin, qopt);
-  stage.done("certify", t0, "IGM: " + certify::summary(result.igm_report) + "; quads: " + certify::summary(result.quad_report));
 
   // --- the picture ---
   SchemaDrawing& d = result.schema;
@@ -207,6 +188,29 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
     for (int i = 0; i < 3; ++i)
       if (t[i] < t[(i + 1) % 3])
         d.mesh_edges.push_back({to_vec2d(overlay.mesh.positions[t[i]]), to_vec2d(overlay.mesh.positions[t[(i + 1) % 3]])});
+  // Release the stages' data before the certifier makes its own copy of the mesh.
+  overlay = OverlayResult{};
+  disk = PlanarTriangulation{};
+
+  // --- certify: the independent judge, on both outputs ---
+  t0 = Clock::now();
+  certify::Options copt;
+  copt.max_witnesses = options.max_witnesses;
+  certify::IgmInput cin;
+  cin.faces = igm.triangles;
+  cin.num_vertices = static_cast<std::int64_t>(igm.positions.size());
+  cin.corner_uv.reserve(3 * igm.corner_uv.size());
+  for (const auto& tri : igm.corner_uv)
+    for (const Point2q& uv : tri) cin.corner_uv.push_back({uv.x, uv.y});
+  result.igm_report = certify::certify_igm(std::move(cin), copt);
+  certify::QuadInput qin;
+  qin.quads = quads.quads;
+  qin.num_vertices = static_cast<std::int64_t>(quads.positions.size());
+  certify::Options qopt = copt;
+  qopt.expected_genus = g;
+  result.quad_report = certify::certify_quads(qin, qopt);
+  stage.done("certify", t0, "IGM: " + certify::summary(result.igm_report) + "; quads: " + certify::summary(result.quad_report));
+
   return result;
 }
 

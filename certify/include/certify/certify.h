@@ -98,6 +98,8 @@ struct QuadInput {
 /// double filter cannot decide. Malformed input (bad sizes, indices out of range) gives a
 /// report with verdict Unreadable; never throws except std::bad_alloc.
 Report certify_igm(const IgmInput& input, const Options& options = {});
+/// The same, consuming the input: its UVs are moved, not copied (for large producers' outputs).
+Report certify_igm(IgmInput&& input, const Options& options = {});
 
 /// Certify an in-memory quad mesh (check 5).
 Report certify_quads(const QuadInput& input, const Options& options = {});
