@@ -12,6 +12,7 @@
 
 #include "igm/core/error.h"
 #include "igm/mesh/generate.h"
+#include "igm/mesh/validate.h"
 #include "igm/topology/cut_to_canonical_disk.h"
 
 using namespace igm;
@@ -23,28 +24,14 @@ struct Input {
 };
 
 bool read_off(const std::filesystem::path& p, Input& out) {
-  std::ifstream in(p);
-  if (!in) return false;
-  std::stringstream ss;
-  std::string line;
-  while (std::getline(in, line)) {
-    auto k = line.find('#');
-    if (k != std::string::npos) line.resize(k);
-    ss << line << '\n';
+  try {
+    ValidMesh v = load_mesh(p);
+    out.mesh = std::move(v.mesh);
+    out.positions = std::move(v.positions);
+    return true;
+  } catch (const Error&) {
+    return false;
   }
-  std::string head;
-  long nv = 0, nf = 0, ne = 0;
-  ss >> head >> nv >> nf >> ne;
-  out.positions.resize(nv);
-  for (auto& q : out.positions) ss >> q.x >> q.y >> q.z;
-  std::vector<std::array<int, 3>> t(nf);
-  for (auto& f : t) {
-    int k;
-    ss >> k >> f[0] >> f[1] >> f[2];
-    if (k != 3) return false;
-  }
-  out.mesh = TriMesh::from_triangles(static_cast<int>(nv), t);
-  return true;
 }
 
 Input generated(int genus, long faces) {

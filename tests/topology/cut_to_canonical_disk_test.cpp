@@ -12,6 +12,7 @@
 
 #include "igm/core/error.h"
 #include "igm/mesh/generate.h"
+#include "igm/mesh/validate.h"
 #include "igm/topology/cut_to_canonical_disk.h"
 #include "test_data.h"
 
@@ -33,31 +34,10 @@ Input from_soup(const PolygonSoup& s) {
   return {TriMesh::from_triangles(static_cast<int>(s.positions.size()), t), s.positions};
 }
 
-// Tiny private OFF reader (triangles only, '#' comments) until the IO stage is merged.
+// A shared mesh through the project's reader and validation.
 Input read_off(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  std::string line;
-  while (std::getline(in, line)) {
-    auto k = line.find('#');
-    if (k != std::string::npos) line.resize(k);
-    ss << line << '\n';
-  }
-  std::string head;
-  ss >> head;
-  REQUIRE(head == "OFF");
-  long nv, nf, ne;
-  ss >> nv >> nf >> ne;
-  PolygonSoup s;
-  s.positions.resize(nv);
-  for (auto& q : s.positions) ss >> q.x >> q.y >> q.z;
-  for (long f = 0; f < nf; ++f) {
-    int k, a, b, c;
-    ss >> k >> a >> b >> c;
-    REQUIRE(k == 3);
-    s.add_face({a, b, c});
-  }
-  return from_soup(s);
+  ValidMesh v = load_mesh(p);
+  return {std::move(v.mesh), std::move(v.positions)};
 }
 
 // ---- independent checker ----
