@@ -46,7 +46,11 @@ double since(Clock::time_point t0) {
   throw Error(ErrorKind::InvalidArgument, "tutte_embed: " + message, std::move(elements));
 }
 
-std::string edge_str(int a, int b) { return "(" + std::to_string(a) + ", " + std::to_string(b) + ")"; }
+std::string edge_str(int a, int b) {
+  std::string s = "(";  // appended piece by piece: GCC 12 warns (-Wrestrict, falsely) on "(" + to_string(a)
+  s.append(std::to_string(a)).append(", ").append(std::to_string(b)).append(")");
+  return s;
+}
 
 // Half-edge structure of the input disk. Half-edge 3f+i runs from triangles[f][i] to
 // triangles[f][(i+1)%3]; twin is -1 on the boundary.
