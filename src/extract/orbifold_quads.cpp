@@ -45,6 +45,8 @@ OrbifoldQuadMesh extract_orbifold_quads(const std::vector<std::array<int, 3>>& t
                      orbifold_grid_orbit(N, N, N)};
 
   const Rational invN(1, N);
+  std::vector<Vec2d> uvd(uv.size());  // for the candidate filter only
+  for (std::size_t v = 0; v < uv.size(); ++v) uvd[v] = {to_double(uv[v].x), to_double(uv[v].y)};
   int found = 0;
   for (std::size_t f = 0; f < tris.size() && found < orbits; ++f) {  // bound: F triangles
     const Point2q& a = uv[tris[f][0]];
@@ -55,8 +57,9 @@ OrbifoldQuadMesh extract_orbifold_quads(const std::vector<std::array<int, 3>>& t
     long range[2][2];
     for (int d = 0; d < 2; ++d) {
       double lo = HUGE_VAL, hi = -HUGE_VAL;
-      for (const Point2q* p : {&a, &b, &c}) {
-        const double v = to_double(d == 0 ? p->x : p->y);
+      for (int corner = 0; corner < 3; ++corner) {
+        const Vec2d& p = uvd[tris[f][corner]];
+        const double v = d == 0 ? p.x : p.y;
         lo = std::min(lo, v);
         hi = std::max(hi, v);
       }
