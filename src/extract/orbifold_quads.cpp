@@ -46,13 +46,13 @@ OrbifoldQuadMesh extract_orbifold_quads(const std::vector<std::array<int, 3>>& t
 
   const Rational invN(1, N);
   std::vector<Vec2d> uvd(uv.size());  // for the candidate filter only
-  for (std::size_t v = 0; v < uv.size(); ++v) uvd[v] = {to_double(uv[v].x), to_double(uv[v].y)};
+  for (std::size_t v = 0; v < uv.size(); ++v) uvd[v] = {approximate(uv[v].x), approximate(uv[v].y)};
   int found = 0;
   for (std::size_t f = 0; f < tris.size() && found < orbits; ++f) {  // bound: F triangles
     const Point2q& a = uv[tris[f][0]];
     const Point2q& b = uv[tris[f][1]];
     const Point2q& c = uv[tris[f][2]];
-    // Double filter: to_double truncates (|x - xd| < 2^-52 |xd| + 2^-1074), and N * xd rounds with
+    // Double filter: |x - xd| < 2^-51 |xd| + 2^-1074 (igm::approximate), and N * xd rounds with
     // relative error 2^-53, so a margin of 2^-30 N (1 + |xd|) grid units keeps every candidate.
     long range[2][2];
     for (int d = 0; d < 2; ++d) {
@@ -64,7 +64,7 @@ OrbifoldQuadMesh extract_orbifold_quads(const std::vector<std::array<int, 3>>& t
         hi = std::max(hi, v);
       }
       const double margin = 0x1p-30 * N * (1 + std::max(std::fabs(lo), std::fabs(hi)));
-      const double L = std::floor(N * lo - margin), H = std::ceil(N * hi + margin);
+      const double L = std::ceil(N * lo - margin), H = std::floor(N * hi + margin);  // candidates L..H
       if (!(L > -0x1p40 && H < 0x1p40))
         throw Error(ErrorKind::Internal, "extract_orbifold_quads: UV of triangle " + std::to_string(f) + " out of range",
                     {static_cast<std::int64_t>(f)});

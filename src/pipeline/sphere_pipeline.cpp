@@ -16,7 +16,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-Vec2d to_vec2d(const Point2q& p) { return {to_double(p.x), to_double(p.y)}; }
+Vec2d to_vec2d(const Point2q& p) { return {approximate(p.x), approximate(p.y)}; }  // for the picture
 
 }  // namespace
 
@@ -115,10 +115,11 @@ PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions&
   for (int i = 0; i <= 2 * N; ++i) d.template_edges.push_back({Vec2d{double(i) / N, 0}, Vec2d{double(i) / N, 1}});
   for (int j = 0; j <= N; ++j) d.template_edges.push_back({Vec2d{0, double(j) / N}, Vec2d{2, double(j) / N}});
   d.cones = d.polygon;
+  std::vector<Vec2d> uvd(embedding.uv.size());
+  for (std::size_t v = 0; v < uvd.size(); ++v) uvd[v] = to_vec2d(embedding.uv[v]);
   for (const auto& t : cut.disk_triangles)
     for (int i = 0; i < 3; ++i)
-      if (t[i] < t[(i + 1) % 3])
-        d.mesh_edges.push_back({to_vec2d(embedding.uv[t[i]]), to_vec2d(embedding.uv[t[(i + 1) % 3]])});
+      if (t[i] < t[(i + 1) % 3]) d.mesh_edges.push_back({uvd[t[i]], uvd[t[(i + 1) % 3]]});
   embedding = OrbifoldTutteResult{};
 
   // --- certify: the independent judge, on both outputs ---

@@ -15,34 +15,33 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Neighbours of v in counter-clockwise ring order, starting at vertex_halfedge(v). O(valence).
-template <class F>
-void for_each_outgoing(const TriMesh& m, int v, F&& f) {
-  const int h0 = m.vertex_halfedge(v);
-  if (h0 < 0) return;
-  int h = h0;
-  for (int steps = 0; steps <= m.num_halfedges(); ++steps) {  // bound: valence(v) steps
-    f(h);
-    h = m.next_around_origin(h);
-    if (h == h0) return;
+// The vertex graph in CSR form (neighbours of v: adj[xadj[v] .. xadj[v+1]-1]), for fast BFS.
+struct Graph {
+  std::vector<int> xadj, adj;
+  explicit Graph(const TriMesh& m) : xadj(m.num_vertices() + 1, 0), adj(m.num_halfedges()) {
+    for (int h = 0; h < m.num_halfedges(); ++h) ++xadj[m.origin(h) + 1];
+    for (int v = 0; v < m.num_vertices(); ++v) xadj[v + 1] += xadj[v];
+    std::vector<int> fill(xadj.begin(), xadj.end() - 1);
+    for (int h = 0; h < m.num_halfedges(); ++h) adj[fill[m.origin(h)]++] = m.target(h);
   }
-  throw Error(ErrorKind::Internal, "cut_sphere: the ring of vertex " + std::to_string(v) + " does not close", {v});
-}
+  int size() const { return static_cast<int>(xadj.size()) - 1; }
+};
 
 // BFS hop distances from `source` (-1: unreached). O(V + E).
-std::vector<int> bfs(const TriMesh& m, int source) {
-  std::vector<int> dist(m.num_vertices(), -1);
+std::vector<int> bfs(const Graph& g, int source) {
+  std::vector<int> dist(g.size(), -1);
   std::vector<int> queue{source};
+  queue.reserve(g.size());
   dist[source] = 0;
   for (std::size_t q = 0; q < queue.size(); ++q) {  // each vertex enqueued once
     const int v = queue[q];
-    for_each_outgoing(m, v, [&](int h) {
-      const int w = m.target(h);
+    for (int k = g.xadj[v]; k < g.xadj[v + 1]; ++k) {
+      const int w = g.adj[k];
       if (dist[w] < 0) {
         dist[w] = dist[v] + 1;
         queue.push_back(w);
       }
-    });
+    }
   }
   return dist;
 }
@@ -65,8 +64,9 @@ int split_ring(RefinedSurface& s, int v, Pred&& split) {
   return count;
 }
 
-std::array<int, 4> default_cones(const TriMesh& m) {
-  const int n = m.num_vertices();
+std::array<int, 4> default_cones(const TriMesh& mesh) {
+  const Graph m(mesh);
+  const int n = m.size();
   auto argmax = [&](const std::vector<int>& score) {
     int best = 0;
     for (int v = 1; v < n; ++v)
@@ -129,15 +129,16 @@ SphereCut cut_sphere(const TriMesh& mesh, const std::vector<Vec3d>& positions, c
     }
   }
   {  // no two edges between the same pair of vertices (validated meshes have none; splits keep it)
+    const Graph g(mesh);
     std::vector<int> stamp(n0, -1);
     for (int v = 0; v < n0; ++v)
-      for_each_outgoing(mesh, v, [&](int h) {
-        const int w = mesh.target(h);
+      for (int k = g.xadj[v]; k < g.xadj[v + 1]; ++k) {
+        const int w = g.adj[k];
         if (stamp[w] == v)
           throw Error(ErrorKind::InvalidArgument,
                       "cut_sphere: two edges join vertices " + std::to_string(v) + " and " + std::to_string(w), {v, w});
         stamp[w] = v;
-      });
+      }
   }
 
   SphereCut cut;
@@ -176,12 +177,13 @@ SphereCut cut_sphere(const TriMesh& mesh, const std::vector<Vec3d>& positions, c
   for (int leg = 0; leg < 3; ++leg) {
     const int from = cut.cones[leg], to = cut.cones[leg + 1];
     const int nv = s.mesh.num_vertices();
+    const Graph g(s.mesh);  // rebuilt per leg: the chord splits change the mesh
     // Cost of entering a vertex: (adjacent to a cone still to be visited) * (nv + 1) + 1.
     std::vector<char> blocked(nv, 0), near_later(nv, 0);
     for (int v = 0; v < nv; ++v) blocked[v] = pos[v] >= 0;
     for (int j = leg + 2; j < 4; ++j) {
       blocked[cut.cones[j]] = 1;
-      for_each_outgoing(s.mesh, cut.cones[j], [&](int h) { near_later[s.mesh.target(h)] = 1; });
+      for (int kk = g.xadj[cut.cones[j]]; kk < g.xadj[cut.cones[j] + 1]; ++kk) near_later[g.adj[kk]] = 1;
     }
     blocked[to] = 0;
     std::vector<std::int64_t> cost(nv, -1);
@@ -195,9 +197,9 @@ SphereCut cut_sphere(const TriMesh& mesh, const std::vector<Vec3d>& positions, c
       heap.pop();
       if (c != cost[v]) continue;
       if (v == to) break;
-      for_each_outgoing(s.mesh, v, [&](int h) {
-        const int w = s.mesh.target(h);
-        if (blocked[w]) return;
+      for (int kk = g.xadj[v]; kk < g.xadj[v + 1]; ++kk) {
+        const int w = g.adj[kk];
+        if (blocked[w]) continue;
         const std::int64_t cw = c + 1 + (w != to && near_later[w] ? std::int64_t(nv) + 1 : 0);
         if (cost[w] < 0 || cw < cost[w]) {
           cost[w] = cw;
@@ -206,7 +208,7 @@ SphereCut cut_sphere(const TriMesh& mesh, const std::vector<Vec3d>& positions, c
         } else if (cw == cost[w] && v < parent[w]) {
           parent[w] = v;  // ties: the lowest parent id (w is already queued with this cost)
         }
-      });
+      }
     }
     if (cost[to] < 0)
       throw Error(ErrorKind::Internal, "cut_sphere: no path from cone " + std::to_string(from) + " to cone " +

@@ -27,9 +27,9 @@ struct PipelineOptions {
   /// N: the quad mesh has N x N quads per layout quad (N >= 1). For N < 3 the quad mesh has
   /// loops and multi-edges at the root (inherent to the layout, paper §6.2: every polygon corner
   /// is the root); the certifier identifies edges by their end points and rejects such a mesh,
-  /// so only N >= 3 gives a certified quad mesh.
+  /// so only N >= 3 gives a certified quad mesh. Genus 0: 2 N^2 quads, certified for every N >= 1.
   int resolution = 4;
-  int root = -1;       // root vertex of the loops (-1: deterministic default)
+  int root = -1;       // root vertex of the loops (-1: deterministic default); genus 0 has no root (ignored)
   /// Bring the gluing word to the normal form a1 b1 a1^-1 b1^-1 ... by handle slides. Validity
   /// does not need it: every polygon side is a whole edge of one layout quad mapped onto a
   /// unit-square edge, so any pairing of sides glues by R^k x + t with integer t (the certifier
