@@ -69,7 +69,7 @@ Run in_folder(const std::filesystem::path& cwd, const std::string& command) {
   return r;
 }
 
-TEST_CASE("igm without arguments runs the pipeline on a generated genus-2 mesh; igm-certify accepts its files") {
+TEST_CASE("igm without arguments runs the pipeline on a generated genus-2 mesh, igm-certify accepts its files") {
   const auto cwd = tmp_dir() / "default-run";
   const Run r = in_folder(cwd, quote(IGM_CLI_PATH));
   CHECK(r.code == 0);
@@ -90,7 +90,7 @@ TEST_CASE("igm without arguments runs the pipeline on a generated genus-2 mesh; 
   CHECK(has(slurp(out / "default-genus2.cert.json"), "\"certified\": true"));
 }
 
-TEST_CASE("igm run: shared torus certified; invalid mesh and bad options exit 2") {
+TEST_CASE("igm run: shared torus certified, invalid mesh and bad options exit 2") {
   IGM_REQUIRE_DATA(data);
   const auto cwd = tmp_dir() / "run";
   const std::string igm_cmd = quote(IGM_CLI_PATH);
@@ -265,7 +265,7 @@ TEST_CASE("info on unreadable files: exit 2 with the reason on stderr") {
   std::filesystem::remove_all(d);
 }
 
-TEST_CASE("igm run on genus 0: the five files, certified by igm-certify; bad cone lists exit 2") {
+TEST_CASE("igm run on genus 0: the five files, certified by igm-certify, bad cone lists exit 2") {
   IGM_REQUIRE_DATA(data);
   const auto cwd = tmp_dir() / "run-sphere";
   const std::string igm_cmd = quote(IGM_CLI_PATH);

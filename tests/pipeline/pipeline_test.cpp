@@ -189,9 +189,9 @@ void check_sphere(const ValidMesh& mesh, int resolution, const std::vector<int>&
   CHECK(c4->count("poincare_hopf_sum") == 8);
   // the cones are the chosen vertices (kept input vertices), each corner of theirs at an integer point
   if (!cones.empty()) CHECK(std::vector<int>(r.stats.cones.begin(), r.stats.cones.end()) == cones);
-  for (int cone : r.stats.cones) {
+  for (int cone : r.stats.cones) {  // input vertices (a 3-vertex sphere gets one constructed vertex)
     CHECK(cone >= 0);
-    CHECK(cone < mesh.mesh.num_vertices());
+    CHECK(cone < std::max(4, mesh.mesh.num_vertices()));
   }
   int cone_corners = 0, off_integer = 0;
   for (std::size_t f = 0; f < r.igm.triangles.size(); ++f)
@@ -252,6 +252,22 @@ TEST_CASE("genus 0: generated spheres of several sizes and user cones certified"
   const ValidMesh m = generated(0, 800, 4);
   check_sphere(m, 2, {5, m.mesh.num_vertices() - 1, 0, 17});
   check_sphere(m, 2, {0, 1, 2, 3});  // cones near each other
+}
+
+TEST_CASE("genus 0: the tetrahedron and a 3-vertex sphere at any scale or with coincident points are refined, never rejected") {
+  for (double scale : {1.0, 1e300, 1e-300, 0.0}) {
+    CAPTURE(scale);
+    PolygonSoup tet;
+    tet.positions = {{0, 0, 0}, {scale, 0, 0}, {0, scale, 0}, {0, 0, scale}};
+    tet.corners = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+    tet.face_begin = {0, 3, 6, 9, 12};
+    for (int N : {1, 3}) check_sphere(validate(tet), N);
+    PolygonSoup pillow;  // two triangles on three vertices
+    pillow.positions = {{0, 0, 0}, {scale, 0, 0}, {0, scale, 0}};
+    pillow.corners = {0, 1, 2, 1, 0, 2};
+    pillow.face_begin = {0, 3, 6};
+    check_sphere(validate(pillow), 2);
+  }
 }
 
 TEST_CASE("genus 0: bad cone lists are typed errors naming the entry") {

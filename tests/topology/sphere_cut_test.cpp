@@ -147,7 +147,7 @@ TEST_CASE("sphere cut: the tetrahedron (all vertices cones) and the 3-vertex sph
   CHECK(verify(p, cp) == "");
 }
 
-TEST_CASE("sphere cut: user cones are kept in their order; bad lists are typed errors naming the entry") {
+TEST_CASE("sphere cut: user cones are kept in their order, bad lists are typed errors naming the entry") {
   const ValidMesh in = generated_sphere(500, 3);
   const int n = in.mesh.num_vertices();
   SphereCutOptions o;
