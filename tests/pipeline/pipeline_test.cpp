@@ -242,6 +242,15 @@ TEST_CASE("genus 0: shared spheres (tetrahedron .. armadillo, bull self-intersec
     N = N % 4 + 1;  // resolutions 1, 2, 3, 4, 1, 2
   }
   check_sphere(load_mesh(dir / "meshes" / "clean" / "tetrahedron.off"), 3);
+  // cones close together on the bull: the double solution flips triangles, the refinement fixes them
+  const ValidMesh bull = load_mesh(dir / "meshes" / "clean" / "bull.off");
+  check_sphere(bull, 3, {0, 1, 2, 3});
+  PipelineOptions o;
+  o.cones = {0, 1, 2, 3};
+  const PipelineResult r = compute_igm(bull, o);
+  CHECK(r.stats.orbifold.refinement.flips_double > 0);
+  CHECK(r.stats.orbifold.refinement.iterations >= 1);
+  CHECK(r.certified());
 }
 
 TEST_CASE("genus 0: generated spheres of several sizes and user cones certified") {
