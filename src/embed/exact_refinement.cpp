@@ -191,27 +191,24 @@ RefinementResult refine_until_certified(const SpdSystem& S, const RefinementCert
   const int m = S.n;
   const std::string& who = names.who;
   if (m < 1) throw Error(ErrorKind::Internal, who + ": empty system");
-  std::vector<double> xd, yd;
-  std::vector<mpz_class> X, Y;
-  std::vector<Point2q> exact;
-  RefinementIterate it;
-  it.xd = &xd;
-  it.yd = &yd;
-  it.X = &X;
-  it.Y = &Y;
-  it.exact = &exact;
+  if (options.max_iterations < 0 || options.min_iterations > options.max_iterations)
+    throw Error(ErrorKind::InvalidArgument, who + ": need 0 <= min_iterations <= max_iterations, got " +
+                                                std::to_string(options.min_iterations) + " and " +
+                                                std::to_string(options.max_iterations));
+  std::vector<double>&xd = result.xd, &yd = result.yd;
+  std::vector<mpz_class>&X = result.X, &Y = result.Y;
+  std::vector<Point2q>& exact = result.exact;
+  std::int64_t& e = result.e;
   auto check = [&](RefinementIterate::Mode mode) {
     const auto t0 = Clock::now();
-    it.mode = mode;
-    const std::int64_t bad = certificate(it);
+    result.mode = mode;
+    const std::int64_t bad = certificate(result.iterate());
     st.seconds_checks += since(t0);
     return bad;
   };
   auto finish = [&](RefinementIterate::Mode mode) {
-    it.mode = mode;
-    result.x.resize(m);
-    for (int i = 0; i < m; ++i) result.x[i] = it.point(i);
-    return result;
+    result.mode = mode;
+    return std::move(result);
   };
 
   // ---------------- double solve ----------------
@@ -248,7 +245,6 @@ RefinementResult refine_until_certified(const SpdSystem& S, const RefinementCert
   // ---------------- mixed-precision refinement ----------------
   const auto t_ref = Clock::now();
   const double seconds_checks_before = st.seconds_checks;
-  std::int64_t& e = it.e;
   {
     // Initial grid: 2^-e with max |coordinate| * 2^e ~ 2^52, so the doubles round to int64.
     double M = 0;

@@ -191,15 +191,11 @@ OrbifoldTutteResult orbifold_tutte_embed(const SphereCut& cut, const RefinementO
   RefinementResult solved = refine_until_certified(
       S, certificate, options, {"orbifold_tutte_embed", "free vertices", "the exact orbifold Tutte solution"});
   st.refinement = std::move(solved.stats);
-  RefinementIterate exact;
-  exact.mode = Mode::Exact;
-  exact.exact = &solved.x;
+  const RefinementIterate x = solved.iterate();
   result.uv.resize(nd);
+  for (int d = 0; d < nd; ++d) result.uv[d] = exact_position(chart[d], x);
   std::size_t bits = 0;
-  for (int d = 0; d < nd; ++d) {
-    result.uv[d] = exact_position(chart[d], exact);
-    bits = std::max({bits, bit_size(result.uv[d].x), bit_size(result.uv[d].y)});
-  }
+  for (const Point2q& p : result.uv) bits = std::max({bits, bit_size(p.x), bit_size(p.y)});
   st.max_bits = bits;
   st.seconds_total = since(t_start);
   return result;

@@ -356,9 +356,9 @@ TutteResult tutte_embed(int num_vertices, const std::vector<std::array<int, 3>>&
     }
     return flips;
   };
-  auto finish = [&](const std::vector<Point2q>& interior) {
+  auto finish = [&](const RefinementIterate& interior) {
     result.uv.resize(nv);
-    for (int v = 0; v < nv; ++v) result.uv[v] = bpos[v] >= 0 ? boundary_uv[bpos[v]] : interior[idx[v]];
+    for (int v = 0; v < nv; ++v) result.uv[v] = bpos[v] >= 0 ? boundary_uv[bpos[v]] : interior.point(idx[v]);
     std::size_t bits = 0;
     for (const Point2q& p : result.uv) bits = std::max({bits, bit_size(p.x), bit_size(p.y)});
     st.max_bits = bits;
@@ -373,7 +373,7 @@ TutteResult tutte_embed(int num_vertices, const std::vector<std::array<int, 3>>&
     st.seconds_checks = since(t0);
     if (st.flips_double != 0)
       throw Error(ErrorKind::Internal, "tutte_embed: a triangle of an all-boundary disk is not positive");
-    finish({});
+    finish(none);
     return result;
   }
 
@@ -407,7 +407,7 @@ TutteResult tutte_embed(int num_vertices, const std::vector<std::array<int, 3>>&
   st.seconds_refinement = rs.seconds_refinement;
   st.seconds_checks = rs.seconds_checks;
   st.seconds_fallback = rs.seconds_fallback;
-  finish(solved.x);
+  finish(solved.iterate());
   return result;
 }
 

@@ -70,14 +70,32 @@ struct RefinementNames {
 /// Number of certificate failures (e.g. non-positive triangles) at an iterate; 0 = certified.
 using RefinementCertificate = std::function<std::int64_t(const RefinementIterate&)>;
 
+/// The certified iterate, in the representation it was certified in (no Rational copy is made:
+/// read it with iterate().point(i), or the arrays directly).
 struct RefinementResult {
-  std::vector<Point2q> x;  // the certified exact solution, per unknown
+  RefinementIterate::Mode mode = RefinementIterate::Mode::Double;
+  std::vector<double> xd, yd;
+  std::vector<mpz_class> X, Y;
+  std::int64_t e = 0;
+  std::vector<Point2q> exact;
   RefinementStats stats;
+  RefinementIterate iterate() const {
+    RefinementIterate it;
+    it.mode = mode;
+    it.xd = &xd;
+    it.yd = &yd;
+    it.X = &X;
+    it.Y = &Y;
+    it.e = e;
+    it.exact = &exact;
+    return it;
+  }
 };
 
 /// Solves A X = B until certificate(iterate) == 0 (and at least min_iterations steps ran), as in
 /// the header comment. Pre: system.n >= 1, A symmetric positive definite. Post: certificate(x)
-/// == 0 was evaluated on the returned values. Throws igm::Error(Internal) (message prefixed by
+/// == 0 was evaluated on the returned iterate. Throws igm::Error(InvalidArgument) for options with
+/// max_iterations < 0 or min_iterations > max_iterations, igm::Error(Internal) (message prefixed by
 /// names.who) if A is not numerically positive definite, if the exact solution itself fails the
 /// certificate, or if the bound is hit on a system too large for the exact fallback.
 /// Cost: sparse Cholesky (O(n^1.5) on planar graphs) plus per step O(nnz) big-integer operations
