@@ -54,13 +54,14 @@ void run(const std::string& name, const Input& in, bool normal_form) {
   try {
     CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
     const auto& s = r.stats;
-    std::printf("%-26s g=%-4d F=%-8d normal_form=%d  V %8d -> %8d (+%6.1f%%)  crossings %7d  splits %7d  slides %4d"
-                "  time %7.3f s (basis %.3f, detach %.3f, slides+cut %.3f)\n",
+    std::printf("%-24s g=%-4d F=%-8d nf=%d  V %8d -> %8d (+%6.1f%%) | crossings %6d steiner %5d band %4d chord %5d"
+                " precond %6d | slides %3d retries %3d | %7.3f s (basis %.3f, detach %.3f, slides+cut %.3f)\n",
                 name.c_str(), s.genus, s.faces_before, normal_form ? 1 : 0, s.vertices_before, s.vertices_after,
-                100.0 * (s.vertices_after - s.vertices_before) / s.vertices_before, s.crossings, s.precondition_splits,
-                s.num_slides, s.seconds_total, s.seconds_basis, s.seconds_detach, s.seconds_cut);
+                100.0 * (s.vertices_after - s.vertices_before) / s.vertices_before, s.crossings, s.steiner_vertices,
+                s.band_splits, s.chord_splits, s.precondition_splits, s.num_slides, s.slide_retries, s.seconds_total,
+                s.seconds_basis, s.seconds_detach, s.seconds_cut);
   } catch (const Error& e) {
-    std::printf("%-26s error: %s\n", name.c_str(), e.what());
+    std::printf("%-24s nf=%d error: %s\n", name.c_str(), normal_form ? 1 : 0, e.what());
   }
   std::fflush(stdout);
 }
@@ -77,7 +78,8 @@ int main(int argc, char** argv) {
     const char* name;
     int genus;
   };
-  for (Named m : {Named{"elephant", 3}, Named{"couplingdown", 9}, Named{"cheese", 133}}) {
+  for (Named m : {Named{"eight", 2}, Named{"joint", 2}, Named{"helmet", 3}, Named{"elephant", 3}, Named{"anchor", 4},
+                 Named{"couplingdown", 9}, Named{"cheese", 133}}) {
     Input in;
     if (!read_off(shared / "meshes" / "clean" / (std::string(m.name) + ".off"), in)) {
       std::printf("%-26s skipped: not found under %s\n", m.name, shared.c_str());

@@ -513,6 +513,7 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     parent.resize(rs.mesh.num_vertices(), -1);
     parent[a] = u;
     parent[b] = v;
+    res.stats.band_splits += 2;
     leaf_a[i] = a;
     leaf_b[i] = b;
   }
@@ -539,6 +540,7 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
       int h = M.find_halfedge(p, c);
       if (h < 0) continue;  // already split (each chord is listed once; kept for safety)
       rs.split_edge(h, make_rational(1, 2));
+      ++res.stats.chord_splits;
     }
     parent.resize(M.num_vertices(), -1);
     pruned.resize(M.num_vertices(), 0);

@@ -54,6 +54,8 @@ struct CutStats {
   int vertices_after = 0, faces_after = 0;
   int crossings = 0;            // vertices created where strands cross edges (step 2)
   int steiner_vertices = 0;     // face-interior vertices added to avoid flat triangles (step 2)
+  int band_splits = 0;          // two per band (step 2)
+  int chord_splits = 0;         // edges split so that no strand runs along an edge (step 2)
   int precondition_splits = 0;  // edge splits of step 3
   int num_slides = 0;           // handle slides performed (normal form)
   int slide_retries = 0;        // slides that needed a global split pass before a path existed
