@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <numeric>
 #include <queue>
 #include <string>
@@ -204,51 +205,78 @@ bool cyclically_equal(const Word& a, const Word& b) {
   return false;
 }
 
-// Makes the embedding pre-conditions hold by edge splits at midpoints. `full`: split every edge off
-// the loops that joins two loop vertices (the root included); this also connects the vertices on
-// no loop (used before handle slides). Otherwise only what the disk needs: edges off the loops
-// joining two vertices of one loop or a loop vertex to the root, then one edge off the loops in
-// every triangle whose three vertices are on loops. Afterwards no interior disk edge joins two
-// vertices of one side, no triangle has three boundary vertices, and every root wedge holds a
-// vertex on no loop. Returns the number of splits. O(n).
-int precondition_pass(CutResult& res, bool full) {
+// Splits every edge off the loops that joins two loop vertices (the root included), at its
+// midpoint; afterwards the vertices on no loop connect every root wedge to every other (used by the
+// handle slides). Returns the number of splits. O(n).
+int split_loop_chords(CutResult& res) {
   auto& rs = res.surface;
   auto& Mm = rs.mesh;
-  const int root = res.root;
-  std::vector<int> loop_of(Mm.num_vertices(), -1);
+  std::vector<char> on_loop(Mm.num_vertices(), 0);
   std::unordered_set<std::uint64_t> loop_edges;
-  for (int i = 0; i < static_cast<int>(res.loops.size()); ++i) {
-    const auto& L = res.loops[i];
+  for (const auto& L : res.loops)
     for (std::size_t j = 0; j < L.size(); ++j) {
-      loop_of[L[j]] = i;
+      on_loop[L[j]] = 1;
       loop_edges.insert(edge_key(L[j], L[(j + 1) % L.size()]));
     }
-  }
-  loop_of[root] = -2;
-  auto on_loop = [&](int v) { return v < static_cast<int>(loop_of.size()) && loop_of[v] != -1; };
   std::vector<std::pair<int, int>> todo;
   for (int h = 0; h < Mm.num_halfedges(); ++h) {
     if (h > Mm.twin(h)) continue;
     const int a = Mm.origin(h), b = Mm.target(h);
-    if (!on_loop(a) || !on_loop(b) || loop_edges.count(edge_key(a, b))) continue;
-    if (full || loop_of[a] == loop_of[b] || a == root || b == root) todo.push_back({a, b});
+    if (on_loop[a] && on_loop[b] && !loop_edges.count(edge_key(a, b))) todo.push_back({a, b});
   }
   for (auto [a, b] : todo) rs.split_edge(find_he(Mm, a, b), make_rational(1, 2));
-  int splits = static_cast<int>(todo.size());
-  if (!full) {
-    // Faces created by a split hold the new vertex, so one pass in id order suffices: O(F).
-    for (int f = 0; f < Mm.num_faces(); ++f) {
-      const auto c = Mm.face_vertices(f);
-      if (!on_loop(c[0]) || !on_loop(c[1]) || !on_loop(c[2])) continue;
-      int h = -1;
-      for (int i = 0; i < 3 && h < 0; ++i)
-        if (!loop_edges.count(edge_key(c[i], c[(i + 1) % 3]))) h = 3 * f + i;
-      if (h < 0) internal("triangle bounded by loop edges only", {f});
-      rs.split_edge(h, make_rational(1, 2));
-      ++splits;
+  return static_cast<int>(todo.size());
+}
+
+// The embedding pre-conditions (embed/tutte.h, Floater 2003), made to hold by edge splits at
+// midpoints on the disk that build_cut made: (a) no interior disk edge joins two vertices of one
+// polygon side (a root copy lies on its two sides); this also excludes triangles with three
+// vertices on one side, since such a triangle has an interior edge; (b) every root wedge holds an
+// interior vertex. Only the edges that break (a) are split, then one edge per root wedge that
+// breaks (b). A split vertex is interior to the disk, so no split creates a new violation.
+// Pre: build_cut(res) done. Post: the cut must be rebuilt. Returns the number of splits. O(n).
+int precondition_pass(CutResult& res) {
+  auto& rs = res.surface;
+  auto& Mm = rs.mesh;
+  const int nd = static_cast<int>(res.disk_to_surface.size());
+  std::vector<int> side_a(nd, -1), side_b(nd, -1);  // the (at most two) sides through a disk vertex
+  for (int s = 0; s < static_cast<int>(res.sides.size()); ++s)
+    for (int d : res.sides[s].disk_vertices) (side_a[d] < 0 ? side_a[d] : side_b[d]) = s;
+  auto share_side = [&](int p, int q) {
+    if (side_a[p] < 0 || side_a[q] < 0) return false;
+    return side_a[p] == side_a[q] || side_a[p] == side_b[q] || (side_b[p] >= 0 && (side_b[p] == side_a[q] || side_b[p] == side_b[q]));
+  };
+  std::vector<char> is_cut(Mm.num_halfedges(), 0);
+  for (const auto& L : res.loops)
+    for (std::size_t j = 0; j < L.size(); ++j) {
+      const int h = find_he(Mm, L[j], L[(j + 1) % L.size()]);
+      is_cut[h] = is_cut[Mm.twin(h)] = 1;
     }
+  auto disk_corner = [&](int h) { return res.disk_triangles[TriMesh::face(h)][h % 3]; };
+  std::vector<std::pair<int, int>> todo;
+  std::vector<char> root_ok(nd, 0);  // root copy with an interior neighbour (after the splits)
+  for (int h = 0; h < Mm.num_halfedges(); ++h) {
+    if (is_cut[h]) continue;
+    const int p = disk_corner(h), q = disk_corner(TriMesh::next(h));
+    const bool split = share_side(p, q);
+    if (split && h < Mm.twin(h)) todo.push_back({Mm.origin(h), Mm.target(h)});
+    if (Mm.origin(h) == res.root && (split || side_a[q] < 0)) root_ok[p] = 1;
   }
-  return splits;
+  // (b): a root wedge without interior vertex: split its first spoke if that is interior, else
+  // (the wedge is one triangle) the edge opposite the root. One split per root copy at most.
+  for (int h = 0; h < Mm.num_halfedges(); ++h) {
+    if (!is_cut[h] || Mm.origin(h) != res.root) continue;
+    const int c = disk_corner(h);
+    if (root_ok[c]) continue;
+    root_ok[c] = 1;
+    const int g = Mm.next_around_origin(h);
+    const int e = is_cut[g] ? TriMesh::next(h) : g;
+    todo.push_back({Mm.origin(e), Mm.target(e)});
+  }
+  std::sort(todo.begin(), todo.end(), [](auto x, auto y) { return edge_key(x.first, x.second) < edge_key(y.first, y.second); });
+  todo.erase(std::unique(todo.begin(), todo.end(), [](auto x, auto y) { return edge_key(x.first, x.second) == edge_key(y.first, y.second); }), todo.end());
+  for (auto [a, b] : todo) rs.split_edge(find_he(Mm, a, b), make_rational(1, 2));
+  return static_cast<int>(todo.size());
 }
 
 // Brings the word into a1 b1 a1^-1 b1^-1 ... by the planned handle slides, each realized as a
@@ -308,7 +336,7 @@ void normalize(CutResult& res, bool check_each_slide) {
     for (int attempt = 0; attempt < 2 && hit < 0; ++attempt) {
       if (attempt == 1) {
         ++res.stats.slide_retries;
-        res.stats.precondition_splits += precondition_pass(res, true);
+        res.stats.precondition_splits += split_loop_chords(res);
         on_loop.assign(M.num_vertices(), 0);
         for (const auto& L : res.loops)
           for (int v : L) on_loop[v] = 1;
@@ -526,53 +554,33 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
       for (; x >= 0 && !pruned[x]; x = parent[x]) pruned[x] = 1;
   }
   if (!pruned[root]) internal("root not on the tree");
-  // A strand around x enters x's sector from the parent side; the sector before the first child
-  // must hold at least one edge, else the curve would run along an edge: split the chord.
-  {
-    std::vector<std::pair<int, int>> chords;
-    for (int x = 0; x < M.num_vertices(); ++x) {
-      if (!pruned[x] || x == root || is_leaf[x]) continue;
-      int g = M.next_around_origin(find_he(M, x, parent[x]));
-      int c = M.target(g);
-      if (pruned[c] && parent[c] == x) chords.push_back({parent[x], c});
-    }
-    for (auto [p, c] : chords) {
-      int h = M.find_halfedge(p, c);
-      if (h < 0) continue;  // already split (each chord is listed once; kept for safety)
-      rs.split_edge(h, make_rational(1, 2));
-      ++res.stats.chord_splits;
-    }
-    parent.resize(M.num_vertices(), -1);
-    pruned.resize(M.num_vertices(), 0);
-    is_leaf.resize(M.num_vertices(), 0);
-  }
-  const int nv1 = M.num_vertices();
-  // Children in ccw order after the parent (root: after its stored half-edge); DFS leaf order.
-  std::vector<int> leaf_index(nv1, -1), max_leaf(nv1, -1);
-  std::vector<int> leaves;  // tour order
-  {
-    auto children = [&](int x) {
-      std::vector<int> ch;
-      int h0 = x == root ? M.vertex_halfedge(root) : find_he(M, x, parent[x]);
-      int h = x == root ? h0 : M.next_around_origin(h0);
-      if (x == root) {
-        do {
-          int w = M.target(h);
-          if (pruned[w] && parent[w] == x) ch.push_back(w);
-          h = M.next_around_origin(h);
-        } while (h != h0);
-      } else {
-        for (; h != h0; h = M.next_around_origin(h)) {
-          int w = M.target(h);
-          if (pruned[w] && parent[w] == x) ch.push_back(w);
-        }
+  // Children in ccw order after the parent (root: after its stored half-edge), and for a vertex
+  // other than the root the number of edges strictly between the parent edge and each child edge,
+  // counted counter-clockwise (the other side holds valence - 2 - that many).
+  const int nv_tree = M.num_vertices();
+  auto children = [&](int x, std::vector<int>* ccw_gap) {
+    std::vector<int> ch;
+    const int h0 = x == root ? M.vertex_halfedge(root) : find_he(M, x, parent[x]);
+    int h = h0, steps = 0;
+    do {  // one turn around x: valence steps
+      const int w = M.target(h);
+      if (w != (x == root ? -1 : parent[x]) && pruned[w] && parent[w] == x) {
+        ch.push_back(w);
+        if (ccw_gap) ccw_gap->push_back(steps - 1);
       }
-      return ch;
-    };
+      h = M.next_around_origin(h);
+      ++steps;
+    } while (h != h0);
+    return ch;
+  };
+  std::vector<int> leaf_index(nv_tree, -1), max_leaf(nv_tree, -1), min_leaf(nv_tree, -1);
+  std::vector<int> leaves;  // tour order
+  std::vector<int> post;    // pruned non-leaf vertices, children before parents
+  {
     // Iterative DFS; each pruned vertex pushed once: O(V + E).
     std::vector<std::pair<int, std::vector<int>>> stack;
     std::vector<std::size_t> pos;
-    stack.push_back({root, children(root)});
+    stack.push_back({root, children(root, nullptr)});
     pos.push_back(0);
     while (!stack.empty()) {
       auto& [x, ch] = stack.back();
@@ -580,17 +588,17 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
         int c = ch[pos.back()++];
         if (is_leaf[c]) {
           leaf_index[c] = static_cast<int>(leaves.size());
-          max_leaf[c] = leaf_index[c];
+          min_leaf[c] = max_leaf[c] = leaf_index[c];
           leaves.push_back(c);
         } else {
-          stack.push_back({c, children(c)});
+          stack.push_back({c, children(c, nullptr)});
           pos.push_back(0);
         }
       } else {
-        int xv = x;
-        int mx = -1;
-        for (int c : ch) mx = std::max(mx, max_leaf[c]);
-        max_leaf[xv] = mx;
+        const int xv = x;
+        max_leaf[xv] = max_leaf[ch.back()];
+        min_leaf[xv] = min_leaf[ch.front()];
+        post.push_back(xv);
         stack.pop_back();
         pos.pop_back();
       }
@@ -598,46 +606,179 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     if (static_cast<int>(leaves.size()) != 4 * genus) internal("tour found " + std::to_string(leaves.size()) + " strand ends");
   }
 
-  std::vector<Crossing> crossings;
-  std::vector<FaceArc> arcs;
-  std::vector<std::vector<int>> strand_points(leaves.size());  // point codes
+  // Owners. Every tree vertex x but the root lies on exactly one strand, its owner o(x), the owner
+  // of one of its children (so each strand owns a final part of its path, down to its leaf). The
+  // other strands through x go around it: tour index < o(x) counter-clockwise (from the parent edge
+  // to their child edge), > o(x) clockwise, crossing the edges in between. A strand that reaches x
+  // on the other side (its owner changed at the parent) first crosses the parent edge. The owners
+  // minimise the number of crossings, by dynamic programming over the tree: for each x and each
+  // leaf l below it the cheapest crossings in x's subtree with o(x) = l (an empty sweep counts as
+  // one, the chord split below). Cost O(sum of strand lengths + E).
+  std::vector<int> owner(nv_tree, -1);
+  {
+    std::vector<std::vector<long long>> best(nv_tree);   // by leaf - min_leaf
+    std::vector<long long> arr_ccw(nv_tree), arr_cw(nv_tree), arr_free(nv_tree);  // best on arrival
+    std::vector<int> opt_ccw(nv_tree), opt_cw(nv_tree), opt_free(nv_tree);
+    auto summarize = [&](int x) {  // the three arrival minima of a subtree with its best costs
+      const auto& b = best[x];
+      arr_ccw[x] = arr_cw[x] = arr_free[x] = INT64_MAX;
+      for (int i = 0; i < static_cast<int>(b.size()); ++i) {
+        const int l = min_leaf[x] + i;
+        const long long cc = b[i] + (max_leaf[x] - l), cw = b[i] + (l - min_leaf[x]);
+        if (cc < arr_ccw[x]) arr_ccw[x] = cc, opt_ccw[x] = l;
+        if (cw < arr_cw[x]) arr_cw[x] = cw, opt_cw[x] = l;
+        if (b[i] < arr_free[x]) arr_free[x] = b[i], opt_free[x] = l;
+      }
+    };
+    for (int l : leaves) {
+      best[l].assign(1, 0);
+      summarize(l);
+    }
+    std::vector<int> gap;
+    for (int x : post) {
+      if (x == root) continue;
+      gap.clear();
+      const std::vector<int> ch = children(x, &gap);
+      const int m = static_cast<int>(ch.size());
+      const int val = M.valence(x);
+      std::vector<long long> before(m + 1, 0), after(m + 1, 0);  // sums over children < i, >= i
+      std::vector<long long> s_ccw(m), s_cw(m);
+      for (int i = 0; i < m; ++i) {
+        s_ccw[i] = std::max(gap[i], 1);
+        s_cw[i] = std::max(val - 2 - gap[i], 1);
+      }
+      for (int i = 0; i < m; ++i) {
+        const int c = ch[i];
+        const long long n = max_leaf[c] - min_leaf[c] + 1;
+        before[i + 1] = before[i] + n * s_ccw[i] + arr_ccw[c];
+      }
+      for (int i = m - 1; i >= 0; --i) {
+        const int c = ch[i];
+        const long long n = max_leaf[c] - min_leaf[c] + 1;
+        after[i] = after[i + 1] + n * s_cw[i] + arr_cw[c];
+      }
+      auto& b = best[x];
+      b.assign(max_leaf[x] - min_leaf[x] + 1, 0);
+      for (int i = 0; i < m; ++i) {
+        const int c = ch[i];
+        for (int l = min_leaf[c]; l <= max_leaf[c]; ++l)
+          b[l - min_leaf[x]] = best[c][l - min_leaf[c]] + before[i] + after[i + 1] + (l - min_leaf[c]) * s_ccw[i] +
+                               (max_leaf[c] - l) * s_cw[i];
+        std::vector<long long>().swap(best[c]);
+      }
+      summarize(x);
+    }
+    // Top down (reverse post-order visits parents first).
+    for (auto it = post.rbegin(); it != post.rend(); ++it) {
+      const int x = *it;
+      for (int c : children(x, nullptr)) {
+        if (x == root) owner[c] = opt_free[c];
+        else if (owner[x] >= min_leaf[c] && owner[x] <= max_leaf[c]) owner[c] = owner[x];
+        else owner[c] = owner[x] > max_leaf[c] ? opt_ccw[c] : opt_cw[c];
+      }
+    }
+    for (int l : leaves)
+      if (owner[l] != leaf_index[l]) internal("leaf not owned by its strand", {l});
+  }
+
+  // The root-to-leaf paths, and which side each strand takes at each vertex it does not own.
+  std::vector<std::vector<int>> paths(leaves.size());
+  std::vector<int> first_owned(leaves.size());
   for (int k = 0; k < static_cast<int>(leaves.size()); ++k) {
-    std::vector<int> path;
+    auto& path = paths[k];
     // The parent chain is acyclic (a shortest-path tree): at most V steps.
     for (int x = leaves[k]; x != root; x = parent[x]) path.push_back(x);
     path.push_back(root);
     std::reverse(path.begin(), path.end());
-    const int m = static_cast<int>(path.size()) - 1;
     int j0 = 1;
-    while (j0 <= m && max_leaf[path[j0]] != k) ++j0;
-    if (j0 > m) internal("strand does not reach its leaf", {leaves[k]});
+    while (j0 < static_cast<int>(path.size()) && owner[path[j0]] != k) ++j0;
+    if (j0 == static_cast<int>(path.size())) internal("strand does not reach its leaf", {leaves[k]});
+    first_owned[k] = j0;
+  }
+  // A strand that goes around x on the side it arrived on, with no edge between the parent edge
+  // and the child edge on that side, would run along the edge parent-child ("chord"): split it.
+  {
+    std::vector<std::pair<int, int>> chords;
+    for (int k = 0; k < static_cast<int>(leaves.size()); ++k) {
+      const auto& path = paths[k];
+      for (int j = 1; j < first_owned[k]; ++j) {
+        const int x = path[j], p = path[j - 1], c = path[j + 1];
+        const bool ccw = k < owner[x];
+        const bool switched = j > 1 && (k < owner[p]) != ccw && owner[p] != owner[x];
+        if (switched) continue;
+        const int h_in = find_he(M, x, p), h_out = find_he(M, x, c);
+        if (ccw ? M.next_around_origin(h_in) == h_out : M.next_around_origin(h_out) == h_in) chords.push_back({p, c});
+      }
+    }
+    std::sort(chords.begin(), chords.end());
+    chords.erase(std::unique(chords.begin(), chords.end()), chords.end());
+    for (auto [p, c] : chords) {
+      const int h = M.find_halfedge(p, c);
+      if (h < 0) continue;  // split already from the other side (listed as (c, p)): never twice
+      rs.split_edge(h, make_rational(1, 2));
+      ++res.stats.chord_splits;
+    }
+  }
+  const int nv1 = M.num_vertices();
+
+  std::vector<Crossing> crossings;
+  std::vector<FaceArc> arcs;
+  std::vector<std::vector<int>> strand_points(leaves.size());  // point codes
+  for (int k = 0; k < static_cast<int>(leaves.size()); ++k) {
+    const auto& path = paths[k];
+    const int j0 = first_owned[k];
     auto& pts = strand_points[k];
     pts.push_back(root);
     int prev_pt = root;
     int face_cur = -1;
+    auto cross = [&](int g, int x) {  // crosses the edge of half-edge g near x
+      crossings.push_back({std::min(g, M.twin(g)), x, k});
+      const int code = -1 - static_cast<int>(crossings.size() - 1);
+      arcs.push_back({face_cur, prev_pt, code});
+      pts.push_back(code);
+      prev_pt = code;
+    };
     for (int j = 1; j < j0; ++j) {
       const int x = path[j];
       const int h_in = find_he(M, x, path[j - 1]), h_out = find_he(M, x, path[j + 1]);
-      if (j > 1 && face_cur != TriMesh::face(h_in)) internal("strand leaves its face", {x});
-      face_cur = TriMesh::face(h_in);
-      // Sweep the edges at x ccw from the parent to the child: at most valence(x) steps.
-      for (int g = M.next_around_origin(h_in); g != h_out; g = M.next_around_origin(g)) {
-        if (g == h_in) internal("sweep around a tree vertex did not meet the child", {x});
-        int e = std::min(g, M.twin(g));
-        crossings.push_back({e, x, k});
-        int code = -1 - static_cast<int>(crossings.size() - 1);
-        arcs.push_back({face_cur, prev_pt, code});
-        pts.push_back(code);
-        prev_pt = code;
-        face_cur = TriMesh::face(g);
+      const bool ccw = k < owner[x];
+      // The face on the strand's side of the parent edge: left of x->parent for ccw.
+      const int side_face = ccw ? TriMesh::face(h_in) : TriMesh::face(M.twin(h_in));
+      if (j == 1) {
+        face_cur = side_face;
+      } else if (face_cur != side_face) {
+        const int other = ccw ? TriMesh::face(M.twin(h_in)) : TriMesh::face(h_in);
+        if (face_cur != other) internal("strand leaves its face", {x});
+        cross(h_in, x);  // change sides across the parent edge
+        face_cur = side_face;
+      }
+      // Sweep the edges at x from the parent to the child: at most valence(x) steps.
+      if (ccw) {
+        for (int g = M.next_around_origin(h_in); g != h_out; g = M.next_around_origin(g)) {
+          if (g == h_in) internal("sweep around a tree vertex did not meet the child", {x});
+          cross(g, x);
+          face_cur = TriMesh::face(g);
+        }
+      } else {
+        // Clockwise: the half-edge before g around x is the one whose next_around_origin is g.
+        int g = h_in;
+        for (int guard = 0;; ++guard) {
+          const int pg = TriMesh::next(M.twin(g));  // clockwise neighbour: next_around_origin(pg) == g
+          if (pg == h_out) break;
+          if (pg == h_in || guard > M.num_halfedges()) internal("sweep around a tree vertex did not meet the child", {x});
+          face_cur = TriMesh::face(pg);
+          cross(pg, x);
+          g = pg;
+        }
+        face_cur = TriMesh::face(h_out);
       }
     }
     if (j0 > 1) arcs.push_back({face_cur, prev_pt, path[j0]});
-    for (int j = j0; j <= m; ++j) pts.push_back(path[j]);
+    for (int j = j0; j < static_cast<int>(path.size()); ++j) pts.push_back(path[j]);
   }
 
-  // Place crossings on their edges: the ones around the origin first (nearest = highest tour index),
-  // then the ones around the target; parameters i/(n+1).
+  // Place crossings on their edges: the ones around the origin first (nearest = closest to the
+  // origin's owner in tour order), then the ones around the target; parameters i/(n+1).
   int next_vertex = nv1;
   {
     std::vector<int> order(crossings.size());
@@ -645,10 +786,11 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     std::sort(order.begin(), order.end(), [&](int p, int q) {
       const Crossing &a = crossings[p], &b = crossings[q];
       if (a.edge != b.edge) return a.edge < b.edge;
-      int oa = M.origin(a.edge), ob = M.origin(b.edge);
-      bool a_first = a.side == oa, b_first = b.side == ob;
+      const bool a_first = a.side == M.origin(a.edge), b_first = b.side == M.origin(b.edge);
       if (a_first != b_first) return a_first;
-      return a_first ? a.strand > b.strand : a.strand < b.strand;
+      // Nearest to the vertex gone around: the strand closest to its owner in tour order.
+      const int da = std::abs(a.strand - owner[a.side]), db = std::abs(b.strand - owner[b.side]);
+      return a_first ? da < db : da > db;
     });
     rs.constructed.reserve(rs.constructed.size() + crossings.size());
     for (std::size_t i = 0; i < order.size();) {
@@ -769,8 +911,11 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
 
   // ---- 4. normal form by handle slides, then the cut ----
   build_cut(res, -1);
-  if (options.normal_form) normalize(res, options.check_each_slide);
-  res.stats.precondition_splits += precondition_pass(res, false);
+  if (options.normal_form) {
+    normalize(res, options.check_each_slide);
+    build_cut(res, -1);
+  }
+  res.stats.precondition_splits += precondition_pass(res);
   build_cut(res, find_he(rs.mesh, root, res.loops[0][1]));
   if (options.normal_form && !is_canonical_word(word_of(res)))
     internal("cut word is not canonical: " + to_string(word_of(res)));

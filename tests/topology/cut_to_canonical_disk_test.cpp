@@ -253,10 +253,13 @@ std::string verify_cut(const Input& in, const CutResult& r, bool normal_form = t
       if (side_of[b].count(s)) return fail("interior edge joins two vertices of one side");
   }
   std::map<int, bool> root_has_interior;
+  // The embedding's pre-conditions (embed/tutte.h, Floater 2003): besides the edge rule above, no
+  // triangle with its three vertices on one polygon side (a triangle with boundary vertices on
+  // several sides is fixed by the convex boundary and positive, so it is allowed).
   for (auto& t : D) {
-    int nb = 0;
-    for (int v : t) nb += side_of.count(v) ? 1 : 0;
-    if (nb == 3) return fail("triangle with three boundary vertices");
+    if (side_of.count(t[0]) && side_of.count(t[1]) && side_of.count(t[2]))
+      for (int s : side_of[t[0]])
+        if (side_of[t[1]].count(s) && side_of[t[2]].count(s)) return fail("triangle with three vertices on one side");
     for (int i = 0; i < 3; ++i)
       if (r.disk_to_surface[t[i]] == r.root)
         for (int j = 1; j < 3; ++j)
