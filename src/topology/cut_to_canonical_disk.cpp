@@ -424,60 +424,29 @@ void normalize(CutResult& res, bool check_each_slide) {
     }
   res.loops = std::move(loops);
 }
-}  // namespace
+// The greedy homotopy basis at `root` and the plan of its detaching (steps 1-2 up to the owners):
+// the surface with the band splits, the pruned tree, the tour and the owners. `crossings` is the
+// number of edge crossings the strands will make (the dynamic programme's optimum, chord splits
+// not counted). Pre: mesh valid, connected, of genus `genus` >= 1. Cost O(n log n).
+struct DetachPlan {
+  RefinedSurface rs;
+  int root = -1;
+  std::vector<int> parent, leaf_a, leaf_b, leaves, leaf_index, min_leaf, max_leaf, owner;
+  std::vector<char> pruned, is_leaf;
+  long long crossings = 0;
+};
 
-std::string CutResult::word() const {
-  std::string w;
-  for (const auto& s : sides) {
-    if (!w.empty()) w += ' ';
-    w += 'L' + std::to_string(s.loop);
-    if (s.inverse) w += "'";
-  }
-  return w;
-}
-
-CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& positions,
-                                const CutOptions& options) {
-  const auto t_start = Clock::now();
+DetachPlan plan_detach(const TriMesh& mesh, const std::vector<Vec3d>& positions, int root, int genus) {
+  DetachPlan P;
+  P.root = root;
   const int nv0 = mesh.num_vertices();
-  if (static_cast<int>(positions.size()) != nv0)
-    throw Error(ErrorKind::InvalidArgument, "positions (" + std::to_string(positions.size()) +
-                                                ") do not match the mesh vertices (" + std::to_string(nv0) + ")");
-  if (nv0 == 0) throw Error(ErrorKind::Empty, "mesh has no vertices");
-  for (int v = 0; v < nv0; ++v)
-    if (mesh.vertex_halfedge(v) < 0)
-      throw Error(ErrorKind::InvalidArgument, "vertex " + std::to_string(v) + " is used by no face", {v});
-  const int chi = mesh.num_vertices() - mesh.num_edges() + mesh.num_faces();
-  if (chi > 2 || chi % 2 != 0) throw Error(ErrorKind::InvalidArgument, "Euler characteristic " + std::to_string(chi));
-  const int genus = (2 - chi) / 2;
-  if (genus == 0) throw Error(ErrorKind::Unsupported, "genus 0 surface: the topology stage needs genus >= 1");
-
-  int root = options.root;
-  if (root == -1) {
-    int best = -1;
-    for (int v = 0; v < nv0; ++v) {
-      int val = mesh.valence(v);
-      if (val > best) best = val, root = v;
-    }
-  } else if (root < 0 || root >= nv0) {
-    throw Error(ErrorKind::InvalidArgument, "root vertex " + std::to_string(root) + " out of range [0, " +
-                                                std::to_string(nv0) + ")", {root});
-  }
-
-  CutResult res;
-  res.root = root;
-  res.genus = genus;
-  res.stats.genus = genus;
-  res.stats.vertices_before = nv0;
-  res.stats.faces_before = mesh.num_faces();
-  RefinedSurface& rs = res.surface;
+  RefinedSurface& rs = P.rs;
   rs.mesh = mesh;
   rs.num_input_vertices = nv0;
-  rs.input_positions = positions;
-
   // ---- 1. greedy homotopy basis: shortest-path tree + dual maximum spanning tree ----
   std::vector<double> dist(nv0, INFINITY);
-  std::vector<int> parent(nv0, -1);
+  std::vector<int>& parent = P.parent;
+  parent.assign(nv0, -1);
   {
     using Item = std::pair<double, int>;
     std::priority_queue<Item, std::vector<Item>, std::greater<Item>> pq;
@@ -529,11 +498,11 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     if (static_cast<int>(bands.size()) != 2 * genus)
       internal("tree-cotree left " + std::to_string(bands.size()) + " edges, expected 2g = " + std::to_string(2 * genus));
   }
-  res.stats.seconds_basis = seconds_since(t_start);
-  const auto t_detach = Clock::now();
-
   // ---- 2. detach: band splits, extended tree, strands as normal curves ----
-  std::vector<int> leaf_a(bands.size()), leaf_b(bands.size());
+  std::vector<int>& leaf_a = P.leaf_a;
+  std::vector<int>& leaf_b = P.leaf_b;
+  leaf_a.resize(bands.size());
+  leaf_b.resize(bands.size());
   for (std::size_t i = 0; i < bands.size(); ++i) {
     auto [u, v] = bands[i];
     int a = rs.split_edge(find_he(rs.mesh, u, v), make_rational(1, 3));
@@ -541,12 +510,14 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     parent.resize(rs.mesh.num_vertices(), -1);
     parent[a] = u;
     parent[b] = v;
-    res.stats.band_splits += 2;
     leaf_a[i] = a;
     leaf_b[i] = b;
   }
   auto& M = rs.mesh;
-  std::vector<char> pruned(M.num_vertices(), 0), is_leaf(M.num_vertices(), 0);
+  std::vector<char>& pruned = P.pruned;
+  std::vector<char>& is_leaf = P.is_leaf;
+  pruned.assign(M.num_vertices(), 0);
+  is_leaf.assign(M.num_vertices(), 0);
   for (std::size_t i = 0; i < bands.size(); ++i) {
     is_leaf[leaf_a[i]] = is_leaf[leaf_b[i]] = 1;
     for (int x : {leaf_a[i], leaf_b[i]})
@@ -573,8 +544,11 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     } while (h != h0);
     return ch;
   };
-  std::vector<int> leaf_index(nv_tree, -1), max_leaf(nv_tree, -1), min_leaf(nv_tree, -1);
-  std::vector<int> leaves;  // tour order
+  std::vector<int>&leaf_index = P.leaf_index, &max_leaf = P.max_leaf, &min_leaf = P.min_leaf;
+  leaf_index.assign(nv_tree, -1);
+  max_leaf.assign(nv_tree, -1);
+  min_leaf.assign(nv_tree, -1);
+  std::vector<int>& leaves = P.leaves;  // tour order
   std::vector<int> post;    // pruned non-leaf vertices, children before parents
   {
     // Iterative DFS; each pruned vertex pushed once: O(V + E).
@@ -614,7 +588,8 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
   // minimise the number of crossings, by dynamic programming over the tree: for each x and each
   // leaf l below it the cheapest crossings in x's subtree with o(x) = l (an empty sweep counts as
   // one, the chord split below). Cost O(sum of strand lengths + E).
-  std::vector<int> owner(nv_tree, -1);
+  std::vector<int>& owner = P.owner;
+  owner.assign(nv_tree, -1);
   {
     std::vector<std::vector<long long>> best(nv_tree);   // by leaf - min_leaf
     std::vector<long long> arr_ccw(nv_tree), arr_cw(nv_tree), arr_free(nv_tree);  // best on arrival
@@ -679,7 +654,87 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     }
     for (int l : leaves)
       if (owner[l] != leaf_index[l]) internal("leaf not owned by its strand", {l});
+    for (int c : children(root, nullptr)) P.crossings += arr_free[c];
   }
+
+  return P;
+}
+
+}  // namespace
+
+std::string CutResult::word() const {
+  std::string w;
+  for (const auto& s : sides) {
+    if (!w.empty()) w += ' ';
+    w += 'L' + std::to_string(s.loop);
+    if (s.inverse) w += "'";
+  }
+  return w;
+}
+
+CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& positions,
+                                const CutOptions& options) {
+  const auto t_start = Clock::now();
+  const int nv0 = mesh.num_vertices();
+  if (static_cast<int>(positions.size()) != nv0)
+    throw Error(ErrorKind::InvalidArgument, "positions (" + std::to_string(positions.size()) +
+                                                ") do not match the mesh vertices (" + std::to_string(nv0) + ")");
+  if (nv0 == 0) throw Error(ErrorKind::Empty, "mesh has no vertices");
+  for (int v = 0; v < nv0; ++v)
+    if (mesh.vertex_halfedge(v) < 0)
+      throw Error(ErrorKind::InvalidArgument, "vertex " + std::to_string(v) + " is used by no face", {v});
+  const int chi = mesh.num_vertices() - mesh.num_edges() + mesh.num_faces();
+  if (chi > 2 || chi % 2 != 0) throw Error(ErrorKind::InvalidArgument, "Euler characteristic " + std::to_string(chi));
+  const int genus = (2 - chi) / 2;
+  if (genus == 0) throw Error(ErrorKind::Unsupported, "genus 0 surface: the topology stage needs genus >= 1");
+
+  CutResult res;
+  if (options.root < -1 || options.root >= nv0)
+    throw Error(ErrorKind::InvalidArgument, "root vertex " + std::to_string(options.root) + " out of range [0, " +
+                                                std::to_string(nv0) + ")", {options.root});
+  // Root: the given one, or among K deterministic candidates the one whose detaching crosses the
+  // fewest edges (predicted by plan_detach, without building anything). Candidates: the vertex of
+  // maximum valence (lowest id among ties), then vertices i * V / K. K = clamp(4e6 / F, 1, 24)
+  // bounds the extra cost to about four basis computations on a 1M-face mesh.
+  DetachPlan P;
+  if (options.root >= 0) {
+    P = plan_detach(mesh, positions, options.root, genus);
+  } else {
+    int first = 0, best_valence = -1;
+    for (int v = 0; v < nv0; ++v) {
+      const int val = mesh.valence(v);
+      if (val > best_valence) best_valence = val, first = v;
+    }
+    const long k = std::clamp(4000000L / std::max(1, mesh.num_faces()), 1L, 24L);
+    std::vector<int> candidates{first};
+    for (long i = 1; i < k; ++i) {
+      const int v = static_cast<int>(i * nv0 / k);
+      if (std::find(candidates.begin(), candidates.end(), v) == candidates.end()) candidates.push_back(v);
+    }
+    for (int c : candidates) {
+      DetachPlan q = plan_detach(mesh, positions, c, genus);
+      ++res.stats.roots_tried;
+      if (P.root < 0 || q.crossings < P.crossings) P = std::move(q);
+    }
+  }
+  const int root = P.root;
+
+  res.root = root;
+  res.genus = genus;
+  res.stats.genus = genus;
+  res.stats.vertices_before = nv0;
+  res.stats.faces_before = mesh.num_faces();
+  RefinedSurface& rs = res.surface;
+  rs = std::move(P.rs);
+  rs.input_positions = positions;
+
+  res.stats.band_splits = 4 * genus;
+  res.stats.predicted_crossings = P.crossings;
+  auto& M = rs.mesh;
+  const std::vector<int>&parent = P.parent, &leaves = P.leaves, &leaf_index = P.leaf_index, &owner = P.owner;
+  const std::vector<int>&leaf_a = P.leaf_a, &leaf_b = P.leaf_b;
+  res.stats.seconds_basis = seconds_since(t_start);
+  const auto t_detach = Clock::now();
 
   // The root-to-leaf paths, and which side each strand takes at each vertex it does not own.
   std::vector<std::vector<int>> paths(leaves.size());
@@ -891,7 +946,7 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     internal("constructed points out of step with the mesh");
 
   // Loops: strand to a, band a-b, strand to b backwards.
-  const int nloops = static_cast<int>(bands.size());
+  const int nloops = 2 * genus;
   res.loops.resize(nloops);
   {
     std::vector<std::vector<int>> strand_vertices(leaves.size());

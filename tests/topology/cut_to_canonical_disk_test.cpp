@@ -374,6 +374,31 @@ TEST_CASE("every root choice works on a small genus-2 mesh") {
   }
 }
 
+TEST_CASE("the default root crosses no more edges than the vertex of maximum valence") {
+  IGM_REQUIRE_DATA(dir);
+  for (const char* name : {"eight", "helmet", "elephant", "couplingdown"}) {
+    CAPTURE(name);
+    Input in = read_off(dir / "meshes" / "clean" / (std::string(name) + ".off"));
+    int top = 0;
+    for (int v = 0; v < in.mesh.num_vertices(); ++v)
+      if (in.mesh.valence(v) > in.mesh.valence(top)) top = v;
+    CutOptions o;
+    o.normal_form = false;
+    CutResult chosen = cut_to_canonical_disk(in.mesh, in.positions, o);
+    o.root = top;
+    CutResult fixed = cut_to_canonical_disk(in.mesh, in.positions, o);
+    CHECK(chosen.stats.roots_tried > 1);
+    CHECK(fixed.stats.roots_tried == 0);
+    CHECK(chosen.stats.predicted_crossings <= fixed.stats.predicted_crossings);
+    // The plan predicts the crossings exactly unless chord splits changed valences.
+    for (const CutResult* r : {&chosen, &fixed})
+      if (r->stats.chord_splits == 0) CHECK(r->stats.crossings == r->stats.predicted_crossings);
+    CHECK(verify_cut(in, chosen, false) == "");
+    MESSAGE(std::string(name) << ": crossings " << chosen.stats.crossings << " (root " << chosen.root << ") vs " << fixed.stats.crossings
+                 << " (root " << top << ")");
+  }
+}
+
 TEST_CASE("invalid use gets typed errors") {
   Input sphere = generated(0, 200);
   try {
