@@ -55,10 +55,10 @@ void run(const std::string& name, const Input& in, bool normal_form) {
     CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
     const auto& s = r.stats;
     std::printf("%-24s g=%-4d F=%-8d nf=%d  V %8d -> %8d (+%6.1f%%) | crossings %6d steiner %5d band %4d chord %5d"
-                " precond %6d | slides %3d retries %3d | %7.3f s (basis %.3f, detach %.3f, slides+cut %.3f)\n",
+                " precond %6d | slides %3d splits %5d | %7.3f s (basis %.3f, detach %.3f, slides+cut %.3f)\n",
                 name.c_str(), s.genus, s.faces_before, normal_form ? 1 : 0, s.vertices_before, s.vertices_after,
                 100.0 * (s.vertices_after - s.vertices_before) / s.vertices_before, s.crossings, s.steiner_vertices,
-                s.band_splits, s.chord_splits, s.precondition_splits, s.num_slides, s.slide_retries, s.seconds_total,
+                s.band_splits, s.chord_splits, s.precondition_splits, s.num_slides, s.slide_splits, s.seconds_total,
                 s.seconds_basis, s.seconds_detach, s.seconds_cut);
   } catch (const Error& e) {
     std::printf("%-24s nf=%d error: %s\n", name.c_str(), normal_form ? 1 : 0, e.what());

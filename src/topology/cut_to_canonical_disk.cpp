@@ -205,29 +205,6 @@ bool cyclically_equal(const Word& a, const Word& b) {
   return false;
 }
 
-// Splits every edge off the loops that joins two loop vertices (the root included), at its
-// midpoint; afterwards the vertices on no loop connect every root wedge to every other (used by the
-// handle slides). Returns the number of splits. O(n).
-int split_loop_chords(CutResult& res) {
-  auto& rs = res.surface;
-  auto& Mm = rs.mesh;
-  std::vector<char> on_loop(Mm.num_vertices(), 0);
-  std::unordered_set<std::uint64_t> loop_edges;
-  for (const auto& L : res.loops)
-    for (std::size_t j = 0; j < L.size(); ++j) {
-      on_loop[L[j]] = 1;
-      loop_edges.insert(edge_key(L[j], L[(j + 1) % L.size()]));
-    }
-  std::vector<std::pair<int, int>> todo;
-  for (int h = 0; h < Mm.num_halfedges(); ++h) {
-    if (h > Mm.twin(h)) continue;
-    const int a = Mm.origin(h), b = Mm.target(h);
-    if (on_loop[a] && on_loop[b] && !loop_edges.count(edge_key(a, b))) todo.push_back({a, b});
-  }
-  for (auto [a, b] : todo) rs.split_edge(find_he(Mm, a, b), make_rational(1, 2));
-  return static_cast<int>(todo.size());
-}
-
 // The embedding pre-conditions (embed/tutte.h, Floater 2003), made to hold by edge splits at
 // midpoints on the disk that build_cut made: (a) no interior disk edge joins two vertices of one
 // polygon side (a root copy lies on its two sides); this also excludes triangles with three
@@ -279,10 +256,11 @@ int precondition_pass(CutResult& res) {
   return static_cast<int>(todo.size());
 }
 
-// Brings the word into a1 b1 a1^-1 b1^-1 ... by the planned handle slides, each realized as a
-// shortest path between two root wedges through vertices on no loop; relabels and reorients the
-// loops and rebuilds the cut with the boundary starting at loop 0. Pre: build_cut done, no edge
-// off the loops joins two loop vertices. At most 2g slides, each O(n).
+// Brings the word into a1 b1 a1^-1 b1^-1 ... by the planned handle slides (at most 2g,
+// plan_handle_slides), each realized as a cheapest path between two root wedges through vertices on
+// no loop and midpoints of edges on no loop (split where used); relabels and reorients the loops.
+// A path that does not exist or does not trace is igm::Error(Internal). Pre: build_cut done.
+// Each slide O((V + E) log(V + E)).
 void normalize(CutResult& res, bool check_each_slide) {
   const int root = res.root;
   auto& rs = res.surface;
@@ -297,102 +275,122 @@ void normalize(CutResult& res, bool check_each_slide) {
       loop_edges.insert(edge_key(L[j], L[(j + 1) % L.size()]));
     }
   auto first_vertex = [&](Letter l) { const auto& L = res.loops[l.loop]; return l.inverse ? L.back() : L[1]; };
+  // Search graph of a slide: node v < V is a vertex on no loop, node V + e the midpoint of the
+  // edge of canonical half-edge e (e < twin(e)) that is on no loop, to be split if used. Two nodes
+  // are adjacent if they lie in one face (a vertex and an edge of one face, two edges of one face,
+  // a vertex and an edge at it, two vertices joined by an edge). Midpoints cost more than existing
+  // vertices, so the path uses existing vertices wherever they connect and splits only the edges
+  // it crosses. Arrays are reused across slides.
+  std::vector<int> cost, from;
+  std::vector<char> is_dst;
+  constexpr int kVertexCost = 2, kMidpointCost = 3;
   for (const Slide& s : plan) {
     auto& M = rs.mesh;
-    // The vertices on no loop next to the root inside the wedge that starts at corner c.
-    auto wedge_vertices = [&](int corner) {
+    const int nv = M.num_vertices();
+    on_loop.resize(nv, 0);
+    auto canon = [&](int h) { return std::min(h, M.twin(h)); };
+    auto loop_edge = [&](int h) { return loop_edges.count(edge_key(M.origin(h), M.target(h))) > 0; };
+    // The nodes next to the root inside the wedge that starts at corner c: free spoke ends, spoke
+    // midpoints and the midpoints of the edges opposite the root. O(valence(root)).
+    auto wedge_nodes = [&](int corner) {
       std::vector<int> out;
       const int h0 = find_he(M, root, first_vertex(cur[corner]));
-      for (int h = M.next_around_origin(h0); h != h0; h = M.next_around_origin(h)) {  // <= valence
-        const int w = M.target(h);
-        if (loop_edges.count(edge_key(root, w))) break;
-        if (!on_loop[w]) out.push_back(w);
-      }
+      int h = h0;
+      do {  // <= valence(root) steps
+        const int opp = TriMesh::next(h);
+        if (!loop_edge(opp)) out.push_back(nv + canon(opp));
+        h = M.next_around_origin(h);
+        if (loop_edge(h)) break;
+        if (!on_loop[M.target(h)]) out.push_back(M.target(h));
+        out.push_back(nv + canon(h));
+      } while (h != h0);
       return out;
     };
-    // Cheapest path between the two wedges through vertices on no loop; a vertex next to a loop
-    // vertex other than the root costs more (it would need a split later). Dijkstra with small
-    // integer costs: O(E log E). If the free vertices do not connect the wedges, the edges joining
-    // loop vertices are split (which connects them) and the search is repeated once.
-    // A wedge without a free vertex gets one: split its first spoke, or the edge opposite the
-    // root in its only face. O(valence(root)).
-    auto open_wedge = [&](int corner) {
-      if (!wedge_vertices(corner).empty()) return;
-      const int h0 = find_he(M, root, first_vertex(cur[corner]));
-      const int g = M.next_around_origin(h0);
-      if (!loop_edges.count(edge_key(root, M.target(g)))) {
-        rs.split_edge(g, make_rational(1, 2));
-      } else {
-        rs.split_edge(TriMesh::next(h0), make_rational(1, 2));  // edge opposite the root in face(h0)
-      }
-      on_loop.resize(M.num_vertices(), 0);
-      ++res.stats.precondition_splits;
-      if (wedge_vertices(corner).empty()) internal("could not open a root wedge", {root});
-    };
-    open_wedge(s.from_corner);
-    open_wedge(s.to_corner);
+    const std::vector<int> src = wedge_nodes(s.from_corner), dst = wedge_nodes(s.to_corner);
+    const int nn = nv + M.num_halfedges();
+    cost.assign(nn, INT32_MAX);
+    from.assign(nn, -2);
+    is_dst.assign(nn, 0);
+    for (int v : dst) is_dst[v] = 1;
+    using Item = std::pair<int, int>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> pq;
+    auto node_cost = [&](int n) { return n < nv ? kVertexCost : kMidpointCost; };
+    for (int n : src) {
+      if (cost[n] <= node_cost(n)) continue;
+      cost[n] = node_cost(n);
+      from[n] = -1;
+      pq.push({cost[n], n});
+    }
     int hit = -1;
-    std::vector<int> from;
-    for (int attempt = 0; attempt < 2 && hit < 0; ++attempt) {
-      if (attempt == 1) {
-        ++res.stats.slide_retries;
-        res.stats.precondition_splits += split_loop_chords(res);
-        on_loop.assign(M.num_vertices(), 0);
-        for (const auto& L : res.loops)
-          for (int v : L) on_loop[v] = 1;
+    std::vector<int> nbrs;
+    // Dijkstra: each node settles once; a vertex node has 3 * valence neighbours, an edge node at
+    // most 6: O((V + E) log(V + E)) per slide.
+    while (!pq.empty()) {
+      auto [c, n] = pq.top();
+      pq.pop();
+      if (c > cost[n]) continue;
+      if (is_dst[n]) {
+        hit = n;
+        break;
       }
-      const std::vector<int> src = wedge_vertices(s.from_corner), dst = wedge_vertices(s.to_corner);
-      if (src.empty() || dst.empty()) internal("empty root wedge");
-      from.assign(M.num_vertices(), -2);
-      std::vector<int> cost(M.num_vertices(), INT32_MAX);
-      std::vector<char> is_dst(M.num_vertices(), 0);
-      for (int v : dst) is_dst[v] = 1;
-      auto vertex_cost = [&](int v) {
-        const int h0 = M.vertex_halfedge(v);
+      nbrs.clear();
+      if (n < nv) {
+        const int h0 = M.vertex_halfedge(n);
         int h = h0;
         do {
           const int w = M.target(h);
-          if (w != root && on_loop[w]) return 9;
+          if (!on_loop[w]) nbrs.push_back(w);
+          if (!loop_edge(h)) nbrs.push_back(nv + canon(h));
+          const int opp = TriMesh::next(h);
+          if (!loop_edge(opp)) nbrs.push_back(nv + canon(opp));
           h = M.next_around_origin(h);
         } while (h != h0);
-        return 1;
-      };
-      using Item = std::pair<int, int>;
-      std::priority_queue<Item, std::vector<Item>, std::greater<Item>> pq;
-      for (int v : src) {
-        from[v] = -1;
-        cost[v] = vertex_cost(v);
-        pq.push({cost[v], v});
-      }
-      while (!pq.empty()) {  // each vertex settles once, each edge relaxes once
-        auto [c, v] = pq.top();
-        pq.pop();
-        if (c > cost[v]) continue;
-        if (is_dst[v]) {
-          hit = v;
-          break;
+      } else {
+        const int e = n - nv;
+        for (int h : {e, M.twin(e)}) {
+          const int b = TriMesh::next(h), c2 = TriMesh::prev(h);
+          for (int g : {b, c2})
+            if (!loop_edge(g)) nbrs.push_back(nv + canon(g));
+          if (!on_loop[M.origin(h)]) nbrs.push_back(M.origin(h));
+          if (!on_loop[M.origin(c2)]) nbrs.push_back(M.origin(c2));
         }
-        const int h0 = M.vertex_halfedge(v);
-        int h = h0;
-        do {
-          const int w = M.target(h);
-          if (!on_loop[w]) {
-            const int nc = c + vertex_cost(w);
-            if (nc < cost[w]) {
-              cost[w] = nc;
-              from[w] = v;
-              pq.push({nc, w});
-            }
-          }
-          h = M.next_around_origin(h);
-        } while (h != h0);
+      }
+      for (int w : nbrs) {
+        if (w == root) continue;
+        const int nc = c + node_cost(w);
+        if (nc < cost[w]) {
+          cost[w] = nc;
+          from[w] = n;
+          pq.push({nc, w});
+        }
       }
     }
-    if (hit < 0) internal("handle slide: no path between the root wedges of corners " + std::to_string(s.from_corner) +
-                          " and " + std::to_string(s.to_corner));
+    if (hit < 0)
+      internal("handle slide: no path between the root wedges of corners " + std::to_string(s.from_corner) + " and " +
+               std::to_string(s.to_corner));
+    std::vector<int> nodes;
+    for (int n = hit; n >= 0; n = from[n]) nodes.push_back(n);
+    std::reverse(nodes.begin(), nodes.end());
+    // Realize: split the path's edges in path order (an edge is found again by its end points,
+    // since splits renumber the half-edges of the faces they cut), then check every step is an edge.
+    std::vector<std::pair<int, int>> ends;
+    for (int n : nodes)
+      ends.push_back(n < nv ? std::pair<int, int>{n, -1} : std::pair<int, int>{M.origin(n - nv), M.target(n - nv)});
     std::vector<int> path;
-    for (int v = hit; v >= 0; v = from[v]) path.push_back(v);
-    std::reverse(path.begin(), path.end());
+    for (auto [a2, b2] : ends) {
+      if (b2 < 0) {
+        path.push_back(a2);
+        continue;
+      }
+      path.push_back(rs.split_edge(find_he(M, a2, b2), make_rational(1, 2)));
+      ++res.stats.slide_splits;
+    }
+    on_loop.resize(M.num_vertices(), 0);
+    for (std::size_t j = 0; j <= path.size(); ++j) {
+      const int a2 = j == 0 ? root : path[j - 1], b2 = j == path.size() ? root : path[j];
+      if (M.find_halfedge(a2, b2) < 0)
+        internal("handle slide: the path does not trace (step " + std::to_string(j) + ")", {a2, b2});
+    }
     // Replace loop s.loop by root, path (from corner i to corner j).
     auto& old = res.loops[s.loop];
     for (std::size_t j = 0; j < old.size(); ++j) loop_edges.erase(edge_key(old[j], old[(j + 1) % old.size()]));

@@ -61,7 +61,7 @@ struct CutStats {
   long long predicted_crossings = 0;  // the detaching plan's count for the chosen root (step 2)
   int roots_tried = 0;          // root candidates whose detaching was planned (root = -1)
   int num_slides = 0;           // handle slides performed (normal form)
-  int slide_retries = 0;        // slides that needed a global split pass before a path existed
+  int slide_splits = 0;         // edges split where the slides' paths cross them (normal form)
   double seconds_basis = 0, seconds_detach = 0, seconds_cut = 0, seconds_total = 0;
 };
 
