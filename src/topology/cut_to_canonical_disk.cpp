@@ -261,9 +261,11 @@ int precondition_pass(CutResult& res) {
 // no loop and midpoints of edges on no loop (split where used); relabels and reorients the loops.
 // A path that does not exist or does not trace is igm::Error(Internal). Pre: build_cut done.
 // Each slide O((V + E) log(V + E)).
-void normalize(CutResult& res, bool check_each_slide) {
+void normalize(CutResult& res, bool check_each_slide, double max_growth) {
   const int root = res.root;
   auto& rs = res.surface;
+  const int nv0 = rs.mesh.num_vertices();
+  const long split_budget = static_cast<long>(max_growth * nv0);
   Word cur = word_of(res);
   Word planned_final;
   const std::vector<Slide> plan = plan_handle_slides(cur, &planned_final);
@@ -371,6 +373,15 @@ void normalize(CutResult& res, bool check_each_slide) {
     std::vector<int> nodes;
     for (int n = hit; n >= 0; n = from[n]) nodes.push_back(n);
     std::reverse(nodes.begin(), nodes.end());
+    long mids = 0;
+    for (int n : nodes) mids += n >= nv ? 1 : 0;
+    if (res.stats.slide_splits + mids > split_budget)
+      throw Error(ErrorKind::Unsupported,
+                  "normal form: handle slide " + std::to_string(res.stats.num_slides + 1) + " of " +
+                      std::to_string(plan.size()) + " would bring the slides' edge splits to " +
+                      std::to_string(res.stats.slide_splits + mids) + ", over the bound of " +
+                      std::to_string(split_budget) + " (CutOptions::max_slide_growth x " + std::to_string(nv0) +
+                      " vertices); run without the normal form");
     // Realize: split the path's edges in path order (an edge is found again by its end points,
     // since splits renumber the half-edges of the faces they cut), then check every step is an edge.
     std::vector<std::pair<int, int>> ends;
@@ -965,7 +976,7 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
   // ---- 4. normal form by handle slides, then the cut ----
   build_cut(res, -1);
   if (options.normal_form) {
-    normalize(res, options.check_each_slide);
+    normalize(res, options.check_each_slide, options.max_slide_growth);
     build_cut(res, -1);
   }
   res.stats.precondition_splits += precondition_pass(res);

@@ -399,6 +399,23 @@ TEST_CASE("the default root crosses no more edges than the vertex of maximum val
   }
 }
 
+TEST_CASE("handle slides beyond the growth bound are a typed error, not a blow-up") {
+  Input in = generated(5, 1500, 6);
+  CutOptions o;
+  o.max_slide_growth = 0.001;  // 1 split allowed on ~1000 vertices: the first long path exceeds it
+  try {
+    cut_to_canonical_disk(in.mesh, in.positions, o);
+    FAIL("slides over the bound accepted");
+  } catch (const Error& e) {
+    CHECK(e.kind() == ErrorKind::Unsupported);
+    CHECK(std::string(e.what()).find("max_slide_growth") != std::string::npos);
+  }
+  o.max_slide_growth = 4.0;
+  CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
+  CHECK(r.stats.slide_splits <= 4.0 * r.stats.vertices_after);
+  CHECK(verify_cut(in, r) == "");
+}
+
 TEST_CASE("invalid use gets typed errors") {
   Input sphere = generated(0, 200);
   try {

@@ -45,6 +45,10 @@ struct CutOptions {
   /// Bring the word into a1 b1 a1^-1 b1^-1 ... by handle slides (<= 2g). Off: the word is whatever
   /// the detached greedy loops give (still 4g sides, paired), for tests and measurements.
   bool normal_form = true;
+  /// Bound on the slides' edge splits, as a multiple of the vertex count before the slides;
+  /// exceeding it is igm::Error(Unsupported) (the slides' paths run between earlier loops, and on
+  /// high genus their length compounds: cheese g133 would grow past 10M vertices).
+  double max_slide_growth = 4.0;
   /// Debug: rebuild the cut after every slide and compare its word with the planned one (O(n) each).
   bool check_each_slide = false;
 };
