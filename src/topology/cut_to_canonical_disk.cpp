@@ -443,6 +443,7 @@ struct DetachPlan {
   std::vector<int> parent, leaf_a, leaf_b, leaves, leaf_index, min_leaf, max_leaf, owner;
   std::vector<char> pruned, is_leaf;
   long long crossings = 0;
+  int band_splits = 0;
 };
 
 DetachPlan plan_detach(const TriMesh& mesh, const std::vector<Vec3d>& positions, int root, int genus) {
@@ -512,15 +513,36 @@ DetachPlan plan_detach(const TriMesh& mesh, const std::vector<Vec3d>& positions,
   std::vector<int>& leaf_b = P.leaf_b;
   leaf_a.resize(bands.size());
   leaf_b.resize(bands.size());
-  for (std::size_t i = 0; i < bands.size(); ++i) {
-    auto [u, v] = bands[i];
-    int a = rs.split_edge(find_he(rs.mesh, u, v), make_rational(1, 3));
-    int b = rs.split_edge(find_he(rs.mesh, a, v), make_rational(1, 2));
-    parent.resize(rs.mesh.num_vertices(), -1);
-    parent[a] = u;
-    parent[b] = v;
-    leaf_a[i] = a;
-    leaf_b[i] = b;
+  // A band end that is a leaf of the tree spanned by all band ends (not the root, the end of no
+  // other band, no band end below it) is the strand's end itself; the other ends get a vertex on
+  // the band edge hanging below them (at 1/3 and 2/3 of the edge, or at 1/2 if one end is a leaf).
+  {
+    std::vector<int> ends(nv0, 0);
+    std::vector<char> has_below(nv0, 0);
+    for (auto [u, v] : bands) ++ends[u], ++ends[v];
+    for (auto [u, v] : bands)
+      for (int x : {u, v})
+        // Climbs at most once per vertex (stops at marked ones): O(V) in total.
+        for (int y = parent[x]; y >= 0 && !has_below[y]; y = parent[y]) has_below[y] = 1;
+    auto own_end = [&](int x) { return x != root && ends[x] == 1 && !has_below[x]; };
+    for (std::size_t i = 0; i < bands.size(); ++i) {
+      auto [u, v] = bands[i];
+      const bool keep_u = own_end(u), keep_v = own_end(v);
+      int a = u, b = v;
+      if (!keep_u && !keep_v) {
+        a = rs.split_edge(find_he(rs.mesh, u, v), make_rational(1, 3));
+        b = rs.split_edge(find_he(rs.mesh, a, v), make_rational(1, 2));
+      } else if (!keep_u) {
+        a = rs.split_edge(find_he(rs.mesh, u, v), make_rational(1, 2));
+      } else if (!keep_v) {
+        b = rs.split_edge(find_he(rs.mesh, u, v), make_rational(1, 2));
+      }
+      parent.resize(rs.mesh.num_vertices(), -1);
+      if (a != u) parent[a] = u, ++P.band_splits;
+      if (b != v) parent[b] = v, ++P.band_splits;
+      leaf_a[i] = a;
+      leaf_b[i] = b;
+    }
   }
   auto& M = rs.mesh;
   std::vector<char>& pruned = P.pruned;
@@ -737,7 +759,7 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
   rs = std::move(P.rs);
   rs.input_positions = positions;
 
-  res.stats.band_splits = 4 * genus;
+  res.stats.band_splits = P.band_splits;
   res.stats.predicted_crossings = P.crossings;
   auto& M = rs.mesh;
   const std::vector<int>&parent = P.parent, &leaves = P.leaves, &leaf_index = P.leaf_index, &owner = P.owner;
