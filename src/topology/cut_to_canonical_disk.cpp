@@ -206,12 +206,13 @@ bool cyclically_equal(const Word& a, const Word& b) {
 }
 
 // The embedding pre-conditions (embed/tutte.h, Floater 2003), made to hold by edge splits at
-// midpoints on the disk that build_cut made: (a) no interior disk edge joins two vertices of one
-// polygon side (a root copy lies on its two sides); this also excludes triangles with three
-// vertices on one side, since such a triangle has an interior edge; (b) every root wedge holds an
-// interior vertex. Only the edges that break (a) are split, then one edge per root wedge that
-// breaks (b). A split vertex is interior to the disk, so no split creates a new violation.
-// Pre: build_cut(res) done. Post: the cut must be rebuilt. Returns the number of splits. O(n).
+// midpoints on the disk that build_cut made: no interior disk edge joins two vertices of one
+// polygon side (a root copy lies on its two sides). This also excludes triangles with three
+// vertices on one side (such a triangle has an interior edge). Triangles with boundary vertices on
+// several sides, e.g. a root wedge that is one triangle, are fixed by the strictly convex boundary
+// and positive, so they need no split. A split vertex is interior to the disk, so no split creates
+// a new violation: one pass. Pre: build_cut(res) done. Post: the cut must be rebuilt. Returns the
+// number of splits. O(n).
 int precondition_pass(CutResult& res) {
   auto& rs = res.surface;
   auto& Mm = rs.mesh;
@@ -231,27 +232,9 @@ int precondition_pass(CutResult& res) {
     }
   auto disk_corner = [&](int h) { return res.disk_triangles[TriMesh::face(h)][h % 3]; };
   std::vector<std::pair<int, int>> todo;
-  std::vector<char> root_ok(nd, 0);  // root copy with an interior neighbour (after the splits)
-  for (int h = 0; h < Mm.num_halfedges(); ++h) {
-    if (is_cut[h]) continue;
-    const int p = disk_corner(h), q = disk_corner(TriMesh::next(h));
-    const bool split = share_side(p, q);
-    if (split && h < Mm.twin(h)) todo.push_back({Mm.origin(h), Mm.target(h)});
-    if (Mm.origin(h) == res.root && (split || side_a[q] < 0)) root_ok[p] = 1;
-  }
-  // (b): a root wedge without interior vertex: split its first spoke if that is interior, else
-  // (the wedge is one triangle) the edge opposite the root. One split per root copy at most.
-  for (int h = 0; h < Mm.num_halfedges(); ++h) {
-    if (!is_cut[h] || Mm.origin(h) != res.root) continue;
-    const int c = disk_corner(h);
-    if (root_ok[c]) continue;
-    root_ok[c] = 1;
-    const int g = Mm.next_around_origin(h);
-    const int e = is_cut[g] ? TriMesh::next(h) : g;
-    todo.push_back({Mm.origin(e), Mm.target(e)});
-  }
-  std::sort(todo.begin(), todo.end(), [](auto x, auto y) { return edge_key(x.first, x.second) < edge_key(y.first, y.second); });
-  todo.erase(std::unique(todo.begin(), todo.end(), [](auto x, auto y) { return edge_key(x.first, x.second) == edge_key(y.first, y.second); }), todo.end());
+  for (int h = 0; h < Mm.num_halfedges(); ++h)
+    if (!is_cut[h] && h < Mm.twin(h) && share_side(disk_corner(h), disk_corner(TriMesh::next(h))))
+      todo.push_back({Mm.origin(h), Mm.target(h)});
   for (auto [a, b] : todo) rs.split_edge(find_he(Mm, a, b), make_rational(1, 2));
   return static_cast<int>(todo.size());
 }
@@ -725,8 +708,8 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
                                                 std::to_string(nv0) + ")", {options.root});
   // Root: the given one, or among K deterministic candidates the one whose detaching crosses the
   // fewest edges (predicted by plan_detach, without building anything). Candidates: the vertex of
-  // maximum valence (lowest id among ties), then vertices i * V / K. K = clamp(4e6 / F, 1, 24)
-  // bounds the extra cost to about four basis computations on a 1M-face mesh.
+  // maximum valence (lowest id among ties), then vertices i * V / K. K = clamp(2e6 / F, 1, 24)
+  // bounds the extra cost to about one basis computation on a 1M-face mesh.
   DetachPlan P;
   if (options.root >= 0) {
     P = plan_detach(mesh, positions, options.root, genus);
@@ -736,7 +719,7 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
       const int val = mesh.valence(v);
       if (val > best_valence) best_valence = val, first = v;
     }
-    const long k = std::clamp(4000000L / std::max(1, mesh.num_faces()), 1L, 24L);
+    const long k = std::clamp(2000000L / std::max(1, mesh.num_faces()), 1L, 24L);
     std::vector<int> candidates{first};
     for (long i = 1; i < k; ++i) {
       const int v = static_cast<int>(i * nv0 / k);

@@ -252,21 +252,14 @@ std::string verify_cut(const Input& in, const CutResult& r, bool normal_form = t
     for (int s : side_of[a])
       if (side_of[b].count(s)) return fail("interior edge joins two vertices of one side");
   }
-  std::map<int, bool> root_has_interior;
   // The embedding's pre-conditions (embed/tutte.h, Floater 2003): besides the edge rule above, no
   // triangle with its three vertices on one polygon side (a triangle with boundary vertices on
-  // several sides is fixed by the convex boundary and positive, so it is allowed).
-  for (auto& t : D) {
+  // several sides, e.g. a root wedge that is one triangle, is fixed by the strictly convex
+  // boundary and positive, so it is allowed).
+  for (auto& t : D)
     if (side_of.count(t[0]) && side_of.count(t[1]) && side_of.count(t[2]))
       for (int s : side_of[t[0]])
         if (side_of[t[1]].count(s) && side_of[t[2]].count(s)) return fail("triangle with three vertices on one side");
-    for (int i = 0; i < 3; ++i)
-      if (r.disk_to_surface[t[i]] == r.root)
-        for (int j = 1; j < 3; ++j)
-          if (!side_of.count(t[(i + j) % 3])) root_has_interior[t[i]] = true;
-  }
-  for (int c : corners)
-    if (!root_has_interior[r.boundary[c]]) return fail("root wedge without interior vertex");
   // independence: without any one loop the cut is connected and not a disk
   std::vector<Tri> tris;
   for (int f = 0; f < M.num_faces(); ++f) tris.push_back(M.face_vertices(f));
