@@ -416,7 +416,8 @@ void normalize(CutResult& res, bool check_each_slide, double max_growth) {
     }
   res.loops = std::move(loops);
 }
-// The greedy homotopy basis at `root` and the plan of its detaching (steps 1-2 up to the owners):
+// The greedy homotopy basis at `root` (metric: 3D edge lengths, or hop counts if `hops`) and the
+// plan of its detaching (steps 1-2 up to the owners):
 // the surface with the band splits, the pruned tree, the tour and the owners. `crossings` is the
 // number of edge crossings the strands will make (the dynamic programme's optimum, chord splits
 // not counted). Pre: mesh valid, connected, of genus `genus` >= 1. Cost O(n log n).
@@ -429,7 +430,8 @@ struct DetachPlan {
   int band_splits = 0;
 };
 
-DetachPlan plan_detach(const TriMesh& mesh, const std::vector<Vec3d>& positions, int root, int genus) {
+DetachPlan plan_detach(const TriMesh& mesh, const std::vector<Vec3d>& positions, int root, int genus, bool hops) {
+  auto edge_length = [&](int a, int b) { return hops ? 1.0 : length(positions[a], positions[b]); };
   DetachPlan P;
   P.root = root;
   const int nv0 = mesh.num_vertices();
@@ -453,7 +455,7 @@ DetachPlan plan_detach(const TriMesh& mesh, const std::vector<Vec3d>& positions,
       int h0 = mesh.vertex_halfedge(v), h = h0;
       do {
         int w = mesh.target(h);
-        double nd = d + length(positions[v], positions[w]);
+        double nd = d + edge_length(v, w);
         if (nd < dist[w]) {
           dist[w] = nd;
           parent[w] = v;
@@ -478,7 +480,7 @@ DetachPlan plan_detach(const TriMesh& mesh, const std::vector<Vec3d>& positions,
     for (int h = 0; h < nh; ++h) {
       if (h > mesh.twin(h) || in_tree[h]) continue;
       int a = mesh.origin(h), b = mesh.target(h);
-      cand.push_back({dist[a] + dist[b] + length(positions[a], positions[b]), h});
+      cand.push_back({dist[a] + dist[b] + edge_length(a, b), h});
     }
     std::sort(cand.begin(), cand.end(), [](const auto& x, const auto& y) {
       return x.first != y.first ? x.first > y.first : x.second < y.second;
@@ -706,29 +708,32 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
   if (options.root < -1 || options.root >= nv0)
     throw Error(ErrorKind::InvalidArgument, "root vertex " + std::to_string(options.root) + " out of range [0, " +
                                                 std::to_string(nv0) + ")", {options.root});
-  // Root: the given one, or among K deterministic candidates the one whose detaching crosses the
-  // fewest edges (predicted by plan_detach, without building anything). Candidates: the vertex of
-  // maximum valence (lowest id among ties), then vertices i * V / K. K = clamp(2e6 / F, 1, 24)
-  // bounds the extra cost to about one basis computation on a 1M-face mesh.
+  // Root and metric: the given root with 3D edge lengths, or among K deterministic root candidates,
+  // each with 3D lengths and with hop counts as the basis metric, the pair whose detaching crosses
+  // the fewest edges (predicted by plan_detach, without building anything; the first wins ties).
+  // Candidates: the vertex of maximum valence (lowest id among ties), then vertices i * V / K.
+  // K = clamp(1e6 / F, 1, 24) bounds the extra cost to one basis computation on a 1M-face mesh.
   DetachPlan P;
   if (options.root >= 0) {
-    P = plan_detach(mesh, positions, options.root, genus);
+    P = plan_detach(mesh, positions, options.root, genus, false);
   } else {
     int first = 0, best_valence = -1;
     for (int v = 0; v < nv0; ++v) {
       const int val = mesh.valence(v);
       if (val > best_valence) best_valence = val, first = v;
     }
-    const long k = std::clamp(2000000L / std::max(1, mesh.num_faces()), 1L, 24L);
+    const long k = std::clamp(1000000L / std::max(1, mesh.num_faces()), 1L, 24L);
     std::vector<int> candidates{first};
     for (long i = 1; i < k; ++i) {
       const int v = static_cast<int>(i * nv0 / k);
       if (std::find(candidates.begin(), candidates.end(), v) == candidates.end()) candidates.push_back(v);
     }
     for (int c : candidates) {
-      DetachPlan q = plan_detach(mesh, positions, c, genus);
-      ++res.stats.roots_tried;
-      if (P.root < 0 || q.crossings < P.crossings) P = std::move(q);
+      for (bool hops : {false, true}) {
+        DetachPlan q = plan_detach(mesh, positions, c, genus, hops);
+        ++res.stats.roots_tried;
+        if (P.root < 0 || q.crossings < P.crossings) P = std::move(q);
+      }
     }
   }
   const int root = P.root;

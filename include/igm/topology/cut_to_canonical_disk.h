@@ -39,8 +39,9 @@
 namespace igm {
 
 struct CutOptions {
-  /// Root vertex; -1 picks, among a few deterministic candidates (the vertex of maximum valence,
-  /// then evenly spaced ids), the one whose detaching crosses the fewest edges.
+  /// Root vertex (the basis then uses 3D edge lengths); -1 picks, among a few deterministic
+  /// candidates (the vertex of maximum valence, then evenly spaced ids) and two metrics (3D
+  /// lengths, hop counts), the pair whose detaching crosses the fewest edges.
   int root = -1;
   /// Bring the word into a1 b1 a1^-1 b1^-1 ... by handle slides (<= 2g). Off: the word is whatever
   /// the detached greedy loops give (still 4g sides, paired), for tests and measurements.
@@ -63,7 +64,7 @@ struct CutStats {
   int chord_splits = 0;         // edges split so that no strand runs along an edge (step 2)
   int precondition_splits = 0;  // edge splits of step 3
   long long predicted_crossings = 0;  // the detaching plan's count for the chosen root (step 2)
-  int roots_tried = 0;          // root candidates whose detaching was planned (root = -1)
+  int roots_tried = 0;          // (root, metric) candidates whose detaching was planned (root = -1)
   int num_slides = 0;           // handle slides performed (normal form)
   int slide_splits = 0;         // edges split where the slides' paths cross them (normal form)
   double seconds_basis = 0, seconds_detach = 0, seconds_cut = 0, seconds_total = 0;
