@@ -1,7 +1,9 @@
 // Topology stage measurements: time and mesh growth of cut_to_canonical_disk.
 // Usage: igm_bench_topology [shared_dir] [--normal-form-all]
-// By default the normal form (handle slides) is measured for genus <= 10 only; higher genus is
-// measured without it (the slides currently refine too much there, see the topology report).
+// Growth is broken down by source: crossings, Steiner, band, chord and pre-condition splits, and
+// the handle slides' splits. By default the normal form (handle slides) is measured for genus <= 10
+// only (cheese exceeds the slide bound, the 1M-face g20 takes ~30 s); --normal-form-all measures it
+// everywhere.
 #include <chrono>
 #include <cstdio>
 #include <cstring>

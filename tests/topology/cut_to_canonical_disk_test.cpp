@@ -314,8 +314,8 @@ TEST_CASE("surface points combine exactly and stay in one face") {
 }
 
 TEST_CASE("generated meshes of genus 1 to 200 are cut into verified disks") {
-  // Normal form is verified up to genus 10; above, the slides refine too much for a unit test
-  // (see the report), so genus 20..200 check everything except the normal form.
+  // Normal form is verified up to genus 10; above, the slides exceed CutOptions::max_slide_growth
+  // (a typed error, tested below), so genus 20..200 check everything except the normal form.
   struct Case {
     int genus;
     long faces;
@@ -435,7 +435,7 @@ TEST_CASE("invalid use gets typed errors") {
 
 TEST_CASE("shared clean meshes of genus >= 1 are cut into verified disks") {
   IGM_REQUIRE_DATA(dir);
-  // cheese (g133) is checked without the normal form: its 266 slides refine too much (see report).
+  // cheese (g133) is checked without the normal form: its 266 slides exceed the slide bound.
   struct Case {
     const char* name;
     int genus;

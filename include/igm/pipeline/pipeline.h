@@ -31,8 +31,10 @@ struct PipelineOptions {
   /// Bring the gluing word to the normal form a1 b1 a1^-1 b1^-1 ... by handle slides. Validity
   /// does not need it: every polygon side is a whole edge of one layout quad mapped onto a
   /// unit-square edge, so any pairing of sides glues by R^k x + t with integer t (the certifier
-  /// checks it). Off by default: the slides' paths grow the mesh a lot at high genus
-  /// (couplingdown g9: 1.8k -> 20k vertices; cheese g133 does not finish in 2 minutes).
+  /// checks it). Off by default: the slides' paths run between earlier loops and grow the mesh
+  /// (couplingdown g9: 2.2k -> 5.6k refined vertices and 36x output triangles instead of 4x; a
+  /// 1M-face g20 mesh 0.51M -> 1.05M vertices in ~30 s; cheese g133 exceeds the topology stage's
+  /// slide bound, a typed error).
   bool normal_form = false;
   TutteOptions tutte;
   std::size_t max_witnesses = 20;
