@@ -428,6 +428,9 @@ struct DetachPlan {
   std::vector<char> pruned, is_leaf;
   long long crossings = 0;
   int band_splits = 0;
+  Word word;
+  long long slides = 0;  // handle slides planned on `word` (filled by the caller when needed)
+  long long strand_steps = 0;  // total length of the 4g tree paths
 };
 
 DetachPlan plan_detach(const TriMesh& mesh, const std::vector<Vec3d>& positions, int root, int genus, bool hops) {
@@ -672,6 +675,18 @@ DetachPlan plan_detach(const TriMesh& mesh, const std::vector<Vec3d>& positions,
       if (owner[l] != leaf_index[l]) internal("leaf not owned by its strand", {l});
     for (int c : children(root, nullptr)) P.crossings += arr_free[c];
   }
+  // The gluing word the detached loops will give, up to rotation and reversal: the strand ends in
+  // tour order (the order they leave the root in), forward for a, inverse for b.
+  {
+    std::vector<Letter> by_leaf(leaves.size());
+    for (int i = 0; i < static_cast<int>(leaf_a.size()); ++i) {
+      by_leaf[leaf_index[leaf_a[i]]] = {i, false};
+      by_leaf[leaf_index[leaf_b[i]]] = {i, true};
+    }
+    P.word = std::move(by_leaf);
+    for (int l : leaves)
+      for (int x = l; x != root; x = parent[x]) ++P.strand_steps;  // <= depth(l) steps each
+  }
 
   return P;
 }
@@ -710,7 +725,9 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
                                                 std::to_string(nv0) + ")", {options.root});
   // Root and metric: the given root with 3D edge lengths, or among K deterministic root candidates,
   // each with 3D lengths and with hop counts as the basis metric, the pair whose detaching crosses
-  // the fewest edges (predicted by plan_detach, without building anything; the first wins ties).
+  // the fewest edges (predicted by plan_detach, without building anything; the first wins ties);
+  // with the normal form, crossings plus the planned slides, each weighted by two mean strand
+  // lengths.
   // Candidates: the vertex of maximum valence (lowest id among ties), then vertices i * V / K.
   // K = clamp(1e6 / F, 1, 24) bounds the extra cost to one basis computation on a 1M-face mesh.
   DetachPlan P;
@@ -732,7 +749,11 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
       for (bool hops : {false, true}) {
         DetachPlan q = plan_detach(mesh, positions, c, genus, hops);
         ++res.stats.roots_tried;
-        if (P.root < 0 || q.crossings < P.crossings) P = std::move(q);
+        // With the normal form each planned slide is charged like two average strands of
+        // crossings (a slide path runs about as far as a loop, often beside the strands).
+        if (options.normal_form) q.slides = static_cast<long long>(plan_handle_slides(q.word).size());
+        auto score = [&](const DetachPlan& d) { return d.crossings + d.slides * d.strand_steps / (2 * genus); };
+        if (P.root < 0 || score(q) < score(P)) P = std::move(q);
       }
     }
   }

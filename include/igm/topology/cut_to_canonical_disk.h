@@ -7,7 +7,8 @@
 //     dual graph on the edges not in T weighted by dist(u)+|uv|+dist(v); the 2g leftover edges
 //     ("bands") close the loops root~u, uv, v~root. O(n log n). With CutOptions::root = -1 the
 //     root and the metric are chosen among a few deterministic candidates by the crossings step 2
-//     would make (planned, not built): on the shared meshes this lowers the growth 2-10x.
+//     would make (planned, not built; with the normal form also by the number of slides step 3
+//     would need, read off the planned word): on the shared meshes this lowers the growth 2-10x.
 //  2. detaching: a band end that is a leaf of the tree spanned by all band ends ends its strand
 //     itself; the others get a vertex on the band edge hanging below them in T (u-a-b-v at 1/3 and
 //     2/3, or u-b-v at 1/2). The 4g paths root~a, root~b ("strands") are drawn pairwise disjoint
@@ -48,7 +49,8 @@ namespace igm {
 struct CutOptions {
   /// Root vertex (the basis then uses 3D edge lengths); -1 picks, among a few deterministic
   /// candidates (the vertex of maximum valence, then evenly spaced ids) and two metrics (3D
-  /// lengths, hop counts), the pair whose detaching crosses the fewest edges.
+  /// lengths, hop counts), the pair whose detaching crosses the fewest edges (with normal_form:
+  /// crossings plus the planned slides, weighted).
   int root = -1;
   /// Bring the word into a1 b1 a1^-1 b1^-1 ... by handle slides (<= 2g; step 3). Off: the word is
   /// whatever the detached greedy loops give (still 4g sides, paired). The pipeline runs with it off
