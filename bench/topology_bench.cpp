@@ -2,7 +2,7 @@
 // Usage: igm_bench_topology [shared_dir] [--normal-form-all]
 // Growth is broken down by source: crossings, Steiner, band, chord and pre-condition splits, and
 // the handle slides' splits. By default the normal form (handle slides) is measured for genus <= 10
-// only (cheese exceeds the slide bound, the 1M-face g20 takes ~30 s); --normal-form-all measures it
+// only (cheese exceeds the slide bound, the 1M-face g20 takes ~20 s); --normal-form-all measures it
 // everywhere.
 #include <chrono>
 #include <cstdio>

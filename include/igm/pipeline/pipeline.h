@@ -32,9 +32,9 @@ struct PipelineOptions {
   /// does not need it: every polygon side is a whole edge of one layout quad mapped onto a
   /// unit-square edge, so any pairing of sides glues by R^k x + t with integer t (the certifier
   /// checks it). Off by default: the slides' paths run between earlier loops and grow the mesh
-  /// (couplingdown g9: 2.2k -> 5.6k refined vertices and 36x output triangles instead of 4x; a
-  /// 1M-face g20 mesh 0.51M -> 1.05M vertices in ~30 s; cheese g133 exceeds the topology stage's
-  /// slide bound, a typed error).
+  /// (couplingdown g9: 3.6k instead of 2.2k refined vertices and 12x instead of 3.8x output
+  /// triangles, anchor 5.5x instead of 3.4x; a 1M-face g20 mesh 0.5M -> 1.05M vertices in ~20 s;
+  /// cheese g133 exceeds the topology stage's slide bound, a typed error).
   bool normal_form = false;
   TutteOptions tutte;
   std::size_t max_witnesses = 20;

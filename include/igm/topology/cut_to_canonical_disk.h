@@ -27,9 +27,9 @@
 //     which are split where the path uses them; the replaced loop is dropped. Loops are then
 //     renumbered and reoriented so that the word is exactly L0 L1 L0^-1 L1^-1 L2 L3 ...
 //     Known limitation: later slides' paths run in thin strips between earlier loops, so their
-//     length compounds with the number of slides (couplingdown g9: 2.2k -> 5.6k vertices; a
-//     generated 1M-face g20: 0.51M -> 1.05M in ~30 s; cheese g133 exceeds the bound
-//     CutOptions::max_slide_growth, a typed error). Off, the word is whatever step 2 gives.
+//     length compounds with the number of slides (couplingdown g9: 1.8k -> 3.6k vertices instead
+//     of 2.2k without; a generated 1M-face g20: 0.5M -> 1.05M in ~20 s; cheese g133 exceeds the
+//     bound CutOptions::max_slide_growth, a typed error). Off, the word is whatever step 2 gives.
 //  4. embedding pre-conditions (embed/tutte.h): every interior disk edge joining two vertices of
 //     one polygon side (a root copy lies on its two sides) is split at its midpoint; then no
 //     triangle has three vertices on one side. O(n).
