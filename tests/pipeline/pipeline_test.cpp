@@ -77,6 +77,11 @@ TEST_CASE("generated genus 12, 25 and 50 (odd and even): certified") {
 
 TEST_CASE("with the gluing word in normal form (handle slides) the outputs are certified too") {
   for (int g = 2; g <= 4; ++g) check_run(generated(g, 500 * g, std::uint64_t(40 + g)), 3, true);
+  IGM_REQUIRE_DATA(dir);
+  for (const char* name : {"eight.off", "joint.off", "helmet.off", "anchor.off", "elephant.off", "couplingdown.off"}) {
+    INFO(name);
+    check_run(load_mesh(dir / "meshes" / "clean" / name), 3, true);
+  }
 }
 
 TEST_CASE("resolution 1 layout: 5g quads, 2+3g vertices, valences 8g, 3g and 3g vertices of valence 3") {
