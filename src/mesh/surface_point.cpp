@@ -17,8 +17,10 @@ SurfacePoint SurfacePoint::vertex(int id) {
 int SurfacePoint::size() const { return v[2] >= 0 ? 3 : (v[1] >= 0 ? 2 : (v[0] >= 0 ? 1 : 0)); }
 
 namespace {
-// Adds weight*p into the accumulator (ids kept sorted ascending in the used prefix).
+// Adds weight*p into the accumulator (ids kept sorted ascending in the used prefix). A zero
+// weight adds nothing, so every used slot of a result has a weight > 0 (weights are >= 0).
 void accumulate(SurfacePoint& acc, const SurfacePoint& p, const Rational& weight) {
+  if (sgn(weight) == 0) return;
   for (int i = 0; i < 3 && p.v[i] >= 0; ++i) {
     if (sgn(p.w[i]) == 0) continue;
     Rational add = p.w[i] * weight;

@@ -13,7 +13,7 @@ namespace igm {
 
 struct SurfacePoint {
   std::array<int, 3> v{-1, -1, -1};  // input vertex ids, the used ones first (ascending), unused = -1
-  std::array<Rational, 3> w;         // weights of v; unused = 0
+  std::array<Rational, 3> w;         // weights of v, > 0 on used slots (combine() drops zero terms); unused = 0
 
   /// The input vertex `id` itself (weight 1).
   static SurfacePoint vertex(int id);
