@@ -74,14 +74,19 @@ SurfacePoint barycentric_point(const SurfacePoint& a, const SurfacePoint& b, con
 }
 
 Vec3d evaluate(const SurfacePoint& p, const std::vector<Vec3d>& pos) {
-  Vec3d r;
+  if (p.size() == 1) return pos[p.v[0]];  // weight 1 (convex combination): the input position itself
+  std::array<Rational, 3> exact;  // sum of w_i * pos_i per coordinate, exactly
+  Rational term;
   for (int i = 0; i < 3 && p.v[i] >= 0; ++i) {
-    double t = to_double(p.w[i]);
-    r.x += t * pos[p.v[i]].x;
-    r.y += t * pos[p.v[i]].y;
-    r.z += t * pos[p.v[i]].z;
+    const Vec3d& q = pos[p.v[i]];
+    const double c[3] = {q.x, q.y, q.z};
+    for (int k = 0; k < 3; ++k) {
+      term = to_rational(c[k]);
+      term *= p.w[i];
+      exact[k] += term;
+    }
   }
-  return r;
+  return {to_double(exact[0]), to_double(exact[1]), to_double(exact[2])};
 }
 
 int RefinedSurface::split_edge(int h, const Rational& t) {

@@ -325,6 +325,7 @@ TEST_CASE("a generated 1M-face torus: every triangle certified, N x N quads") {
   CHECK(flips->passed());
   CHECK(r.quad_report.valid());
   CHECK(r.quads.quads.size() == 9);
+  CHECK(refinement_violation(torus, r.igm, true) == "");
 }
 
 // ---------------- genus 0: orbifold Tutte onto the pillowcase ----------------
@@ -415,6 +416,7 @@ TEST_CASE("genus 0: shared spheres (tetrahedron .. armadillo, bull self-intersec
   CHECK(r.stats.orbifold.refinement.flips_double > 0);
   CHECK(r.stats.orbifold.refinement.iterations >= 1);
   CHECK(r.certified());
+  CHECK(refinement_violation(bull, r.igm, true) == "");
 }
 
 TEST_CASE("genus 0: generated spheres of several sizes and user cones certified") {

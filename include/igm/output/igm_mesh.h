@@ -17,7 +17,7 @@ namespace igm {
 
 /// The IGM triangle mesh: a refinement of the input mesh (ValidMesh) it was computed from.
 struct IgmMesh {
-  std::vector<Vec3d> positions;                 // per vertex: evaluate(locations[v]) (input vertices: their input position)
+  std::vector<Vec3d> positions;                 // per vertex: evaluate(locations[v]), the exact point rounded toward zero
   std::vector<std::array<int, 3>> triangles;    // ccw
   std::vector<std::array<Point2q, 3>> corner_uv;  // per face corner, exact
   /// Per vertex, its exact location on the input surface (ids of the input mesh's vertices):
