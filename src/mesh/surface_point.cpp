@@ -17,8 +17,10 @@ SurfacePoint SurfacePoint::vertex(int id) {
 int SurfacePoint::size() const { return v[2] >= 0 ? 3 : (v[1] >= 0 ? 2 : (v[0] >= 0 ? 1 : 0)); }
 
 namespace {
-// Adds weight*p into the accumulator (ids kept sorted ascending in the used prefix).
+// Adds weight*p into the accumulator (ids kept sorted ascending in the used prefix). A zero
+// weight adds nothing, so every used slot of a result has a weight > 0 (weights are >= 0).
 void accumulate(SurfacePoint& acc, const SurfacePoint& p, const Rational& weight) {
+  if (sgn(weight) == 0) return;
   for (int i = 0; i < 3 && p.v[i] >= 0; ++i) {
     if (sgn(p.w[i]) == 0) continue;
     Rational add = p.w[i] * weight;
@@ -72,14 +74,19 @@ SurfacePoint barycentric_point(const SurfacePoint& a, const SurfacePoint& b, con
 }
 
 Vec3d evaluate(const SurfacePoint& p, const std::vector<Vec3d>& pos) {
-  Vec3d r;
+  if (p.size() == 1) return pos[p.v[0]];  // weight 1 (convex combination): the input position itself
+  std::array<Rational, 3> exact;  // sum of w_i * pos_i per coordinate, exactly
+  Rational term;
   for (int i = 0; i < 3 && p.v[i] >= 0; ++i) {
-    double t = to_double(p.w[i]);
-    r.x += t * pos[p.v[i]].x;
-    r.y += t * pos[p.v[i]].y;
-    r.z += t * pos[p.v[i]].z;
+    const Vec3d& q = pos[p.v[i]];
+    const double c[3] = {q.x, q.y, q.z};
+    for (int k = 0; k < 3; ++k) {
+      term = to_rational(c[k]);
+      term *= p.w[i];
+      exact[k] += term;
+    }
   }
-  return r;
+  return {to_double(exact[0]), to_double(exact[1]), to_double(exact[2])};
 }
 
 int RefinedSurface::split_edge(int h, const Rational& t) {

@@ -126,12 +126,18 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
   stats.max_uv_bits = charts.max_uv_bits;
   // Output vertices: overlay vertices below num_disk_vertices are disk vertices, i.e. copies of
   // surface vertices (the disk boundary gets no new vertex: template segments meet it only at
-  // polygon corners); the others are new interior points, each a vertex of its own.
-  const RefinedSurface& surface = cut.surface;
+  // polygon corners); the others are new interior points, each a vertex of its own. Output
+  // vertex ids: the surface's (input vertices first, then its constructed ones), then the new points.
+  RefinedSurface& surface = cut.surface;
   const int num_surface_vertices = surface.mesh.num_vertices();
   const int num_overlay_vertices = static_cast<int>(overlay.mesh.positions.size());
+  IgmMesh& igm = result.igm;
+  std::vector<SurfacePoint>& locations = igm.locations;
+  locations.reserve(num_surface_vertices + (num_overlay_vertices - num_disk_vertices));
+  for (int v = 0; v < surface.num_input_vertices; ++v) locations.push_back(SurfacePoint::vertex(v));
+  for (SurfacePoint& p : surface.constructed) locations.push_back(std::move(p));
+  surface.constructed = {};  // moved into the locations (surface.point() is not used below)
   std::vector<int> out_vertex(num_overlay_vertices);
-  std::vector<SurfacePoint> new_points;
   for (int v = 0; v < num_overlay_vertices; ++v) {
     const VertexOrigin& o = overlay.origin[v];
     if (v < num_disk_vertices) {
@@ -141,16 +147,14 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
     if (o.input_vertex >= 0 || o.input_triangle < 0)
       throw Error(ErrorKind::Internal, "overlay vertex " + std::to_string(v) + " has no location in a disk triangle");
     const auto& tri = cut.disk_triangles[o.input_triangle];
-    const SurfacePoint p = barycentric_point(surface.point(cut.disk_to_surface[tri[0]]),
-                                             surface.point(cut.disk_to_surface[tri[1]]),
-                                             surface.point(cut.disk_to_surface[tri[2]]), o.barycentric);
-    out_vertex[v] = num_surface_vertices + static_cast<int>(new_points.size());
-    new_points.push_back(p);
+    out_vertex[v] = static_cast<int>(locations.size());
+    locations.push_back(barycentric_point(locations[cut.disk_to_surface[tri[0]]], locations[cut.disk_to_surface[tri[1]]],
+                                          locations[cut.disk_to_surface[tri[2]]], o.barycentric));
   }
-  IgmMesh& igm = result.igm;
-  igm.positions.reserve(num_surface_vertices + new_points.size());
-  for (int v = 0; v < num_surface_vertices; ++v) igm.positions.push_back(surface.position(v));
-  for (const SurfacePoint& p : new_points) igm.positions.push_back(evaluate(p, surface.input_positions));
+  igm.positions.reserve(locations.size());
+  for (int v = 0; v < surface.num_input_vertices; ++v) igm.positions.push_back(surface.input_positions[v]);
+  for (std::size_t v = surface.num_input_vertices; v < locations.size(); ++v)
+    igm.positions.push_back(evaluate(locations[v], surface.input_positions));
   igm.triangles.reserve(overlay.mesh.triangles.size());
   for (const auto& t : overlay.mesh.triangles) igm.triangles.push_back({out_vertex[t[0]], out_vertex[t[1]], out_vertex[t[2]]});
   stats.output_vertices = static_cast<int>(igm.positions.size());
@@ -174,12 +178,8 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
   quads.quads = planar.quads;
   quads.positions.reserve(planar.vertices.size());
   for (const QuadVertexLocation& loc : planar.vertices) {
-    const auto& tri = overlay.mesh.triangles[loc.triangle];
-    auto point_of = [&](int ov) {
-      return ov < num_disk_vertices ? surface.point(cut.disk_to_surface[ov])
-                                    : new_points[out_vertex[ov] - num_surface_vertices];
-    };
-    const SurfacePoint p = barycentric_point(point_of(tri[0]), point_of(tri[1]), point_of(tri[2]), loc.barycentric);
+    const std::array<int, 3>& t = igm.triangles[loc.triangle];  // = overlay triangle loc.triangle, in output ids
+    const SurfacePoint p = barycentric_point(locations[t[0]], locations[t[1]], locations[t[2]], loc.barycentric);
     quads.positions.push_back(evaluate(p, surface.input_positions));
   }
   stats.quads = static_cast<int>(quads.quads.size());

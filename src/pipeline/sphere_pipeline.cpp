@@ -38,8 +38,8 @@ PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions&
   // --- topology: four cones, one path through them, the cut disk ---
   SphereCutOptions cut_options;
   cut_options.cones = options.cones;
-  const SphereCut cut = cut_sphere(input.mesh, input.positions, cut_options);
-  const RefinedSurface& surface = cut.surface;
+  SphereCut cut = cut_sphere(input.mesh, input.positions, cut_options);
+  RefinedSurface& surface = cut.surface;
   stats.cones = cut.cones;
   stats.sphere_cut = cut.stats;
   stats.refined_vertices = surface.mesh.num_vertices();
@@ -64,10 +64,15 @@ PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions&
   done("embed", line);
 
   // --- igm: the embedding is the IGM (transitions x -> +-x + t, t integer; cones at integer points) ---
+  // Output vertices are the surface's: the input vertices, then its constructed ones.
   IgmMesh& igm = result.igm;
   const int nv = surface.mesh.num_vertices(), nf = surface.mesh.num_faces();
   igm.positions.reserve(nv);
   for (int v = 0; v < nv; ++v) igm.positions.push_back(surface.position(v));
+  igm.locations.reserve(nv);
+  for (int v = 0; v < surface.num_input_vertices; ++v) igm.locations.push_back(SurfacePoint::vertex(v));
+  for (SurfacePoint& p : surface.constructed) igm.locations.push_back(std::move(p));
+  surface.constructed = {};  // moved into the locations (surface.point() is not used below)
   igm.triangles.resize(nf);
   igm.corner_uv.resize(nf);
   for (int f = 0; f < nf; ++f) {
@@ -87,9 +92,8 @@ PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions&
   quads.quads = grid.quads;
   quads.positions.reserve(grid.triangle.size());
   for (std::size_t v = 0; v < grid.triangle.size(); ++v) {
-    const auto& t = cut.disk_triangles[grid.triangle[v]];
-    const SurfacePoint p = barycentric_point(surface.point(cut.disk_to_surface[t[0]]), surface.point(cut.disk_to_surface[t[1]]),
-                                             surface.point(cut.disk_to_surface[t[2]]), grid.barycentric[v]);
+    const std::array<int, 3>& t = igm.triangles[grid.triangle[v]];  // = disk triangle grid.triangle[v], in output ids
+    const SurfacePoint p = barycentric_point(igm.locations[t[0]], igm.locations[t[1]], igm.locations[t[2]], grid.barycentric[v]);
     quads.positions.push_back(evaluate(p, surface.input_positions));
   }
   stats.quads = static_cast<int>(quads.quads.size());

@@ -1,6 +1,10 @@
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <functional>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "certify/certify.h"
@@ -23,8 +27,126 @@ ValidMesh generated(int genus, std::int64_t faces, std::uint64_t seed) {
   return validate(generate_closed_mesh(o));
 }
 
+// Independent check (issue 6) that `igm` is an exact refinement of `input`, from the raw input
+// triangles only (not the producer's adjacency). Returns "" or the first violation found:
+//  - every location is a canonical convex combination: used slots first, ids ascending and in
+//    range, weights > 0 summing exactly to 1;
+//  - vertex v < n (n input vertices) is the weight-1 point of v at the input position;
+//  - every other vertex has a support of 2 vertices forming an input edge or 3 forming an input
+//    face (a support of 1 would be a duplicate of an input vertex);
+//  - every position is evaluate() of its location (bitwise);
+//  - the three corners of every triangle have a joint support of exactly the corners of one input
+//    face f, and the triangle is positively oriented in f: the determinant of the corners'
+//    barycentric coordinates w.r.t. f's corners (in f's order), i.e. area(triangle) / area(f),
+//    is > 0. Two input faces on the same three vertices (a 3-vertex sphere) have opposite
+//    orientations, so at most one of them gives a positive determinant;
+//  - with check_areas, these exact area fractions sum to exactly 1 in every input face (the
+//    triangles tile each face: no face missed, none covered twice).
+std::string refinement_violation(const ValidMesh& input, const IgmMesh& igm, bool check_areas) {
+  const int n = input.mesh.num_vertices(), F = input.mesh.num_faces();
+  std::vector<std::array<int, 3>> in_tris(F);
+  for (int f = 0; f < F; ++f) in_tris[f] = input.mesh.face_vertices(f);
+  std::vector<std::pair<int, int>> in_edges;  // sorted (a < b)
+  std::vector<std::pair<std::array<int, 3>, int>> faces_of(F);  // (sorted corners, input face), sorted
+  for (int f = 0; f < F; ++f) {
+    std::array<int, 3> c = in_tris[f];
+    for (int i = 0; i < 3; ++i) in_edges.push_back(std::minmax(c[i], c[(i + 1) % 3]));
+    std::sort(c.begin(), c.end());
+    faces_of[f] = {c, f};
+  }
+  std::sort(in_edges.begin(), in_edges.end());
+  std::sort(faces_of.begin(), faces_of.end());
+  auto faces_on = [&](const std::array<int, 3>& c) {  // the input faces with corners c (sorted)
+    return std::equal_range(faces_of.begin(), faces_of.end(), std::pair<std::array<int, 3>, int>{c, -1},
+                            [](const auto& x, const auto& y) { return x.first < y.first; });
+  };
+  const std::size_t nv = igm.positions.size();
+  if (igm.locations.size() != nv)
+    return "locations: " + std::to_string(igm.locations.size()) + " for " + std::to_string(nv) + " vertices";
+  if (nv < static_cast<std::size_t>(n)) return "fewer output vertices than input vertices";
+  auto same = [](const Vec3d& a, const Vec3d& b) { return a.x == b.x && a.y == b.y && a.z == b.z; };
+  Rational sum;
+  for (std::size_t v = 0; v < nv; ++v) {
+    const SurfacePoint& p = igm.locations[v];
+    auto at = [v] { return "vertex " + std::to_string(v) + ": "; };
+    int k = 0;
+    while (k < 3 && p.v[k] >= 0) ++k;
+    sum = 0;
+    for (int i = 0; i < 3; ++i) {
+      if (i < k && (p.v[i] >= n || sgn(p.w[i]) <= 0 || (i > 0 && p.v[i] <= p.v[i - 1])))
+        return at() + "support not ascending in-range ids with weights > 0";
+      if (i >= k && (p.v[i] != -1 || sgn(p.w[i]) != 0)) return at() + "used slot after an unused one";
+      sum += p.w[i];
+    }
+    if (sum != 1) return at() + "weights sum to " + to_string(sum);
+    if (v < static_cast<std::size_t>(n)) {
+      if (k != 1 || p.v[0] != static_cast<int>(v)) return at() + "input vertex is not the weight-1 point of itself";
+      if (!same(igm.positions[v], input.positions[v])) return at() + "input vertex moved";
+    } else if (k == 1) {
+      return at() + "new vertex on input vertex " + std::to_string(p.v[0]);
+    } else if (k == 2 && !std::binary_search(in_edges.begin(), in_edges.end(), std::pair{p.v[0], p.v[1]})) {
+      return at() + "support " + std::to_string(p.v[0]) + " " + std::to_string(p.v[1]) + " is not an input edge";
+    } else if (k == 3) {
+      const auto range = faces_on({p.v[0], p.v[1], p.v[2]});
+      if (range.first == range.second) return at() + "support is not an input face";
+    }
+    if (!same(igm.positions[v], evaluate(p, input.positions))) return at() + "position is not evaluate(location)";
+  }
+  std::vector<Rational> area(check_areas ? F : 0);
+  const Rational zero = 0;
+  Rational det, minor, product;  // (in-place GMP operations below: no allocation per triangle)
+  for (std::size_t t = 0; t < igm.triangles.size(); ++t) {
+    const std::array<int, 3>& tri = igm.triangles[t];
+    auto at = [t] { return "triangle " + std::to_string(t) + ": "; };
+    std::array<int, 9> ids;  // the corners' supports, then sorted and made unique
+    int m = 0;
+    for (int c : tri) {
+      if (c < 0 || static_cast<std::size_t>(c) >= nv) return at() + "corner out of range";
+      for (int i = 0; i < 3 && igm.locations[c].v[i] >= 0; ++i) ids[m++] = igm.locations[c].v[i];
+    }
+    std::sort(ids.begin(), ids.begin() + m);
+    m = static_cast<int>(std::unique(ids.begin(), ids.begin() + m) - ids.begin());
+    if (m != 3) return at() + "joint support of " + std::to_string(m) + " input vertices, not one face";
+    const auto [first, last] = faces_on({ids[0], ids[1], ids[2]});
+    if (first == last) return at() + "joint support is not an input face";
+    int inside = -1;
+    for (auto it = first; it != last; ++it) {
+      const int f = it->second;
+      const Rational* w[3][3];  // w[i][j]: weight of input corner j of f in the location of corner i
+      for (int i = 0; i < 3; ++i) {
+        const SurfacePoint& p = igm.locations[tri[i]];
+        for (int j = 0; j < 3; ++j) {
+          w[i][j] = &zero;
+          for (int s = 0; s < 3; ++s)
+            if (p.v[s] == in_tris[f][j]) w[i][j] = &p.w[s];
+        }
+      }
+      det = 0;  // area(triangle) / area(f): the determinant of w, by the first row
+      for (int j = 0; j < 3; ++j) {
+        if (sgn(*w[0][j]) == 0) continue;
+        const int a = (j + 1) % 3, b = (j + 2) % 3;
+        mpq_mul(minor.get_mpq_t(), w[1][a]->get_mpq_t(), w[2][b]->get_mpq_t());
+        mpq_mul(product.get_mpq_t(), w[1][b]->get_mpq_t(), w[2][a]->get_mpq_t());
+        mpq_sub(minor.get_mpq_t(), minor.get_mpq_t(), product.get_mpq_t());
+        mpq_mul(product.get_mpq_t(), w[0][j]->get_mpq_t(), minor.get_mpq_t());
+        mpq_add(det.get_mpq_t(), det.get_mpq_t(), product.get_mpq_t());
+      }
+      if (sgn(det) > 0) {
+        if (inside >= 0) return at() + "positively inside two input faces";
+        inside = f;
+        if (check_areas) area[f] += det;
+      }
+    }
+    if (inside < 0) return at() + "not positively oriented inside its input face";
+  }
+  for (std::size_t f = 0; f < area.size(); ++f)
+    if (area[f] != 1)
+      return "input face " + std::to_string(f) + ": output triangles cover a fraction " + to_string(area[f]) + " of it";
+  return {};
+}
+
 // Independent re-check of what a run promises, ending with the certifier on the written files.
-void check_run(const ValidMesh& mesh, int resolution, bool normal_form = false) {
+PipelineStats check_run(const ValidMesh& mesh, int resolution, bool normal_form = false, bool check_areas = true) {
   PipelineOptions options;
   options.resolution = resolution;
   options.normal_form = normal_form;
@@ -41,16 +163,37 @@ void check_run(const ValidMesh& mesh, int resolution, bool normal_form = false) 
   CHECK(*r.igm_report.genus == g);
   REQUIRE(r.quad_report.genus.has_value());
   CHECK(*r.quad_report.genus == g);
-  // The IGM is a refinement of the input: every input vertex is kept at its position.
-  REQUIRE(r.igm.positions.size() >= mesh.positions.size());
-  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
-    CHECK(r.igm.positions[v].x == mesh.positions[v].x);
-    CHECK(r.igm.positions[v].z == mesh.positions[v].z);
-  }
+  // The IGM is an exact refinement of the input (input vertices kept, new ones on input edges
+  // and faces, every triangle inside one input face, the faces tiled).
+  CHECK(refinement_violation(mesh, r.igm, check_areas) == "");
   // Cones: Poincare-Hopf is part of the certificate; count them from the report's histogram.
   const certify::CheckResult* cones = r.igm_report.check(4);
   REQUIRE(cones != nullptr);
   CHECK(cones->passed());
+  // The cones are the layout vertices (paper §6.2), each at an integer point: the root (index
+  // k = 8g), the centre (3g) and the 3g inner points (3); every other vertex is regular (k = 4).
+  // A torus has none.
+  CHECK(cones->count("vertices_undetermined") == 0);
+  CHECK(cones->count("cones_off_integer_total") == 0);
+  auto vertices_of_index = [&](std::int64_t k) { return cones->histogram.count(k) ? cones->histogram.at(k) : 0; };
+  if (g == 1) {
+    CHECK(cones->count("cones") == 0);
+  } else {
+    CHECK(cones->count("cones") == 2 + 3 * g);
+    CHECK(vertices_of_index(8 * g) == 1);
+    CHECK(vertices_of_index(3 * g) == 1);
+    CHECK(vertices_of_index(3) == 3 * g);
+    CHECK(cones->histogram.size() == 4);
+  }
+  // The schema picture's data: 4g polygon sides paired without fixed points, the template.
+  CHECK(static_cast<int>(r.schema.polygon.size()) == 4 * g);
+  REQUIRE(static_cast<int>(r.schema.side_pair.size()) == 4 * g);
+  for (int s = 0; s < 4 * g; ++s) {
+    const int m = r.schema.side_pair[s];
+    CHECK((m >= 0 && m < 4 * g && m != s && r.schema.side_pair[m] == s));
+  }
+  CHECK(r.schema.template_edges.size() >= static_cast<std::size_t>(4 * g));
+  CHECK(r.schema.mesh_edges.size() * 2 >= r.igm.triangles.size());
   // The written exact artefact and the double one read back through the certifier's own reader.
   std::ostringstream exact, quads;
   write_igm_obj(exact, r.igm, true);
@@ -59,6 +202,7 @@ void check_run(const ValidMesh& mesh, int resolution, bool normal_form = false) 
   certify::Options qo;
   qo.expected_genus = g;
   CHECK(certify::certify_quads_text(quads.str(), qo).valid());
+  return r.stats;
 }
 
 }  // namespace
@@ -67,8 +211,8 @@ TEST_CASE("genus 1 generated tori: certified IGM and N x N quads") {
   for (std::uint64_t seed : {1, 2, 3}) check_run(generated(1, 600 * seed, seed), 2 + int(seed));
 }
 
-TEST_CASE("genus 2..6 generated meshes, odd and even: certified, 5g N^2 quads") {
-  for (int g = 2; g <= 6; ++g) check_run(generated(g, 400 * g, std::uint64_t(g)), 3 + g % 2);
+TEST_CASE("genus 2..7 generated meshes, odd and even: certified, 5g N^2 quads") {
+  for (int g = 2; g <= 7; ++g) check_run(generated(g, 400 * g, std::uint64_t(g)), 3 + g % 2);
 }
 
 TEST_CASE("generated genus 12, 25 and 50 (odd and even): certified") {
@@ -79,33 +223,50 @@ TEST_CASE("with the gluing word in normal form (handle slides) the outputs are c
   for (int g = 2; g <= 4; ++g) check_run(generated(g, 500 * g, std::uint64_t(40 + g)), 3, true);
   IGM_REQUIRE_DATA(dir);
   for (const char* name : {"eight.off", "joint.off", "helmet.off", "anchor.off", "elephant.off", "couplingdown.off"}) {
-    INFO(name);
+    INFO(std::string(name));
     check_run(load_mesh(dir / "meshes" / "clean" / name), 3, true);
   }
 }
 
+namespace {
+
+// At N = 1 (paper §6.2): 5g quads, 2+3g vertices, valences 8g (root), 3g (centre), 3g vertices
+// of valence 3. Every polygon corner is the root, so quads repeat it and the certifier (edges by
+// end points) must reject the quad mesh; the IGM is certified.
+void check_layout_at_resolution_1(const ValidMesh& mesh) {
+  const int g = mesh.genus;
+  INFO("genus " << g);
+  PipelineOptions o;
+  o.resolution = 1;
+  const PipelineResult r = compute_igm(mesh, o);
+  CHECK(r.igm_report.valid());
+  CHECK_FALSE(r.quad_report.valid());
+  CHECK(static_cast<int>(r.quads.quads.size()) == 5 * g);
+  CHECK(static_cast<int>(r.quads.positions.size()) == 2 + 3 * g);
+  std::map<int, int> valence;  // vertex -> number of quads around it (= edges on a closed quad mesh)
+  for (const auto& q : r.quads.quads)
+    for (int v : q) ++valence[v];
+  std::map<int, int> histogram;
+  for (const auto& [v, k] : valence) ++histogram[k];
+  CHECK(histogram[8 * g] == 1);
+  CHECK(histogram[3 * g] == 1);
+  CHECK(histogram[3] == 3 * g);
+  CHECK(histogram.size() == 3);
+  CHECK(refinement_violation(mesh, r.igm, true) == "");
+}
+
+}  // namespace
+
 TEST_CASE("resolution 1 layout: 5g quads, 2+3g vertices, valences 8g, 3g and 3g vertices of valence 3") {
-  for (int g : {2, 3, 7}) {
-    const ValidMesh mesh = generated(g, 300 * g, 11);
-    PipelineOptions o;
-    o.resolution = 1;
-    const PipelineResult r = compute_igm(mesh, o);
-    INFO("genus " << g);
-    CHECK(r.igm_report.valid());
-    // At N = 1 every polygon corner is the root: quads repeat it, so the certifier (edges by end
-    // points) must reject the quad mesh; the counts below are the paper's.
-    CHECK_FALSE(r.quad_report.valid());
-    CHECK(static_cast<int>(r.quads.quads.size()) == 5 * g);
-    CHECK(static_cast<int>(r.quads.positions.size()) == 2 + 3 * g);
-    std::map<int, int> valence;  // vertex -> number of quads around it (= edges on a closed quad mesh)
-    for (const auto& q : r.quads.quads)
-      for (int v : q) ++valence[v];
-    std::map<int, int> histogram;
-    for (const auto& [v, k] : valence) ++histogram[k];
-    CHECK(histogram[8 * g] == 1);
-    CHECK(histogram[3 * g] == 1);
-    CHECK(histogram[3] == 3 * g);
-    CHECK(histogram.size() == 3);
+  for (int g : {2, 3, 7}) check_layout_at_resolution_1(generated(g, 300 * g, 11));
+  IGM_REQUIRE_DATA(dir);
+  for (const char* name : {"eight.off", "joint.off", "helmet.off", "anchor.off", "elephant.off", "couplingdown.off"}) {
+    INFO(std::string(name));
+    check_layout_at_resolution_1(load_mesh(dir / "meshes" / "clean" / name));
+  }
+  for (const char* name : {"3torus.off", "double-torus-example.off"}) {
+    INFO(std::string(name));
+    check_layout_at_resolution_1(load_mesh(dir / "meshes" / "polygonal" / name));
   }
 }
 
@@ -136,12 +297,13 @@ TEST_CASE("shared clean meshes of genus >= 1 are certified") {
   IGM_REQUIRE_DATA(dir);
   for (const char* name : {"mpi_triang.off", "pipe.off", "knot.off", "eight.off", "joint.off", "helmet.off",
                            "anchor.off", "elephant.off", "couplingdown.off"}) {
-    INFO(name);
-    check_run(load_mesh(dir / "meshes" / "clean" / name), 3);
+    INFO(std::string(name));
+    const PipelineStats st = check_run(load_mesh(dir / "meshes" / "clean" / name), 3);
+    CHECK(st.output_triangles <= 5 * st.input_faces);  // issue 6's size target for g <= 10
   }
   for (const char* name : {"3torus.off", "double-torus-example.off", "hole.off"}) {
-    INFO(name);
-    check_run(load_mesh(dir / "meshes" / "polygonal" / name), 3);
+    INFO(std::string(name));
+    check_run(load_mesh(dir / "meshes" / "polygonal" / name), 3);  // (3torus: 46 -> 356 triangles, over 5x)
   }
 }
 
@@ -163,13 +325,15 @@ TEST_CASE("a generated 1M-face torus: every triangle certified, N x N quads") {
   CHECK(flips->passed());
   CHECK(r.quad_report.valid());
   CHECK(r.quads.quads.size() == 9);
+  CHECK(refinement_violation(torus, r.igm, true) == "");
 }
 
 // ---------------- genus 0: orbifold Tutte onto the pillowcase ----------------
 namespace {
 
 // Independent re-check of a genus-0 run, ending with the certifier on the written files.
-void check_sphere(const ValidMesh& mesh, int resolution, const std::vector<int>& cones = {}, bool reread = true) {
+void check_sphere(const ValidMesh& mesh, int resolution, const std::vector<int>& cones = {}, bool reread = true,
+                  bool check_areas = true) {
   PipelineOptions options;
   options.resolution = resolution;
   options.cones = cones;
@@ -217,13 +381,9 @@ void check_sphere(const ValidMesh& mesh, int resolution, const std::vector<int>&
   REQUIRE(c5 != nullptr);
   CHECK(c5->histogram.count(2) == 1);
   if (c5->histogram.count(2)) CHECK(c5->histogram.at(2) == 4);
-  // every input vertex kept at its position
-  REQUIRE(r.igm.positions.size() >= mesh.positions.size());
-  std::size_t moved = 0;
-  for (std::size_t v = 0; v < mesh.positions.size(); ++v)
-    moved += r.igm.positions[v].x != mesh.positions[v].x || r.igm.positions[v].y != mesh.positions[v].y ||
-             r.igm.positions[v].z != mesh.positions[v].z;
-  CHECK(moved == 0);
+  // an exact refinement of the input (input vertices kept, new ones on input edges and faces,
+  // every triangle inside one input face, the faces tiled)
+  CHECK(refinement_violation(mesh, r.igm, check_areas) == "");
   CHECK(r.schema.side_paths.size() == 6);
   if (!reread) return;  // (the in-memory outputs were certified above)
   // the written artefacts through the certifier's own reader
@@ -242,7 +402,7 @@ TEST_CASE("genus 0: shared spheres (tetrahedron .. armadillo, bull self-intersec
   IGM_REQUIRE_DATA(dir);
   int N = 1;
   for (const char* name : {"tetrahedron.off", "icosahedron.off", "cube.off", "sphere.off", "bull.off", "armadillo.off"}) {
-    INFO(name);
+    INFO(std::string(name));
     check_sphere(load_mesh(dir / "meshes" / "clean" / name), N);
     N = N % 4 + 1;  // resolutions 1, 2, 3, 4, 1, 2
   }
@@ -256,6 +416,7 @@ TEST_CASE("genus 0: shared spheres (tetrahedron .. armadillo, bull self-intersec
   CHECK(r.stats.orbifold.refinement.flips_double > 0);
   CHECK(r.stats.orbifold.refinement.iterations >= 1);
   CHECK(r.certified());
+  CHECK(refinement_violation(bull, r.igm, true) == "");
 }
 
 TEST_CASE("genus 0: generated spheres of several sizes and user cones certified") {
@@ -304,4 +465,48 @@ TEST_CASE("genus 0: a generated 1M-face sphere is certified") {
   const ValidMesh m = generated(0, 1000000, 1);
   REQUIRE(m.mesh.num_faces() >= 900000);
   check_sphere(m, 4, {}, false);  // the text round trip is tested on the smaller meshes
+}
+
+TEST_CASE("the refinement check rejects a corrupted refinement (genus 2 and genus 0)") {
+  for (int g : {2, 0}) {
+    INFO("genus " << g);
+    const ValidMesh mesh = generated(g, 600, 9);
+    const int n = mesh.mesh.num_vertices();
+    PipelineOptions o;
+    o.resolution = 3;
+    const PipelineResult r = compute_igm(mesh, o);
+    REQUIRE(r.certified());
+    REQUIRE(refinement_violation(mesh, r.igm, true) == "");
+    REQUIRE(r.igm.locations.size() > static_cast<std::size_t>(n));
+    auto rejects = [&](const std::function<void(IgmMesh&)>& corrupt, const std::string& expected) {
+      IgmMesh m = r.igm;
+      corrupt(m);
+      const std::string why = refinement_violation(mesh, m, true);
+      INFO("expected '" << expected << "', got '" << why << "'");
+      CHECK(why.find(expected) != std::string::npos);
+    };
+    rejects([&](IgmMesh& m) { m.locations.pop_back(); }, "locations:");
+    rejects([&](IgmMesh& m) { m.locations[1] = SurfacePoint::vertex(0); }, "not the weight-1 point of itself");
+    rejects([&](IgmMesh& m) { m.positions[2].y += 1; }, "input vertex moved");
+    rejects([&](IgmMesh& m) { m.locations[n].w[0] += make_rational(1, 1000); }, "weights sum to");
+    rejects([&](IgmMesh& m) { m.locations[n] = SurfacePoint::vertex(3); }, "new vertex on input vertex 3");
+    rejects([&](IgmMesh& m) { m.positions[n].x = std::nextafter(m.positions[n].x, 1e300); }, "not evaluate(location)");
+    // a new vertex halfway between input vertex 0 and a vertex that shares no input edge with it
+    rejects(
+        [&](IgmMesh& m) {
+          std::set<std::pair<int, int>> edges;
+          for (int f = 0; f < mesh.mesh.num_faces(); ++f) {
+            const auto c = mesh.mesh.face_vertices(f);
+            for (int i = 0; i < 3; ++i) edges.insert(std::minmax(c[i], c[(i + 1) % 3]));
+          }
+          int b = 1;
+          while (edges.count({0, b})) ++b;  // bounded by n: vertex 0 is not adjacent to all others
+          m.locations[n] = lerp(SurfacePoint::vertex(0), SurfacePoint::vertex(b), make_rational(1, 2));
+          m.positions[n] = evaluate(m.locations[n], mesh.positions);
+        },
+        "is not an input edge");
+    rejects([&](IgmMesh& m) { std::swap(m.triangles[0][1], m.triangles[0][2]); }, "not positively oriented");
+    rejects([&](IgmMesh& m) { m.triangles.pop_back(); }, "cover a fraction");
+    rejects([&](IgmMesh& m) { m.triangles.push_back(m.triangles[0]); }, "cover a fraction");
+  }
 }

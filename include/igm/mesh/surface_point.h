@@ -13,7 +13,7 @@ namespace igm {
 
 struct SurfacePoint {
   std::array<int, 3> v{-1, -1, -1};  // input vertex ids, the used ones first (ascending), unused = -1
-  std::array<Rational, 3> w;         // weights of v; unused = 0
+  std::array<Rational, 3> w;         // weights of v, > 0 on used slots (combine() drops zero terms); unused = 0
 
   /// The input vertex `id` itself (weight 1).
   static SurfacePoint vertex(int id);
@@ -36,7 +36,9 @@ SurfacePoint average(const std::vector<SurfacePoint>& points);
 SurfacePoint barycentric_point(const SurfacePoint& a, const SurfacePoint& b, const SurfacePoint& c,
                                const std::array<Rational, 3>& w);
 
-/// The 3D position (doubles, for display and initial guesses only).
+/// The 3D position: the exact point sum w_i input_positions[v_i], each coordinate rounded toward
+/// zero (to_double); a one-vertex point gives the input position itself. For output and display
+/// only, never for decisions. O(1) GMP operations.
 Vec3d evaluate(const SurfacePoint& p, const std::vector<Vec3d>& input_positions);
 
 /// A refinement of an input surface: `mesh` has the input vertices 0..num_input_vertices-1 at their

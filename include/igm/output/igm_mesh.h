@@ -11,13 +11,23 @@
 #include <vector>
 
 #include "igm/exact/predicates.h"
+#include "igm/mesh/surface_point.h"
 
 namespace igm {
 
+/// The IGM triangle mesh: a refinement of the input mesh (ValidMesh) it was computed from.
 struct IgmMesh {
-  std::vector<Vec3d> positions;                 // per vertex (rounded from exact positions)
+  std::vector<Vec3d> positions;                 // per vertex: evaluate(locations[v]), the exact point rounded toward zero
   std::vector<std::array<int, 3>> triangles;    // ccw
   std::vector<std::array<Point2q, 3>> corner_uv;  // per face corner, exact
+  /// Per vertex, its exact location on the input surface (ids of the input mesh's vertices):
+  /// vertices 0..n-1 are the n input vertices, each the weight-1 point of itself; every other
+  /// vertex is a convex combination, with exact weights > 0 summing to 1, of the two end points
+  /// of an input edge or the three corners of an input face. The three corners of every
+  /// triangle have a joint support inside one input face (the triangle lies in that face), and
+  /// the triangles inside each input face tile it. Filled by compute_igm (pipeline.h); the
+  /// writers below do not use it. Memory: about 0.2 KB per vertex plus the weights' limbs.
+  std::vector<SurfacePoint> locations;
 };
 
 struct QuadMesh {

@@ -64,7 +64,7 @@ struct PipelineStats {
 };
 
 struct PipelineResult {
-  IgmMesh igm;                       // refinement of the input, exact per-corner UV
+  IgmMesh igm;                       // refinement of the input: exact per-corner UV, exact vertex locations
   QuadMesh quads;                    // N x N quads per layout quad
   certify::Report igm_report;        // certifier checks 1-4 on `igm`
   certify::Report quad_report;       // certifier check 5 on `quads` (expected genus = input genus)
