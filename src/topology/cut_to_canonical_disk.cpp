@@ -31,6 +31,29 @@ double length(const Vec3d& a, const Vec3d& b) {
   return std::sqrt(dx * dx + dy * dy + dz * dz);
 }
 
+// The positions scaled by one power of two so that the largest |coordinate| is in [1, 2): edge
+// lengths and path sums are then finite (at most 2*sqrt(3) per edge) whatever the input's
+// magnitude (1e300 would overflow the squares to inf, and Dijkstra would reach nothing), and a
+// power-of-two scale changes no comparison except by underflow to 0, which only makes ties.
+// The lengths only choose among homotopy bases: any finite non-negative lengths are correct.
+// Throws NonFinite for a NaN or infinite coordinate.
+std::vector<Vec3d> unit_scaled(const std::vector<Vec3d>& positions) {
+  double m = 0;
+  for (std::size_t v = 0; v < positions.size(); ++v) {
+    const Vec3d& p = positions[v];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw Error(ErrorKind::NonFinite, "vertex " + std::to_string(v) + " has a non-finite coordinate",
+                  {static_cast<std::int64_t>(v)});
+    m = std::max({m, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+  }
+  if (m == 0) return positions;
+  const int e = std::ilogb(m);  // m in [2^e, 2^(e+1))
+  std::vector<Vec3d> out(positions.size());
+  for (std::size_t v = 0; v < positions.size(); ++v)
+    out[v] = {std::ldexp(positions[v].x, -e), std::ldexp(positions[v].y, -e), std::ldexp(positions[v].z, -e)};
+  return out;
+}
+
 int find_he(const TriMesh& m, int a, int b) {
   int h = m.find_halfedge(a, b);
   if (h < 0) internal("missing edge", {a, b});
@@ -448,6 +471,7 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
   rs.input_positions = positions;
 
   // ---- 1. greedy homotopy basis: shortest-path tree + dual maximum spanning tree ----
+  const std::vector<Vec3d> unit = unit_scaled(positions);  // lengths finite at any magnitude
   std::vector<double> dist(nv0, INFINITY);
   std::vector<int> parent(nv0, -1);
   {
@@ -463,7 +487,7 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
       int h0 = mesh.vertex_halfedge(v), h = h0;
       do {
         int w = mesh.target(h);
-        double nd = d + length(positions[v], positions[w]);
+        double nd = d + length(unit[v], unit[w]);
         if (nd < dist[w]) {
           dist[w] = nd;
           parent[w] = v;
@@ -488,7 +512,7 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     for (int h = 0; h < nh; ++h) {
       if (h > mesh.twin(h) || in_tree[h]) continue;
       int a = mesh.origin(h), b = mesh.target(h);
-      cand.push_back({dist[a] + dist[b] + length(positions[a], positions[b]), h});
+      cand.push_back({dist[a] + dist[b] + length(unit[a], unit[b]), h});
     }
     std::sort(cand.begin(), cand.end(), [](const auto& x, const auto& y) {
       return x.first != y.first ? x.first > y.first : x.second < y.second;

@@ -1,0 +1,180 @@
+// Randomized property tests of the whole pipeline (issue 7): random closed meshes of genus 1..12,
+// 16 to ~3000 faces (4 for the genus-0 tetrahedron), random refinements, random root, random
+// vertex/face order and near-degenerate or extreme geometry must all certify (both certifier
+// reports); permuting vertex or face order and re-rooting keep the genus and the quad count.
+//
+// Seeded: IGM_RANDOM_SEED (default below) and IGM_RANDOM_COUNT (scales the number of meshes, 1 by
+// default) override for long runs; every check names the seed and the mesh spec on failure.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <random>
+#include <string>
+
+#include "certify/certify.h"
+#include "igm/core/error.h"
+#include "igm/mesh/validate.h"
+#include "igm/pipeline/pipeline.h"
+#include "random_mesh.h"
+
+using namespace igm;
+using igm_test::Geometry;
+using igm_test::RandomMeshSpec;
+
+namespace {
+
+// Genus 0 is being added on another branch (orbifold embedding). Until it lands compute_igm must
+// throw exactly Unsupported on spheres; once merged, set this to true: then every sphere must certify.
+constexpr bool kGenus0Certifies = false;
+
+std::uint64_t env_u64(const char* name, std::uint64_t fallback) {
+  const char* s = std::getenv(name);
+  return s && *s ? std::strtoull(s, nullptr, 10) : fallback;
+}
+std::uint64_t base_seed() { return env_u64("IGM_RANDOM_SEED", 20261201); }
+int scaled(int n) { return n * static_cast<int>(env_u64("IGM_RANDOM_COUNT", 1)); }
+
+struct Outcome {
+  bool certified = false;
+  int genus = -1;
+  int quads = -1;
+};
+
+// validate -> compute_igm with `root` (-1: default) -> both certifier reports must be valid, with
+// the expected genus and 5g (1 for a torus) N x N quads. Genus 0: see kGenus0Certifies.
+Outcome run_pipeline(const PolygonSoup& soup, int expected_genus, int root, int resolution = 3) {
+  Outcome out;
+  const ValidMesh mesh = validate(soup);  // the geometry never changes the combinatorics: must pass
+  REQUIRE(mesh.genus == expected_genus);
+  PipelineOptions o;
+  o.resolution = resolution;
+  o.root = root < 0 ? -1 : root % mesh.mesh.num_vertices();
+  if (expected_genus == 0 && !kGenus0Certifies) {
+    try {
+      compute_igm(mesh, o);
+      FAIL("genus 0 accepted: set kGenus0Certifies = true");
+    } catch (const Error& e) {
+      CHECK_MESSAGE(e.kind() == ErrorKind::Unsupported, e.what());
+    }
+    return out;
+  }
+  PipelineResult r;
+  try {
+    r = compute_igm(mesh, o);
+  } catch (const Error& e) {
+    FAIL("compute_igm threw on a valid closed mesh: " << e.what());
+    return out;
+  }
+  CHECK_MESSAGE(r.igm_report.valid(), certify::summary(r.igm_report));
+  CHECK_MESSAGE(r.quad_report.valid(), certify::summary(r.quad_report));
+  REQUIRE(r.igm_report.genus.has_value());
+  REQUIRE(r.quad_report.genus.has_value());
+  CHECK(*r.igm_report.genus == expected_genus);
+  CHECK(*r.quad_report.genus == expected_genus);
+  const int layout = expected_genus == 1 ? 1 : 5 * expected_genus;
+  CHECK(static_cast<int>(r.quads.quads.size()) == layout * resolution * resolution);
+  out.certified = r.certified();
+  out.genus = *r.igm_report.genus;
+  out.quads = static_cast<int>(r.quads.quads.size());
+  return out;
+}
+
+// A random spec: genus in [g_lo, g_hi], faces log-uniform in [16, max_faces], a random geometry
+// (plain half the time), up to 40 random splits, jitter in [0, 0.45].
+RandomMeshSpec draw(std::mt19937_64& rng, int g_lo, int g_hi, double max_faces) {
+  RandomMeshSpec s;
+  s.genus = g_lo + static_cast<int>(rng() % static_cast<unsigned>(g_hi - g_lo + 1));
+  const double u = std::uniform_real_distribution<double>(0, 1)(rng);
+  s.faces = static_cast<std::int64_t>(16 * std::pow(max_faces / 16, u));
+  s.seed = rng();
+  s.jitter = std::uniform_real_distribution<double>(0, 0.45)(rng);
+  s.edge_splits = static_cast<int>(rng() % 21);
+  s.face_splits = static_cast<int>(rng() % 21);
+  const int k = static_cast<int>(rng() % (2 * static_cast<unsigned>(Geometry::Count)));
+  s.geometry = k < static_cast<int>(Geometry::Count) ? static_cast<Geometry>(k) : Geometry::Plain;
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("random closed meshes of genus 1..12 with random roots, refinements and geometry certify") {
+  // Count: 150 meshes (IGM_RANDOM_COUNT scales it), 16..3000 faces log-uniform.
+  const std::uint64_t seed = base_seed();
+  std::mt19937_64 rng(seed);
+  const int n = scaled(150);
+  int certified = 0;
+  for (int i = 0; i < n; ++i) {
+    const RandomMeshSpec s = draw(rng, 1, 12, 3000);
+    const int root = static_cast<int>(rng() % 1000000);
+    CAPTURE(seed);
+    CAPTURE(i);
+    INFO(igm_test::describe(s) << ", root " << root);
+    certified += run_pipeline(igm_test::random_closed_mesh(s), s.genus, root).certified;
+  }
+  MESSAGE("seed " << seed << ": " << certified << " of " << n << " random meshes certified");
+  CHECK(certified == n);
+}
+
+TEST_CASE("every hostile geometry on genus 1..12: topology does not depend on coordinates") {
+  // Count: 8 geometries x 12 genera = 96 small meshes (~30 faces per genus), random roots.
+  const std::uint64_t seed = base_seed() + 1;
+  std::mt19937_64 rng(seed);
+  int certified = 0, n = 0;
+  for (int k = 0; k < static_cast<int>(Geometry::Count); ++k)
+    for (int g = 1; g <= 12; ++g) {
+      RandomMeshSpec s;
+      s.genus = g;
+      s.faces = 30 * g;
+      s.seed = rng();
+      s.edge_splits = static_cast<int>(rng() % 6);
+      s.face_splits = static_cast<int>(rng() % 6);
+      s.geometry = static_cast<Geometry>(k);
+      const int root = static_cast<int>(rng() % 1000000);
+      CAPTURE(seed);
+      INFO(igm_test::describe(s) << ", root " << root);
+      certified += run_pipeline(igm_test::random_closed_mesh(s), g, root).certified;
+      ++n;
+    }
+  MESSAGE("seed " << seed << ": " << certified << " of " << n << " hostile-geometry meshes certified");
+  CHECK(certified == n);
+}
+
+TEST_CASE("metamorphic: vertex order, face order and root do not change genus or quad count") {
+  // Count: 40 meshes x 4 runs (as generated, vertices permuted, faces permuted, another root).
+  const std::uint64_t seed = base_seed() + 2;
+  std::mt19937_64 rng(seed);
+  const int n = scaled(40);
+  for (int i = 0; i < n; ++i) {
+    RandomMeshSpec s = draw(rng, 1, 12, 1500);
+    s.permute = false;
+    CAPTURE(seed);
+    CAPTURE(i);
+    INFO(igm_test::describe(s));
+    const PolygonSoup soup = igm_test::random_closed_mesh(s);
+    const Outcome base = run_pipeline(soup, s.genus, -1);
+    REQUIRE(base.certified);
+    const Outcome by_vertices = run_pipeline(igm_test::permute_soup(soup, rng, true, false, false), s.genus, -1);
+    const Outcome by_faces = run_pipeline(igm_test::permute_soup(soup, rng, false, true, true), s.genus, -1);
+    const Outcome rerooted = run_pipeline(soup, s.genus, static_cast<int>(rng() % 1000000));
+    for (const Outcome& o : {by_vertices, by_faces, rerooted}) {
+      CHECK(o.certified);
+      CHECK(o.genus == base.genus);
+      CHECK(o.quads == base.quads);
+    }
+  }
+}
+
+TEST_CASE("random spheres: genus 0 (Unsupported until the orbifold stage lands, then certified)") {
+  // Count: 30 spheres, from the 4-face tetrahedron to ~1000 faces, with hostile geometry.
+  const std::uint64_t seed = base_seed() + 3;
+  std::mt19937_64 rng(seed);
+  for (int i = 0; i < scaled(30); ++i) {
+    RandomMeshSpec s = draw(rng, 0, 0, 1000);
+    if (i % 3 == 0) s.faces = 4;  // the tetrahedron, refined
+    CAPTURE(seed);
+    INFO(igm_test::describe(s));
+    run_pipeline(igm_test::random_closed_mesh(s), 0, static_cast<int>(rng() % 1000000));
+  }
+}
