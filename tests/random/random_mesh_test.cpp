@@ -13,21 +13,16 @@
 #include <random>
 #include <string>
 
-#include "certify/certify.h"
-#include "igm/core/error.h"
-#include "igm/mesh/validate.h"
-#include "igm/pipeline/pipeline.h"
+#include "check_pipeline.h"
 #include "random_mesh.h"
 
 using namespace igm;
 using igm_test::Geometry;
 using igm_test::RandomMeshSpec;
+using igm_test::Outcome;
+using igm_test::run_pipeline;
 
 namespace {
-
-// Genus 0 is being added on another branch (orbifold embedding). Until it lands compute_igm must
-// throw exactly Unsupported on spheres; once merged, set this to true: then every sphere must certify.
-constexpr bool kGenus0Certifies = false;
 
 std::uint64_t env_u64(const char* name, std::uint64_t fallback) {
   const char* s = std::getenv(name);
@@ -35,51 +30,6 @@ std::uint64_t env_u64(const char* name, std::uint64_t fallback) {
 }
 std::uint64_t base_seed() { return env_u64("IGM_RANDOM_SEED", 20261201); }
 int scaled(int n) { return n * static_cast<int>(env_u64("IGM_RANDOM_COUNT", 1)); }
-
-struct Outcome {
-  bool certified = false;
-  int genus = -1;
-  int quads = -1;
-};
-
-// validate -> compute_igm with `root` (-1: default) -> both certifier reports must be valid, with
-// the expected genus and 5g (1 for a torus) N x N quads. Genus 0: see kGenus0Certifies.
-Outcome run_pipeline(const PolygonSoup& soup, int expected_genus, int root, int resolution = 3) {
-  Outcome out;
-  const ValidMesh mesh = validate(soup);  // the geometry never changes the combinatorics: must pass
-  REQUIRE(mesh.genus == expected_genus);
-  PipelineOptions o;
-  o.resolution = resolution;
-  o.root = root < 0 ? -1 : root % mesh.mesh.num_vertices();
-  if (expected_genus == 0 && !kGenus0Certifies) {
-    try {
-      compute_igm(mesh, o);
-      FAIL("genus 0 accepted: set kGenus0Certifies = true");
-    } catch (const Error& e) {
-      CHECK_MESSAGE(e.kind() == ErrorKind::Unsupported, e.what());
-    }
-    return out;
-  }
-  PipelineResult r;
-  try {
-    r = compute_igm(mesh, o);
-  } catch (const Error& e) {
-    FAIL("compute_igm threw on a valid closed mesh: " << e.what());
-    return out;
-  }
-  CHECK_MESSAGE(r.igm_report.valid(), certify::summary(r.igm_report));
-  CHECK_MESSAGE(r.quad_report.valid(), certify::summary(r.quad_report));
-  REQUIRE(r.igm_report.genus.has_value());
-  REQUIRE(r.quad_report.genus.has_value());
-  CHECK(*r.igm_report.genus == expected_genus);
-  CHECK(*r.quad_report.genus == expected_genus);
-  const int layout = expected_genus == 1 ? 1 : 5 * expected_genus;
-  CHECK(static_cast<int>(r.quads.quads.size()) == layout * resolution * resolution);
-  out.certified = r.certified();
-  out.genus = *r.igm_report.genus;
-  out.quads = static_cast<int>(r.quads.quads.size());
-  return out;
-}
 
 // A random spec: genus in [g_lo, g_hi], faces log-uniform in [16, max_faces], a random geometry
 // (plain half the time), up to 40 random splits, jitter in [0, 0.45].
@@ -118,7 +68,8 @@ TEST_CASE("random closed meshes of genus 1..12 with random roots, refinements an
 }
 
 TEST_CASE("every hostile geometry on genus 1..12: topology does not depend on coordinates") {
-  // Count: 8 geometries x 12 genera = 96 small meshes (~30 faces per genus), random roots.
+  // Count: 8 geometries x 12 genera = 96 small meshes (~30 faces per genus), random roots; the
+  // written files are certified too (positions at 1e300 or 1e-300 must still be written and read).
   const std::uint64_t seed = base_seed() + 1;
   std::mt19937_64 rng(seed);
   int certified = 0, n = 0;
@@ -134,7 +85,7 @@ TEST_CASE("every hostile geometry on genus 1..12: topology does not depend on co
       const int root = static_cast<int>(rng() % 1000000);
       CAPTURE(seed);
       INFO(igm_test::describe(s) << ", root " << root);
-      certified += run_pipeline(igm_test::random_closed_mesh(s), g, root).certified;
+      certified += run_pipeline(igm_test::random_closed_mesh(s), g, root, true).certified;
       ++n;
     }
   MESSAGE("seed " << seed << ": " << certified << " of " << n << " hostile-geometry meshes certified");

@@ -8,8 +8,9 @@
 #include "igm/core/error.h"
 #include "igm/mesh/generate.h"
 #include "igm/mesh/validate.h"
-#include "igm/pipeline/pipeline.h"
 #include "igm/topology/cut_to_canonical_disk.h"
+#include "check_pipeline.h"
+#include "random_mesh.h"
 
 using namespace igm;
 
@@ -25,14 +26,7 @@ ValidMesh small_torus() {
 }
 
 void check_certified(const ValidMesh& m) {
-  PipelineOptions o;
-  o.resolution = 3;
-  const PipelineResult r = compute_igm(m, o);
-  CHECK(r.igm_report.valid());
-  CHECK(r.quad_report.valid());
-  REQUIRE(r.igm_report.genus.has_value());
-  CHECK(*r.igm_report.genus == m.genus);
-  CHECK(r.quads.quads.size() == (m.genus == 1 ? 1u : 5u * m.genus) * 9u);
+  CHECK(igm_test::run_pipeline(igm_test::to_soup(m.mesh, m.positions), m.genus, -1, true).certified);
 }
 
 }  // namespace
