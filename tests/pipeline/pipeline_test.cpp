@@ -138,12 +138,12 @@ TEST_CASE("shared clean meshes of genus >= 1 are certified") {
   }
 }
 
-TEST_CASE("cheese (genus 133, 17.8k faces) is certified" * doctest::test_suite("asan_slow")) {
+TEST_CASE("cheese (genus 133 with 17.8k faces) is certified" * doctest::test_suite("asan_slow")) {
   IGM_REQUIRE_DATA(dir);
   check_run(load_mesh(dir / "meshes" / "clean" / "cheese.off"), 3);
 }
 
-TEST_CASE("a generated 1M-face torus: every triangle certified, N x N quads" * doctest::test_suite("asan_slow")) {
+TEST_CASE("a generated 1M-face torus: every triangle certified and N x N quads" * doctest::test_suite("asan_slow")) {
   const ValidMesh torus = generated(1, 1000000, 77);
   REQUIRE(torus.mesh.num_faces() >= 1000000);
   PipelineOptions o;

@@ -3,10 +3,12 @@
 // vertex/face order and near-degenerate or extreme geometry must all certify (both certifier
 // reports); permuting vertex or face order and re-rooting keep the genus and the quad count.
 //
-// Seeded: IGM_RANDOM_SEED (default below) and IGM_RANDOM_COUNT (scales the number of meshes, 1 by
-// default) override for long runs; every check names the seed and the mesh spec on failure.
+// Seeded: IGM_RANDOM_SEED (default below) overrides the seed and IGM_RANDOM_SCALE (a factor on
+// every count, default 1; e.g. 10 for a long run, 0.25 in the sanitizer pass of scripts/test.sh)
+// the number of meshes; every check names the seed and the mesh spec on failure.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -29,7 +31,12 @@ std::uint64_t env_u64(const char* name, std::uint64_t fallback) {
   return s && *s ? std::strtoull(s, nullptr, 10) : fallback;
 }
 std::uint64_t base_seed() { return env_u64("IGM_RANDOM_SEED", 20261201); }
-int scaled(int n) { return n * static_cast<int>(env_u64("IGM_RANDOM_COUNT", 1)); }
+double scale() {
+  const char* s = std::getenv("IGM_RANDOM_SCALE");
+  const double f = s && *s ? std::strtod(s, nullptr) : 1.0;
+  return f > 0 && f <= 1e6 ? f : 1.0;
+}
+int scaled(int n) { return std::max(1, static_cast<int>(std::lround(n * scale()))); }
 
 // A random spec: genus in [g_lo, g_hi], faces log-uniform in [16, max_faces], a random geometry
 // (plain half the time), up to 40 random splits, jitter in [0, 0.45].
@@ -50,7 +57,7 @@ RandomMeshSpec draw(std::mt19937_64& rng, int g_lo, int g_hi, double max_faces) 
 }  // namespace
 
 TEST_CASE("random closed meshes of genus 1..12 with random roots, refinements and geometry certify") {
-  // Count: 150 meshes (IGM_RANDOM_COUNT scales it), 16..3000 faces log-uniform.
+  // Count: 150 meshes (IGM_RANDOM_SCALE scales it), 16..3000 faces log-uniform.
   const std::uint64_t seed = base_seed();
   std::mt19937_64 rng(seed);
   const int n = scaled(150);
@@ -70,24 +77,28 @@ TEST_CASE("random closed meshes of genus 1..12 with random roots, refinements an
 TEST_CASE("every hostile geometry on genus 1..12: topology does not depend on coordinates") {
   // Count: 8 geometries x 12 genera = 96 small meshes (~30 faces per genus), random roots; the
   // written files are certified too (positions at 1e300 or 1e-300 must still be written and read).
+  // IGM_RANDOM_SCALE < 1 keeps scaled(12) genera spread over 1..12; > 1 repeats the rounds.
   const std::uint64_t seed = base_seed() + 1;
   std::mt19937_64 rng(seed);
   int certified = 0, n = 0;
-  for (int k = 0; k < static_cast<int>(Geometry::Count); ++k)
-    for (int g = 1; g <= 12; ++g) {
-      RandomMeshSpec s;
-      s.genus = g;
-      s.faces = 30 * g;
-      s.seed = rng();
-      s.edge_splits = static_cast<int>(rng() % 6);
-      s.face_splits = static_cast<int>(rng() % 6);
-      s.geometry = static_cast<Geometry>(k);
-      const int root = static_cast<int>(rng() % 1000000);
-      CAPTURE(seed);
-      INFO(igm_test::describe(s) << ", root " << root);
-      certified += run_pipeline(igm_test::random_closed_mesh(s), g, root, true).certified;
-      ++n;
-    }
+  const int genera = std::min(12, scaled(12)), rounds = std::max(1, scaled(12) / 12);
+  for (int round = 0; round < rounds; ++round)  // rounds x 8 geometries x genera meshes
+    for (int k = 0; k < static_cast<int>(Geometry::Count); ++k)
+      for (int j = 0; j < genera; ++j) {
+        const int g = 1 + j * 12 / genera;
+        RandomMeshSpec s;
+        s.genus = g;
+        s.faces = 30 * g;
+        s.seed = rng();
+        s.edge_splits = static_cast<int>(rng() % 6);
+        s.face_splits = static_cast<int>(rng() % 6);
+        s.geometry = static_cast<Geometry>(k);
+        const int root = static_cast<int>(rng() % 1000000);
+        CAPTURE(seed);
+        INFO(igm_test::describe(s) << ", root " << root);
+        certified += run_pipeline(igm_test::random_closed_mesh(s), g, root, true).certified;
+        ++n;
+      }
   MESSAGE("seed " << seed << ": " << certified << " of " << n << " hostile-geometry meshes certified");
   CHECK(certified == n);
 }
