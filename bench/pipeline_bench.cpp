@@ -1,5 +1,5 @@
 // Pipeline benchmark: time per stage, peak memory, output/input triangles and UV bits.
-// usage: igm_bench_pipeline [MESH ...]   (default: the shared meshes of the issues, from
+// usage: igm_bench_pipeline [--normal-form] [MESH ...]   (default: the shared meshes of the issues, from
 // $IGM_DATA_DIR or ../shared, plus generated tori of 100k and 1M faces)
 #include <sys/resource.h>
 
@@ -22,12 +22,15 @@ double peak_mb() {
   return static_cast<double>(u.ru_maxrss) / 1024.0;
 }
 
+bool g_normal_form = false;
+
 void run(const std::string& name, const igm::ValidMesh& mesh) {
   igm::PipelineOptions o;
   o.resolution = 4;
+  o.normal_form = g_normal_form;
   const igm::PipelineResult r = igm::compute_igm(mesh, o);
   double total = 0;
-  std::printf("%-22s g=%-3d F=%-8d", name.c_str(), r.stats.genus, r.stats.input_faces);
+  std::printf("%-22s g=%-3d F=%-8d nf=%d", name.c_str(), r.stats.genus, r.stats.input_faces, o.normal_form ? 1 : 0);
   for (const igm::StageEvent& e : r.stats.stages) {
     std::printf(" %s %.2fs", e.stage.c_str(), e.seconds);
     total += e.seconds;
@@ -42,8 +45,10 @@ void run(const std::string& name, const igm::ValidMesh& mesh) {
 
 int main(int argc, char** argv) {
   try {
-    if (argc > 1) {
-      for (int i = 1; i < argc; ++i) run(std::filesystem::path(argv[i]).stem().string(), igm::load_mesh(argv[i]));
+    int first = 1;
+    if (argc > 1 && std::string(argv[1]) == "--normal-form") g_normal_form = true, first = 2;
+    if (argc > first) {
+      for (int i = first; i < argc; ++i) run(std::filesystem::path(argv[i]).stem().string(), igm::load_mesh(argv[i]));
       return 0;
     }
     const char* env = std::getenv("IGM_DATA_DIR");

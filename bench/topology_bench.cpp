@@ -1,7 +1,9 @@
 // Topology stage measurements: time and mesh growth of cut_to_canonical_disk.
 // Usage: igm_bench_topology [shared_dir] [--normal-form-all]
-// By default the normal form (handle slides) is measured for genus <= 10 only; higher genus is
-// measured without it (the slides currently refine too much there, see the topology report).
+// Growth is broken down by source: crossings, Steiner, band, chord and pre-condition splits, and
+// the handle slides' splits. By default the normal form (handle slides) is measured for genus <= 10
+// only (cheese exceeds the slide bound, the 1M-face g20 takes ~20 s); --normal-form-all measures it
+// everywhere.
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -54,13 +56,14 @@ void run(const std::string& name, const Input& in, bool normal_form) {
   try {
     CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
     const auto& s = r.stats;
-    std::printf("%-26s g=%-4d F=%-8d normal_form=%d  V %8d -> %8d (+%6.1f%%)  crossings %7d  splits %7d  slides %4d"
-                "  time %7.3f s (basis %.3f, detach %.3f, slides+cut %.3f)\n",
+    std::printf("%-24s g=%-4d F=%-8d nf=%d  V %8d -> %8d (+%6.1f%%) | crossings %6d steiner %5d band %4d chord %5d"
+                " precond %6d | slides %3d splits %5d | %7.3f s (basis %.3f, detach %.3f, slides+cut %.3f)\n",
                 name.c_str(), s.genus, s.faces_before, normal_form ? 1 : 0, s.vertices_before, s.vertices_after,
-                100.0 * (s.vertices_after - s.vertices_before) / s.vertices_before, s.crossings, s.precondition_splits,
-                s.num_slides, s.seconds_total, s.seconds_basis, s.seconds_detach, s.seconds_cut);
+                100.0 * (s.vertices_after - s.vertices_before) / s.vertices_before, s.crossings, s.steiner_vertices,
+                s.band_splits, s.chord_splits, s.precondition_splits, s.num_slides, s.slide_splits, s.seconds_total,
+                s.seconds_basis, s.seconds_detach, s.seconds_cut);
   } catch (const Error& e) {
-    std::printf("%-26s error: %s\n", name.c_str(), e.what());
+    std::printf("%-24s nf=%d error: %s\n", name.c_str(), normal_form ? 1 : 0, e.what());
   }
   std::fflush(stdout);
 }
@@ -77,7 +80,8 @@ int main(int argc, char** argv) {
     const char* name;
     int genus;
   };
-  for (Named m : {Named{"elephant", 3}, Named{"couplingdown", 9}, Named{"cheese", 133}}) {
+  for (Named m : {Named{"eight", 2}, Named{"joint", 2}, Named{"helmet", 3}, Named{"elephant", 3}, Named{"anchor", 4},
+                 Named{"couplingdown", 9}, Named{"cheese", 133}}) {
     Input in;
     if (!read_off(shared / "meshes" / "clean" / (std::string(m.name) + ".off"), in)) {
       std::printf("%-26s skipped: not found under %s\n", m.name, shared.c_str());

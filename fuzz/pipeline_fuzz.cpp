@@ -6,9 +6,10 @@
 // on the segment of two others, scale it by 1e300 / 1e-300, send it to +-1e308, zero it). The
 // combinatorics stay those of a closed genus-g surface, so:
 //   validate() must accept it with genus g, and compute_igm must return an output that BOTH
-//   certifier reports accept, with genus g and 5g (1 for a torus) N x N quads.
-// The only typed error accepted is Unsupported for genus 0 (kGenus0Certifies below); any other
-// igm::Error, any other exception, a rejected output, a crash or a hang is a finding (abort).
+//   certifier reports accept, with genus g and 5g (1 for a torus, 2 for a sphere) N x N quads.
+// No igm::Error is accepted (the mesh is valid by construction; with kGenus0Certifies false only
+// Unsupported for genus 0 was): any igm::Error, any other exception, a rejected output, a crash
+// or a hang is a finding (abort).
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -23,9 +24,8 @@
 
 namespace {
 
-// Genus 0 (orbifold embedding) is being added on another branch. Until it lands, compute_igm must
-// throw Unsupported for genus 0; once merged, set this to true: then spheres must certify too.
-constexpr bool kGenus0Certifies = false;
+// Genus 0 (orbifold embedding) has landed: spheres must certify too (false: exactly Unsupported).
+constexpr bool kGenus0Certifies = true;
 
 struct Reader {  // the fuzz bytes, read front to back; past the end every read gives 0
   const std::uint8_t* p;
@@ -96,9 +96,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (s.genus == 0 && !kGenus0Certifies) finding("genus 0 accepted: set kGenus0Certifies = true", s, "");
     if (!r.igm_report.valid()) finding("IGM rejected by the certifier", s, igm::certify::summary(r.igm_report).c_str());
     if (!r.quad_report.valid()) finding("quads rejected by the certifier", s, igm::certify::summary(r.quad_report).c_str());
-    // 1 layout quad for a torus, 5g from genus 2; genus 0: the pipeline's own count (pin it once
-    // the genus-0 stage lands).
-    const int layout = s.genus == 0 ? r.stats.layout_quads : s.genus == 1 ? 1 : 5 * s.genus;
+    // Layout quads: 2 for a sphere ([0,2] x [0,1]), 1 for a torus, 5g from genus 2.
+    const int layout = s.genus == 0 ? 2 : s.genus == 1 ? 1 : 5 * s.genus;
     if (r.igm_report.genus != s.genus || r.quad_report.genus != s.genus ||
         static_cast<int>(r.quads.quads.size()) != layout * resolution * resolution)
       finding("wrong genus or quad count", s, "");

@@ -17,7 +17,7 @@ BUILD="${IGM_FUZZ_BUILD_DIR:-build-fuzz}"
 WORK="${IGM_FUZZ_WORK:-/tmp/igm-fuzz}"
 CC=clang CXX=clang++ cmake -S . -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIGM_BUILD_FUZZERS=ON \
   -DIGM_BUILD_TESTS=OFF -DIGM_BUILD_BENCH=OFF >/dev/null
-for t in "${TARGETS[@]}"; do cmake --build "$BUILD" -j2 --target "fuzz_$t" >/dev/null; done
+for t in "${TARGETS[@]}"; do nice -n 19 cmake --build "$BUILD" -j2 --target "fuzz_$t" >/dev/null; done
 mkdir -p "$WORK"
 for t in "${TARGETS[@]}"; do
   mkdir -p "$WORK/$t"

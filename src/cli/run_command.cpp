@@ -3,6 +3,7 @@
 #include <sys/resource.h>
 
 #include <charconv>
+#include <cstdint>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -30,8 +31,10 @@ bool parse_int(std::string_view s, long long& out) {
 
 int usage(const std::string& message) {
   std::fprintf(stderr,
-               "igm run: %s\nusage: igm run MESH [-o DIR] [--resolution N] [--root V] [--normal-form]\n"
-               "  writes DIR/NAME.igm.obj, NAME.igm.exact, NAME.quad.obj, NAME.cert.json, NAME.schema.svg\n",
+               "igm run: %s\nusage: igm run MESH [-o DIR] [--resolution N] [--root V] [--normal-form] [--cones A,B,C,D]\n"
+               "  writes DIR/NAME.igm.obj, NAME.igm.exact, NAME.quad.obj, NAME.cert.json, NAME.schema.svg\n"
+               "  --resolution N  quads per layout quad edge: 3..1024 for genus >= 1, 1..1024 for genus 0\n"
+               "  --cones A,B,C,D genus 0: the four cone vertices (0-based input ids) in path order\n",
                message.c_str());
   return kExitInput;
 }
@@ -93,6 +96,14 @@ int run_pipeline(const igm::ValidMesh& mesh, const std::string& name, const std:
       << ", \"layout_quads\": " << st.layout_quads << ", \"quads\": " << st.quads
       << ", \"max_uv_bits\": " << st.max_uv_bits << ", \"tutte_iterations\": " << st.tutte.iterations
       << ", \"tutte_flips_double\": " << st.tutte.flips_double << ", \"seconds\": " << total << "},\n"
+      << (st.genus == 0 ? "\"genus0\": {\"cones\": [" + std::to_string(st.cones[0]) + ", " + std::to_string(st.cones[1]) +
+                              ", " + std::to_string(st.cones[2]) + ", " + std::to_string(st.cones[3]) +
+                              "], \"path_edges\": " + std::to_string(st.sphere_cut.path_edges) +
+                              ", \"refinement_iterations\": " + std::to_string(st.orbifold.refinement.iterations) +
+                              ", \"flips_double\": " + std::to_string(st.orbifold.refinement.flips_double) +
+                              ", \"exact_fallback\": " + (st.orbifold.refinement.exact_fallback ? "true" : "false") +
+                              "},\n"
+                        : std::string())
       << "\"igm\": " << igm::certify::to_json(r.igm_report) << ",\n"
       << "\"quad\": " << igm::certify::to_json(r.quad_report) << "}\n";
   });
@@ -115,6 +126,23 @@ int run_command(const std::vector<std::string_view>& args) {
   igm::PipelineOptions options;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string_view a = args[i];
+    if (a == "--cones") {
+      if (i + 1 >= args.size()) return usage("--cones needs a value");
+      const std::string_view v = args[++i];
+      options.cones.clear();
+      std::size_t start = 0;
+      while (true) {  // bound: one entry per comma
+        const std::size_t comma = v.find(',', start);
+        const std::string_view item = v.substr(start, comma == std::string_view::npos ? v.npos : comma - start);
+        long long n = 0;
+        if (!parse_int(item, n) || n < INT32_MIN || n > INT32_MAX)
+          return usage("--cones needs comma-separated vertex ids, got '" + std::string(v) + "'");
+        options.cones.push_back(static_cast<int>(n));
+        if (comma == std::string_view::npos) break;
+        start = comma + 1;
+      }
+      continue;
+    }
     if (a == "-o" || a == "--resolution" || a == "--root") {
       if (i + 1 >= args.size()) return usage(std::string(a) + " needs a value");
       const std::string_view v = args[++i];
@@ -125,8 +153,7 @@ int run_command(const std::vector<std::string_view>& args) {
       long long n = 0;
       if (!parse_int(v, n)) return usage(std::string(a) + " needs an integer, got '" + std::string(v) + "'");
       if (a == "--resolution") {
-        if (n < 3 || n > 1024)
-          return usage("--resolution must be in 3..1024 (below 3 the quad mesh has loops and multi-edges at the root)");
+        if (n < 1 || n > 1024) return usage("--resolution must be in 1..1024");
         options.resolution = static_cast<int>(n);
       } else {
         if (n < 0 || n > 2000000000) return usage("--root must be a vertex id >= 0");
@@ -144,6 +171,9 @@ int run_command(const std::vector<std::string_view>& args) {
   if (mesh_path.empty()) return usage("run needs a mesh file");
   try {
     const igm::ValidMesh mesh = igm::load_mesh(mesh_path);
+    if (mesh.genus > 0 && options.resolution < 3)
+      return usage("--resolution must be in 3..1024 for genus >= 1 (below 3 the quad mesh has loops and multi-edges at "
+                   "the root)");
     return run_pipeline(mesh, std::filesystem::path(mesh_path).stem().string(), dir, options);
   } catch (const igm::Error& e) {
     std::fprintf(stderr, "igm: %s: %s\n", mesh_path.c_str(), e.what());

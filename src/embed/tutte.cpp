@@ -1,37 +1,21 @@
 #include "igm/embed/tutte.h"
 
-#include <Eigen/OrderingMethods>
-#include <Eigen/SparseCore>
 #include <algorithm>
 #include <chrono>
-#include <climits>
 #include <cmath>
-#include <map>
-#include <numeric>
 #include <string>
 
 #include "igm/core/error.h"
+#include "igm/embed/exact_refinement.h"
 #include "igm/embed/polygon.h"
-#include "igm/embed/sparse_cholesky.h"
 
-// Convergence of the refinement (why the loop terminates, and its bound).
-//
-// Let A = L_II be the uniform Laplacian restricted to interior vertices (symmetric positive
-// definite: weakly diagonally dominant, strictly on rows next to the boundary, and irreducible
-// because the disk is connected), b the exact rational right-hand side (sums of boundary
-// positions) and x* = A^-1 b the exact Tutte solution. By Tutte's theorem in Floater's form
-// (convex boundary traversed once, convex-combination weights, no interior edge between two
-// vertices of one side) x* is an embedding: every triangle has area >= alpha > 0 at x*.
-//
-// Each step computes r = b - A x EXACTLY (x is dyadic, A integer, b rational), then solves
-// A d = r in double with the fixed Cholesky factor: backward stability of Cholesky gives
-// ||d~ - d|| <= rho ||d|| with rho ~ c n u kappa(A) (u = 2^-53), and x + d~ is rounded to a grid
-// 2^-50 ||d~|| fine. Hence ||x_{k+1} - x*|| <= (rho + 2^-49) ||x_k - x*||: linear convergence
-// whenever rho < 1/2 (kappa(A) up to ~2^40), gaining log2(1/rho) bits per step. Triangle areas
-// are Lipschitz in the coordinates (constant ~ the polygon diameter), so once the error is below
-// ~alpha / diam all triangles are positive and the loop stops. The number of steps is about
-// log2(diam^2 / alpha) / log2(1/rho); it is bounded by TutteOptions::max_iterations, after
-// which small meshes are solved exactly (the rational x* itself) and large ones are reported.
+// Why the certified solve terminates: A = L_II, the uniform Laplacian restricted to interior
+// vertices, is symmetric positive definite (weakly diagonally dominant, strictly on rows next to
+// the boundary, irreducible because the disk is connected); b holds sums of boundary positions.
+// By Tutte's theorem in Floater's form (convex boundary traversed once, convex-combination
+// weights, no interior edge between two vertices of one side) the exact solution x* = A^-1 b is
+// an embedding, so the refinement of embed/exact_refinement.cpp (convergence argument there)
+// certifies every triangle after finitely many steps.
 
 namespace igm {
 
@@ -261,68 +245,6 @@ Disk build_and_check_disk(int nv, const std::vector<std::array<int, 3>>& tris,
   return d;
 }
 
-// Scratch integers for the grid orientation test (no allocation per triangle).
-struct Scratch {
-  mpz_class p, q, r, s, t1, t2;
-};
-
-// Sign of p*q - r*s for big integers: exact __int128 when all fit in 63 bits, else a double
-// filter on (mantissa, exponent) pairs with a proven bound, else exact GMP products.
-Sign det_sign(Scratch& t) {
-  if (mpz_fits_slong_p(t.p.get_mpz_t()) && mpz_fits_slong_p(t.q.get_mpz_t()) &&
-      mpz_fits_slong_p(t.r.get_mpz_t()) && mpz_fits_slong_p(t.s.get_mpz_t())) {
-    const __int128 det = static_cast<__int128>(mpz_get_si(t.p.get_mpz_t())) * mpz_get_si(t.q.get_mpz_t()) -
-                         static_cast<__int128>(mpz_get_si(t.r.get_mpz_t())) * mpz_get_si(t.s.get_mpz_t());
-    return det > 0 ? Sign::Positive : (det < 0 ? Sign::Negative : Sign::Zero);
-  }
-  // mpz_get_d_2exp truncates: mantissa m in [0.5, 1) (signed) with relative error < 2^-52.
-  long ep, eq, er, es;
-  const double mp = mpz_get_d_2exp(&ep, t.p.get_mpz_t()), mq = mpz_get_d_2exp(&eq, t.q.get_mpz_t());
-  const double mr = mpz_get_d_2exp(&er, t.r.get_mpz_t()), ms = mpz_get_d_2exp(&es, t.s.get_mpz_t());
-  const int sa = (mp > 0) == (mq > 0) ? 1 : -1;  // sign of p*q when both non-zero
-  const int sb = (mr > 0) == (ms > 0) ? 1 : -1;
-  const bool za = mp == 0 || mq == 0, zb = mr == 0 || ms == 0;  // zero is exact
-  if (za && zb) return Sign::Zero;
-  if (za) return sb > 0 ? Sign::Negative : Sign::Positive;
-  if (zb) return sa > 0 ? Sign::Positive : Sign::Negative;
-  const long ea = ep + eq, eb = er + es;
-  // |p q| >= 2^(ea-2) and |r s| < 2^eb: a gap of 3 in the exponents decides.
-  if (ea >= eb + 3) return sa > 0 ? Sign::Positive : Sign::Negative;
-  if (eb >= ea + 3) return sb > 0 ? Sign::Negative : Sign::Positive;
-  const long m = std::max(ea, eb);
-  const double A = std::ldexp(mp * mq, static_cast<int>(ea - m));  // exact scaling by 2^0..2^-2
-  const double B = std::ldexp(mr * ms, static_cast<int>(eb - m));
-  const double det = A - B;
-  // |A - Atrue| <= ((1+2u)^2(1+u) - 1)|Atrue| < 5.1u |Atrue|, same for B, plus u|A - B| for the
-  // subtraction: total < 6.2u (|A| + |B|) < 2^-50 fl(|A| + |B|).
-  const double err = 0x1p-50 * (std::fabs(A) + std::fabs(B));
-  if (det > err) return Sign::Positive;
-  if (-det > err) return Sign::Negative;
-  mpz_mul(t.t1.get_mpz_t(), t.p.get_mpz_t(), t.q.get_mpz_t());
-  mpz_mul(t.t2.get_mpz_t(), t.r.get_mpz_t(), t.s.get_mpz_t());
-  const int c = cmp(t.t1, t.t2);
-  return c > 0 ? Sign::Positive : (c < 0 ? Sign::Negative : Sign::Zero);
-}
-
-// Exact position of interior vertex i on the grid: Y * 2^-e.
-Rational grid_value(const mpz_class& Y, std::int64_t e) {
-  Rational q(Y);
-  if (e >= 0)
-    mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), static_cast<mp_bitcnt_t>(e));
-  else
-    mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), static_cast<mp_bitcnt_t>(-e));
-  return q;
-}
-
-// (mantissa, exponent) of a non-zero rational num/den as a double pair; value = m * 2^e.
-void rational_to_me(const mpz_class& num, const mpz_class& den, double& m, long& e) {
-  long en, ed;
-  const double dn = mpz_get_d_2exp(&en, num.get_mpz_t());
-  const double dd = mpz_get_d_2exp(&ed, den.get_mpz_t());
-  m = dn / dd;
-  e = en - ed;
-}
-
 }  // namespace
 
 TutteResult tutte_embed(int num_vertices, const std::vector<std::array<int, 3>>& triangles,
@@ -410,47 +332,33 @@ TutteResult tutte_embed(int num_vertices, const std::vector<std::array<int, 3>>&
 
   // Orientation checks. Triangles with a boundary vertex use exact rationals; the others the
   // filter of the current representation (doubles, or the common grid 2^-e).
-  enum class Mode { Double, Grid, Exact };
-  std::vector<double> xd, yd;                   // Mode::Double
-  std::vector<mpz_class> X, Y;                  // Mode::Grid: x = X * 2^-e
-  std::int64_t e = 0;
-  std::vector<Point2q> exact_interior;          // Mode::Exact
-  auto point_of = [&](int v, Mode mode) -> Point2q {
-    if (bpos[v] >= 0) return boundary_uv[bpos[v]];
-    const int i = idx[v];
-    if (mode == Mode::Double) return Point2q{to_rational(xd[i]), to_rational(yd[i])};
-    if (mode == Mode::Grid) return Point2q{grid_value(X[i], e), grid_value(Y[i], e)};
-    return exact_interior[i];
-  };
-  auto count_flips = [&](Mode mode) -> std::int64_t {
-    const auto t0 = Clock::now();
+  using Mode = RefinementIterate::Mode;
+  auto certificate = [&](const RefinementIterate& x) -> std::int64_t {
     std::int64_t flips = 0;
-    Scratch s;
+    GridScratch s;
     for (int f = 0; f < d.nf; ++f) {
       const auto& t = triangles[f];
       Sign o;
-      if (mode == Mode::Exact || bpos[t[0]] >= 0 || bpos[t[1]] >= 0 || bpos[t[2]] >= 0) {
-        o = orient2d(point_of(t[0], mode), point_of(t[1], mode), point_of(t[2], mode));
+      if (x.mode == Mode::Exact || bpos[t[0]] >= 0 || bpos[t[1]] >= 0 || bpos[t[2]] >= 0) {
+        auto point_of = [&](int v) { return bpos[v] >= 0 ? boundary_uv[bpos[v]] : x.point(idx[v]); };
+        o = orient2d(point_of(t[0]), point_of(t[1]), point_of(t[2]));
       } else {
         const int a = idx[t[0]], b = idx[t[1]], c = idx[t[2]];
-        if (mode == Mode::Double) {
+        if (x.mode == Mode::Double) {
+          const std::vector<double>&xd = *x.xd, &yd = *x.yd;
           o = orient2d(Vec2d{xd[a], yd[a]}, Vec2d{xd[b], yd[b]}, Vec2d{xd[c], yd[c]});
         } else {
-          mpz_sub(s.p.get_mpz_t(), X[a].get_mpz_t(), X[c].get_mpz_t());
-          mpz_sub(s.q.get_mpz_t(), Y[b].get_mpz_t(), Y[c].get_mpz_t());
-          mpz_sub(s.r.get_mpz_t(), Y[a].get_mpz_t(), Y[c].get_mpz_t());
-          mpz_sub(s.s.get_mpz_t(), X[b].get_mpz_t(), X[c].get_mpz_t());
-          o = det_sign(s);  // the common factor 2^-2e does not change the sign
+          const std::vector<mpz_class>&X = *x.X, &Y = *x.Y;
+          o = grid_orient(X[a], Y[a], X[b], Y[b], X[c], Y[c], s);  // the common factor 2^-2e does not change the sign
         }
       }
       if (o != Sign::Positive) ++flips;
     }
-    st.seconds_checks += since(t0);
     return flips;
   };
-  auto finish = [&](Mode mode) {
+  auto finish = [&](const RefinementIterate& interior) {
     result.uv.resize(nv);
-    for (int v = 0; v < nv; ++v) result.uv[v] = point_of(v, mode);
+    for (int v = 0; v < nv; ++v) result.uv[v] = bpos[v] >= 0 ? boundary_uv[bpos[v]] : interior.point(idx[v]);
     std::size_t bits = 0;
     for (const Point2q& p : result.uv) bits = std::max({bits, bit_size(p.x), bit_size(p.y)});
     st.max_bits = bits;
@@ -458,256 +366,48 @@ TutteResult tutte_embed(int num_vertices, const std::vector<std::array<int, 3>>&
   };
 
   if (m == 0) {  // every vertex on the boundary: the placement is the embedding
-    st.flips_double = count_flips(Mode::Exact);
+    RefinementIterate none;
+    none.mode = Mode::Exact;
+    const auto t0 = Clock::now();
+    st.flips_double = certificate(none);
+    st.seconds_checks = since(t0);
     if (st.flips_double != 0)
       throw Error(ErrorKind::Internal, "tutte_embed: a triangle of an all-boundary disk is not positive");
-    finish(Mode::Exact);
+    finish(none);
     return result;
   }
 
-  // ---------------- double solve ----------------
-  auto t0 = Clock::now();
-  SparseCholesky chol;
-  {
-    std::vector<double> val(nb.size(), -1.0), diag(m);
-    for (int i = 0; i < m; ++i) diag[i] = static_cast<double>(deg[i]);
-    chol.factorize(nb_begin, nb, val, diag);  // throws Internal if not positive definite
-  }
-  st.factor_entries = chol.factor_entries();
-  st.seconds_factorization = since(t0);
-
-  t0 = Clock::now();
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(m, 2);
-  for (std::size_t k = 0; k < brow.size(); ++k) {
-    rhs(brow[k], 0) = to_double(bx[k]);
-    rhs(brow[k], 1) = to_double(by[k]);
-  }
-  Eigen::MatrixXd sol = rhs;
-  chol.solve(sol);
-  xd.resize(m);
-  yd.resize(m);
-  for (int i = 0; i < m; ++i) {
-    xd[i] = sol(i, 0);
-    yd[i] = sol(i, 1);
-    if (!std::isfinite(xd[i]) || !std::isfinite(yd[i]))
-      throw Error(ErrorKind::Internal, "tutte_embed: the double solve produced a non-finite value");
-  }
-  st.seconds_solve = since(t0);
-
-  st.flips_double = count_flips(Mode::Double);
-  if (st.flips_double == 0 && options.min_iterations <= 0) {
-    finish(Mode::Double);
-    return result;
-  }
-
-  // ---------------- mixed-precision refinement ----------------
-  const auto t_ref = Clock::now();
-  double seconds_checks_before = st.seconds_checks;
-  {
-    // Initial grid: 2^-e with max |coordinate| * 2^e ~ 2^52, so the doubles round to int64.
-    double M = 0;
-    for (int i = 0; i < m; ++i) M = std::max({M, std::fabs(xd[i]), std::fabs(yd[i])});
-    for (const Point2q& p : boundary_uv) M = std::max({M, std::fabs(to_double(p.x)), std::fabs(to_double(p.y))});
-    int ex = 0;
-    std::frexp(M, &ex);  // M < 2^ex
-    e = 52 - ex;
-    X.resize(m);
-    Y.resize(m);
-    for (int i = 0; i < m; ++i) {
-      X[i] = static_cast<long>(std::llround(std::ldexp(xd[i], static_cast<int>(e))));
-      Y[i] = static_cast<long>(std::llround(std::ldexp(yd[i], static_cast<int>(e))));
-    }
-  }
-  std::vector<double> rm(2 * static_cast<std::size_t>(m));  // residual mantissas (x then y)
-  std::vector<long> re(2 * static_cast<std::size_t>(m));    // and exponents
-  mpz_class acc, num, den, dY;
-  bool done = false, zero_residual = false;
-  // Bound: at most options.max_iterations steps (each O(F) big-integer operations).
-  for (int it = 0; it < options.max_iterations && !done; ++it) {
-    // Exact residual in grid units: R = 2^e b - A Y.
-    long emax = LONG_MIN;
-    std::size_t bk = 0;
-    for (int i = 0; i < m; ++i) {
-      const bool has_b = bk < brow.size() && brow[bk] == i;
-      for (int c = 0; c < 2; ++c) {
-        const std::vector<mpz_class>& Z = c == 0 ? X : Y;
-        mpz_mul_si(acc.get_mpz_t(), Z[i].get_mpz_t(), deg[i]);
-        for (int k = nb_begin[i]; k < nb_begin[i + 1]; ++k) mpz_sub(acc.get_mpz_t(), acc.get_mpz_t(), Z[nb[k]].get_mpz_t());
-        double mant;
-        long ex;
-        if (has_b) {
-          const Rational& b = c == 0 ? bx[bk] : by[bk];
-          // R = (2^e num(b) - den(b) acc) / den(b)   (e >= 0), or with 2^-e on the other side.
-          if (e >= 0) {
-            mpz_mul_2exp(num.get_mpz_t(), b.get_num_mpz_t(), static_cast<mp_bitcnt_t>(e));
-            mpz_submul(num.get_mpz_t(), b.get_den_mpz_t(), acc.get_mpz_t());
-            den = b.get_den();
-          } else {
-            mpz_mul_2exp(den.get_mpz_t(), b.get_den_mpz_t(), static_cast<mp_bitcnt_t>(-e));
-            num = b.get_num();
-            mpz_submul(num.get_mpz_t(), den.get_mpz_t(), acc.get_mpz_t());
-          }
-          if (sgn(num) == 0) {
-            mant = 0;
-            ex = 0;
-          } else {
-            rational_to_me(num, den, mant, ex);
-          }
-        } else {
-          mant = -mpz_get_d_2exp(&ex, acc.get_mpz_t());
-        }
-        rm[2 * i + c] = mant;
-        re[2 * i + c] = ex;
-        if (mant != 0) emax = std::max(emax, ex);
-      }
-      if (has_b) ++bk;
-    }
-    if (emax == LONG_MIN) {  // residual exactly zero: x is the exact Tutte solution
-      zero_residual = true;
-      break;
-    }
-    // Scaled residual (max ~1) solved in double with the same factorization.
-    for (int i = 0; i < m; ++i)
-      for (int c = 0; c < 2; ++c) {
-        const long sh = re[2 * i + c] - emax;
-        rhs(i, c) = rm[2 * i + c] == 0 || sh < -1100 ? 0.0 : std::ldexp(rm[2 * i + c], static_cast<int>(sh));
-      }
-    sol = rhs;
-    chol.solve(sol);
-    double dmax = 0;
-    for (int i = 0; i < m; ++i) dmax = std::max({dmax, std::fabs(sol(i, 0)), std::fabs(sol(i, 1))});
-    if (!std::isfinite(dmax))
-      throw Error(ErrorKind::Internal, "tutte_embed: non-finite correction in refinement");
-    if (dmax == 0)
-      throw Error(ErrorKind::Internal, "tutte_embed: zero correction for a non-zero residual");
-    int dex = 0;
-    std::frexp(dmax, &dex);
-    // New grid 2^-(e+s): the largest correction becomes ~2^50 new grid units.
-    const long s = std::max(0L, 50L - dex - emax);
-    const long scale = emax + s;  // correction in new grid units = sol * 2^scale
-    for (int i = 0; i < m; ++i)
-      for (int c = 0; c < 2; ++c) {
-        mpz_class& Z = c == 0 ? X[i] : Y[i];
-        mpz_mul_2exp(Z.get_mpz_t(), Z.get_mpz_t(), static_cast<mp_bitcnt_t>(s));
-        const double v = sol(i, c);
-        if (v == 0) continue;
-        if (scale > 2000 || scale < -2000)
-          throw Error(ErrorKind::Internal, "tutte_embed: correction scale 2^" + std::to_string(scale) +
-                                               " out of range in refinement");
-        const double scaled = std::nearbyint(std::ldexp(v, static_cast<int>(scale)));
-        if (!std::isfinite(scaled))
-          throw Error(ErrorKind::Internal, "tutte_embed: correction out of range in refinement");
-        if (std::fabs(scaled) < 0x1p62) {
-          const long q = static_cast<long>(scaled);
-          if (q >= 0)
-            mpz_add_ui(Z.get_mpz_t(), Z.get_mpz_t(), static_cast<unsigned long>(q));
-          else
-            mpz_sub_ui(Z.get_mpz_t(), Z.get_mpz_t(), static_cast<unsigned long>(-q));
-        } else {
-          mpz_set_d(dY.get_mpz_t(), scaled);
-          mpz_add(Z.get_mpz_t(), Z.get_mpz_t(), dY.get_mpz_t());
-        }
-      }
-    e += s;
-    st.iterations = it + 1;
-    const std::int64_t flips = count_flips(Mode::Grid);
-    st.flips_per_iteration.push_back(flips);
-    if (flips == 0 && st.iterations >= options.min_iterations) done = true;
-  }
-  st.grid_exponent = e;
-  st.seconds_refinement = since(t_ref) - (st.seconds_checks - seconds_checks_before);
-  if (done || (!st.flips_per_iteration.empty() && st.flips_per_iteration.back() == 0)) {
-    finish(Mode::Grid);
-    return result;
-  }
-  if (zero_residual) {
-    // X, Y are the exact Tutte solution, which Tutte/Floater say is an embedding.
-    const std::int64_t flips = count_flips(Mode::Grid);
-    if (flips != 0)
-      throw Error(ErrorKind::Internal, "tutte_embed: the exact Tutte solution has " +
-                                           std::to_string(flips) +
-                                           " non-positive triangles (pre-condition missed?)");
-    finish(Mode::Grid);
-    return result;
-  }
-
-  // ---------------- exact fallback ----------------
-  if (m > options.exact_fallback_max_interior)
-    throw Error(ErrorKind::Internal,
-                "tutte_embed: refinement did not certify all triangles after " +
-                    std::to_string(st.iterations) + " steps (interior vertices " + std::to_string(m) +
-                    ", flips after double " + std::to_string(st.flips_double) + ", last flips " +
-                    (st.flips_per_iteration.empty() ? std::string("n/a")
-                                                    : std::to_string(st.flips_per_iteration.back())) +
-                    ", grid exponent " + std::to_string(e) +
-                    "); too large for the exact fallback (limit " +
-                    std::to_string(options.exact_fallback_max_interior) + ")");
-  const auto t_fb = Clock::now();
-  st.exact_fallback = true;
-  {
-    // Sparse symmetric elimination in rationals along a minimum-degree (AMD) order: row k keeps
-    // its entries in columns >= k (the upper factor U = D L^T after elimination).
-    Eigen::SparseMatrix<double> A(m, m);
-    {
-      std::vector<Eigen::Triplet<double>> trip;
-      for (int i = 0; i < m; ++i) {
-        trip.emplace_back(i, i, static_cast<double>(deg[i]));
-        for (int k = nb_begin[i]; k < nb_begin[i + 1]; ++k) trip.emplace_back(i, nb[k], -1.0);
-      }
-      A.setFromTriplets(trip.begin(), trip.end());
-    }
-    Eigen::AMDOrdering<int> amd;
-    Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> perm;
-    amd(A, perm);
-    std::vector<int> pos(m);  // elimination position of interior index i
-    for (int k = 0; k < m; ++k) pos[perm.indices()(k)] = k;
-    std::vector<std::map<int, Rational>> row(m);
-    std::vector<Rational> rx(m), ry(m);
-    for (int i = 0; i < m; ++i) {
-      const int pi = pos[i];
-      row[pi][pi] = deg[i];
-      for (int k = nb_begin[i]; k < nb_begin[i + 1]; ++k) {
-        const int pj = pos[nb[k]];
-        if (pj > pi) row[pi][pj] = -1;
-      }
-    }
-    for (std::size_t k = 0; k < brow.size(); ++k) {
-      rx[pos[brow[k]]] = bx[k];
-      ry[pos[brow[k]]] = by[k];
-    }
-    for (int k = 0; k < m; ++k) {  // O(sum over pivots of (row length)^2) rational operations
-      const Rational pivot = row[k].at(k);
-      if (sgn(pivot) <= 0) throw Error(ErrorKind::Internal, "tutte_embed: non-positive pivot in exact solve");
-      for (auto it = row[k].upper_bound(k); it != row[k].end(); ++it) {
-        const int j = it->first;
-        const Rational f = it->second / pivot;
-        for (auto jt = it; jt != row[k].end(); ++jt) {
-          Rational& a = row[j][jt->first];
-          a -= f * jt->second;
-        }
-        rx[j] -= f * rx[k];
-        ry[j] -= f * ry[k];
-      }
-    }
-    std::vector<Rational> sx(m), sy(m);
-    for (int k = m - 1; k >= 0; --k) {
-      Rational ax = rx[k], ay = ry[k];
-      for (auto it = row[k].upper_bound(k); it != row[k].end(); ++it) {
-        ax -= it->second * sx[it->first];
-        ay -= it->second * sy[it->first];
-      }
-      sx[k] = ax / row[k].at(k);
-      sy[k] = ay / row[k].at(k);
-    }
-    exact_interior.resize(m);
-    for (int i = 0; i < m; ++i) exact_interior[i] = Point2q{sx[pos[i]], sy[pos[i]]};
-  }
-  st.seconds_fallback = since(t_fb);
-  const std::int64_t flips = count_flips(Mode::Exact);
-  if (flips != 0)
-    throw Error(ErrorKind::Internal, "tutte_embed: the exact Tutte solution has " + std::to_string(flips) +
-                                         " non-positive triangles (pre-condition missed?)");
-  finish(Mode::Exact);
+  // ---------------- the certified solve (embed/exact_refinement.h) ----------------
+  SpdSystem system;
+  system.n = m;
+  system.diag = std::move(deg);
+  system.xadj = std::move(nb_begin);
+  system.adj = std::move(nb);
+  system.val.assign(system.adj.size(), -1);
+  system.rhs_rows = std::move(brow);
+  system.rhs_x = std::move(bx);
+  system.rhs_y = std::move(by);
+  for (const Point2q& p : boundary_uv)
+    system.magnitude = std::max({system.magnitude, std::fabs(to_double(p.x)), std::fabs(to_double(p.y))});
+  RefinementOptions ro;
+  ro.max_iterations = options.max_iterations;
+  ro.min_iterations = options.min_iterations;
+  ro.exact_fallback_max_unknowns = options.exact_fallback_max_interior;
+  RefinementResult solved =
+      refine_until_certified(system, certificate, ro, {"tutte_embed", "interior vertices", "the exact Tutte solution"});
+  const RefinementStats& rs = solved.stats;
+  st.flips_double = rs.flips_double;
+  st.flips_per_iteration = rs.flips_per_iteration;
+  st.iterations = rs.iterations;
+  st.grid_exponent = rs.grid_exponent;
+  st.exact_fallback = rs.exact_fallback;
+  st.factor_entries = rs.factor_entries;
+  st.seconds_factorization = rs.seconds_factorization;
+  st.seconds_solve = rs.seconds_solve;
+  st.seconds_refinement = rs.seconds_refinement;
+  st.seconds_checks = rs.seconds_checks;
+  st.seconds_fallback = rs.seconds_fallback;
+  finish(solved.iterate());
   return result;
 }
 

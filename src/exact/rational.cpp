@@ -112,6 +112,22 @@ double to_double(const Rational& q) {
   return d;
 }
 
+double approximate(const Rational& q) {
+  const mpz_srcptr den = q.get_den_mpz_t();
+  const std::size_t k = mpz_sizeinbase(den, 2) - 1;
+  if (mpz_scan1(den, 0) != k) return to_double(q);  // not a power of two
+  // q = m 2^e / 2^k with m in [0.5, 1) truncated (relative error < 2^-52); ldexp rounds once more
+  // only in the subnormal range.
+  long e = 0;
+  const double m = mpz_get_d_2exp(&e, q.get_num_mpz_t());
+  const long ex = e - static_cast<long>(k);
+  if (ex > 1100) return std::copysign(std::numeric_limits<double>::max(), m);
+  if (ex < -1100) return 0.0 * m;
+  const double d = std::ldexp(m, static_cast<int>(ex));
+  if (std::isinf(d)) return std::copysign(std::numeric_limits<double>::max(), m);
+  return d;
+}
+
 std::string to_string(const Rational& q) {
   if (q.get_den() == 1) return q.get_num().get_str();
   return q.get_num().get_str() + "/" + q.get_den().get_str();

@@ -63,6 +63,14 @@ SurfacePoint average(const std::vector<SurfacePoint>& points) {
   return r;
 }
 
+SurfacePoint barycentric_point(const SurfacePoint& a, const SurfacePoint& b, const SurfacePoint& c,
+                               const std::array<Rational, 3>& w) {
+  const Rational wab = w[0] + w[1];
+  if (sgn(wab) == 0) return c;
+  const SurfacePoint ab = combine(a, Rational(w[0] / wab), b, Rational(w[1] / wab));
+  return combine(ab, wab, c, w[2]);
+}
+
 Vec3d evaluate(const SurfacePoint& p, const std::vector<Vec3d>& pos) {
   Vec3d r;
   for (int i = 0; i < 3 && p.v[i] >= 0; ++i) {

@@ -14,6 +14,11 @@ void write_schema_svg(std::ostream& out, const SchemaDrawing& d, std::size_t max
     lo_x = std::min(lo_x, p.x), lo_y = std::min(lo_y, p.y);
     hi_x = std::max(hi_x, p.x), hi_y = std::max(hi_y, p.y);
   }
+  for (const auto& path : d.side_paths)
+    for (const Vec2d& p : path) {
+      lo_x = std::min(lo_x, p.x), lo_y = std::min(lo_y, p.y);
+      hi_x = std::max(hi_x, p.x), hi_y = std::max(hi_y, p.y);
+    }
   if (d.polygon.empty()) lo_x = lo_y = 0, hi_x = hi_y = 1;
   const double size = 800, margin = 40;
   const double span = std::max({hi_x - lo_x, hi_y - lo_y, 1e-300});
@@ -43,7 +48,11 @@ void write_schema_svg(std::ostream& out, const SchemaDrawing& d, std::size_t max
     char style[64];
     std::snprintf(style, sizeof style, "stroke=\"hsl(%.0f,75%%,45%%)\" stroke-width=\"5\"",
                   hue - 360.0 * static_cast<long>(hue / 360.0));
-    line(d.polygon[s], d.polygon[(s + 1) % n], style);
+    if (s < d.side_paths.size() && d.side_paths[s].size() >= 2) {
+      for (std::size_t i = 0; i + 1 < d.side_paths[s].size(); ++i) line(d.side_paths[s][i], d.side_paths[s][i + 1], style);
+    } else {
+      line(d.polygon[s], d.polygon[(s + 1) % n], style);
+    }
   }
   out << "</g>\n<g>\n";
   for (const Vec2d& c : d.cones) {

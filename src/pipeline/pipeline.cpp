@@ -11,6 +11,7 @@
 #include "igm/extract/quad_extract.h"
 #include "igm/igm/quad_charts.h"
 #include "igm/mesh/surface_point.h"
+#include "pipeline_internal.h"
 
 namespace igm {
 
@@ -19,16 +20,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-// The exact point wa*a + wb*b + wc*c of the surface (weights >= 0, summing to 1), where a, b, c
-// are the corners of one refined face (so their joint support is one input face).
-SurfacePoint barycentric_point(const SurfacePoint& a, const SurfacePoint& b, const SurfacePoint& c,
-                               const std::array<Rational, 3>& w) {
-  const Rational wab = w[0] + w[1];
-  if (sgn(wab) == 0) return c;
-  const SurfacePoint ab = combine(a, Rational(w[0] / wab), b, Rational(w[1] / wab));
-  return combine(ab, wab, c, w[2]);
-}
 
 Vec2d to_vec2d(const Point2q& p) { return {to_double(p.x), to_double(p.y)}; }
 
@@ -50,12 +41,33 @@ std::string format(const char* fmt, double a = 0, double b = 0, double c = 0, do
 
 }  // namespace
 
+void certify_outputs(PipelineResult& result, int genus, const PipelineOptions& options) {
+  const IgmMesh& igm = result.igm;
+  const QuadMesh& quads = result.quads;
+  certify::Options copt;
+  copt.max_witnesses = options.max_witnesses;
+  certify::IgmInput cin;
+  cin.faces = igm.triangles;
+  cin.num_vertices = static_cast<std::int64_t>(igm.positions.size());
+  cin.corner_uv.reserve(3 * igm.corner_uv.size());
+  for (const auto& tri : igm.corner_uv)
+    for (const Point2q& uv : tri) cin.corner_uv.push_back({uv.x, uv.y});
+  result.igm_report = certify::certify_igm(std::move(cin), copt);
+  certify::QuadInput qin;
+  qin.quads = quads.quads;
+  qin.num_vertices = static_cast<std::int64_t>(quads.positions.size());
+  certify::Options qopt = copt;
+  qopt.expected_genus = genus;
+  result.quad_report = certify::certify_quads(qin, qopt);
+}
+
 PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& options) {
   if (options.resolution < 1 || options.resolution > 1024)
     throw Error(ErrorKind::InvalidArgument, "resolution must be in 1..1024, got " + std::to_string(options.resolution));
-  if (input.genus == 0)
-    throw Error(ErrorKind::Unsupported,
-                "genus 0: the sphere needs the orbifold (four-cone) embedding, which this build does not provide yet");
+  if (input.genus == 0) return compute_igm_sphere(input, options);  // sphere_pipeline.cpp
+  if (!options.cones.empty())
+    throw Error(ErrorKind::InvalidArgument, "cones: only a genus-0 mesh takes a cone list (this one has genus " +
+                                                std::to_string(input.genus) + ")");
   PipelineResult result;
   PipelineStats& stats = result.stats;
   Stage stage{stats, options};
@@ -194,21 +206,7 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
 
   // --- certify: the independent judge, on both outputs ---
   t0 = Clock::now();
-  certify::Options copt;
-  copt.max_witnesses = options.max_witnesses;
-  certify::IgmInput cin;
-  cin.faces = igm.triangles;
-  cin.num_vertices = static_cast<std::int64_t>(igm.positions.size());
-  cin.corner_uv.reserve(3 * igm.corner_uv.size());
-  for (const auto& tri : igm.corner_uv)
-    for (const Point2q& uv : tri) cin.corner_uv.push_back({uv.x, uv.y});
-  result.igm_report = certify::certify_igm(std::move(cin), copt);
-  certify::QuadInput qin;
-  qin.quads = quads.quads;
-  qin.num_vertices = static_cast<std::int64_t>(quads.positions.size());
-  certify::Options qopt = copt;
-  qopt.expected_genus = g;
-  result.quad_report = certify::certify_quads(qin, qopt);
+  certify_outputs(result, g, options);
   stage.done("certify", t0, "IGM: " + certify::summary(result.igm_report) + "; quads: " + certify::summary(result.quad_report));
 
   return result;

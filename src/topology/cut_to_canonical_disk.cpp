@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <numeric>
 #include <queue>
 #include <string>
@@ -227,60 +228,50 @@ bool cyclically_equal(const Word& a, const Word& b) {
   return false;
 }
 
-// Makes the embedding pre-conditions hold by edge splits at midpoints. `full`: split every edge off
-// the loops that joins two loop vertices (the root included); this also connects the vertices on
-// no loop (used before handle slides). Otherwise only what the disk needs: edges off the loops
-// joining two vertices of one loop or a loop vertex to the root, then one edge off the loops in
-// every triangle whose three vertices are on loops. Afterwards no interior disk edge joins two
-// vertices of one side, no triangle has three boundary vertices, and every root wedge holds a
-// vertex on no loop. Returns the number of splits. O(n).
-int precondition_pass(CutResult& res, bool full) {
+// The embedding pre-conditions (embed/tutte.h, Floater 2003), made to hold by edge splits at
+// midpoints on the disk that build_cut made: no interior disk edge joins two vertices of one
+// polygon side (a root copy lies on its two sides). This also excludes triangles with three
+// vertices on one side (such a triangle has an interior edge). Triangles with boundary vertices on
+// several sides, e.g. a root wedge that is one triangle, are fixed by the strictly convex boundary
+// and positive, so they need no split. A split vertex is interior to the disk, so no split creates
+// a new violation: one pass. Pre: build_cut(res) done. Post: the cut must be rebuilt. Returns the
+// number of splits. O(n).
+int precondition_pass(CutResult& res) {
   auto& rs = res.surface;
   auto& Mm = rs.mesh;
-  const int root = res.root;
-  std::vector<int> loop_of(Mm.num_vertices(), -1);
-  std::unordered_set<std::uint64_t> loop_edges;
-  for (int i = 0; i < static_cast<int>(res.loops.size()); ++i) {
-    const auto& L = res.loops[i];
+  const int nd = static_cast<int>(res.disk_to_surface.size());
+  std::vector<int> side_a(nd, -1), side_b(nd, -1);  // the (at most two) sides through a disk vertex
+  for (int s = 0; s < static_cast<int>(res.sides.size()); ++s)
+    for (int d : res.sides[s].disk_vertices) (side_a[d] < 0 ? side_a[d] : side_b[d]) = s;
+  auto share_side = [&](int p, int q) {
+    if (side_a[p] < 0 || side_a[q] < 0) return false;
+    return side_a[p] == side_a[q] || side_a[p] == side_b[q] || (side_b[p] >= 0 && (side_b[p] == side_a[q] || side_b[p] == side_b[q]));
+  };
+  std::vector<char> is_cut(Mm.num_halfedges(), 0);
+  for (const auto& L : res.loops)
     for (std::size_t j = 0; j < L.size(); ++j) {
-      loop_of[L[j]] = i;
-      loop_edges.insert(edge_key(L[j], L[(j + 1) % L.size()]));
+      const int h = find_he(Mm, L[j], L[(j + 1) % L.size()]);
+      is_cut[h] = is_cut[Mm.twin(h)] = 1;
     }
-  }
-  loop_of[root] = -2;
-  auto on_loop = [&](int v) { return v < static_cast<int>(loop_of.size()) && loop_of[v] != -1; };
+  auto disk_corner = [&](int h) { return res.disk_triangles[TriMesh::face(h)][h % 3]; };
   std::vector<std::pair<int, int>> todo;
-  for (int h = 0; h < Mm.num_halfedges(); ++h) {
-    if (h > Mm.twin(h)) continue;
-    const int a = Mm.origin(h), b = Mm.target(h);
-    if (!on_loop(a) || !on_loop(b) || loop_edges.count(edge_key(a, b))) continue;
-    if (full || loop_of[a] == loop_of[b] || a == root || b == root) todo.push_back({a, b});
-  }
+  for (int h = 0; h < Mm.num_halfedges(); ++h)
+    if (!is_cut[h] && h < Mm.twin(h) && share_side(disk_corner(h), disk_corner(TriMesh::next(h))))
+      todo.push_back({Mm.origin(h), Mm.target(h)});
   for (auto [a, b] : todo) rs.split_edge(find_he(Mm, a, b), make_rational(1, 2));
-  int splits = static_cast<int>(todo.size());
-  if (!full) {
-    // Faces created by a split hold the new vertex, so one pass in id order suffices: O(F).
-    for (int f = 0; f < Mm.num_faces(); ++f) {
-      const auto c = Mm.face_vertices(f);
-      if (!on_loop(c[0]) || !on_loop(c[1]) || !on_loop(c[2])) continue;
-      int h = -1;
-      for (int i = 0; i < 3 && h < 0; ++i)
-        if (!loop_edges.count(edge_key(c[i], c[(i + 1) % 3]))) h = 3 * f + i;
-      if (h < 0) internal("triangle bounded by loop edges only", {f});
-      rs.split_edge(h, make_rational(1, 2));
-      ++splits;
-    }
-  }
-  return splits;
+  return static_cast<int>(todo.size());
 }
 
-// Brings the word into a1 b1 a1^-1 b1^-1 ... by the planned handle slides, each realized as a
-// shortest path between two root wedges through vertices on no loop; relabels and reorients the
-// loops and rebuilds the cut with the boundary starting at loop 0. Pre: build_cut done, no edge
-// off the loops joins two loop vertices. At most 2g slides, each O(n).
-void normalize(CutResult& res, bool check_each_slide) {
+// Brings the word into a1 b1 a1^-1 b1^-1 ... by the planned handle slides (at most 2g,
+// plan_handle_slides), each realized as a cheapest path between two root wedges through vertices on
+// no loop and midpoints of edges on no loop (split where used); relabels and reorients the loops.
+// A path that does not exist or does not trace is igm::Error(Internal). Pre: build_cut done.
+// Each slide O((V + E) log(V + E)).
+void normalize(CutResult& res, bool check_each_slide, double max_growth) {
   const int root = res.root;
   auto& rs = res.surface;
+  const int nv0 = rs.mesh.num_vertices();
+  const long split_budget = static_cast<long>(max_growth * nv0);
   Word cur = word_of(res);
   Word planned_final;
   const std::vector<Slide> plan = plan_handle_slides(cur, &planned_final);
@@ -292,102 +283,131 @@ void normalize(CutResult& res, bool check_each_slide) {
       loop_edges.insert(edge_key(L[j], L[(j + 1) % L.size()]));
     }
   auto first_vertex = [&](Letter l) { const auto& L = res.loops[l.loop]; return l.inverse ? L.back() : L[1]; };
+  // Search graph of a slide: node v < V is a vertex on no loop, node V + e the midpoint of the
+  // edge of canonical half-edge e (e < twin(e)) that is on no loop, to be split if used. Two nodes
+  // are adjacent if they lie in one face (a vertex and an edge of one face, two edges of one face,
+  // a vertex and an edge at it, two vertices joined by an edge). Midpoints cost more than existing
+  // vertices, so the path uses existing vertices wherever they connect and splits only the edges
+  // it crosses. Arrays are reused across slides.
+  std::vector<int> cost, from;
+  std::vector<char> is_dst;
+  constexpr int kVertexCost = 2, kMidpointCost = 3;
   for (const Slide& s : plan) {
     auto& M = rs.mesh;
-    // The vertices on no loop next to the root inside the wedge that starts at corner c.
-    auto wedge_vertices = [&](int corner) {
+    const int nv = M.num_vertices();
+    on_loop.resize(nv, 0);
+    auto canon = [&](int h) { return std::min(h, M.twin(h)); };
+    auto loop_edge = [&](int h) { return loop_edges.count(edge_key(M.origin(h), M.target(h))) > 0; };
+    // The nodes next to the root inside the wedge that starts at corner c: free spoke ends, spoke
+    // midpoints and the midpoints of the edges opposite the root. O(valence(root)).
+    auto wedge_nodes = [&](int corner) {
       std::vector<int> out;
       const int h0 = find_he(M, root, first_vertex(cur[corner]));
-      for (int h = M.next_around_origin(h0); h != h0; h = M.next_around_origin(h)) {  // <= valence
-        const int w = M.target(h);
-        if (loop_edges.count(edge_key(root, w))) break;
-        if (!on_loop[w]) out.push_back(w);
-      }
+      int h = h0;
+      do {  // <= valence(root) steps
+        const int opp = TriMesh::next(h);
+        if (!loop_edge(opp)) out.push_back(nv + canon(opp));
+        h = M.next_around_origin(h);
+        if (loop_edge(h)) break;
+        if (!on_loop[M.target(h)]) out.push_back(M.target(h));
+        out.push_back(nv + canon(h));
+      } while (h != h0);
       return out;
     };
-    // Cheapest path between the two wedges through vertices on no loop; a vertex next to a loop
-    // vertex other than the root costs more (it would need a split later). Dijkstra with small
-    // integer costs: O(E log E). If the free vertices do not connect the wedges, the edges joining
-    // loop vertices are split (which connects them) and the search is repeated once.
-    // A wedge without a free vertex gets one: split its first spoke, or the edge opposite the
-    // root in its only face. O(valence(root)).
-    auto open_wedge = [&](int corner) {
-      if (!wedge_vertices(corner).empty()) return;
-      const int h0 = find_he(M, root, first_vertex(cur[corner]));
-      const int g = M.next_around_origin(h0);
-      if (!loop_edges.count(edge_key(root, M.target(g)))) {
-        rs.split_edge(g, make_rational(1, 2));
-      } else {
-        rs.split_edge(TriMesh::next(h0), make_rational(1, 2));  // edge opposite the root in face(h0)
-      }
-      on_loop.resize(M.num_vertices(), 0);
-      ++res.stats.precondition_splits;
-      if (wedge_vertices(corner).empty()) internal("could not open a root wedge", {root});
-    };
-    open_wedge(s.from_corner);
-    open_wedge(s.to_corner);
+    const std::vector<int> src = wedge_nodes(s.from_corner), dst = wedge_nodes(s.to_corner);
+    const int nn = nv + M.num_halfedges();
+    cost.assign(nn, INT32_MAX);
+    from.assign(nn, -2);
+    is_dst.assign(nn, 0);
+    for (int v : dst) is_dst[v] = 1;
+    using Item = std::pair<int, int>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> pq;
+    auto node_cost = [&](int n) { return n < nv ? kVertexCost : kMidpointCost; };
+    for (int n : src) {
+      if (cost[n] <= node_cost(n)) continue;
+      cost[n] = node_cost(n);
+      from[n] = -1;
+      pq.push({cost[n], n});
+    }
     int hit = -1;
-    std::vector<int> from;
-    for (int attempt = 0; attempt < 2 && hit < 0; ++attempt) {
-      if (attempt == 1) {
-        ++res.stats.slide_retries;
-        res.stats.precondition_splits += precondition_pass(res, true);
-        on_loop.assign(M.num_vertices(), 0);
-        for (const auto& L : res.loops)
-          for (int v : L) on_loop[v] = 1;
+    std::vector<int> nbrs;
+    // Dijkstra: each node settles once; a vertex node has 3 * valence neighbours, an edge node at
+    // most 6: O((V + E) log(V + E)) per slide.
+    while (!pq.empty()) {
+      auto [c, n] = pq.top();
+      pq.pop();
+      if (c > cost[n]) continue;
+      if (is_dst[n]) {
+        hit = n;
+        break;
       }
-      const std::vector<int> src = wedge_vertices(s.from_corner), dst = wedge_vertices(s.to_corner);
-      if (src.empty() || dst.empty()) internal("empty root wedge");
-      from.assign(M.num_vertices(), -2);
-      std::vector<int> cost(M.num_vertices(), INT32_MAX);
-      std::vector<char> is_dst(M.num_vertices(), 0);
-      for (int v : dst) is_dst[v] = 1;
-      auto vertex_cost = [&](int v) {
-        const int h0 = M.vertex_halfedge(v);
+      nbrs.clear();
+      if (n < nv) {
+        const int h0 = M.vertex_halfedge(n);
         int h = h0;
         do {
           const int w = M.target(h);
-          if (w != root && on_loop[w]) return 9;
+          if (!on_loop[w]) nbrs.push_back(w);
+          if (!loop_edge(h)) nbrs.push_back(nv + canon(h));
+          const int opp = TriMesh::next(h);
+          if (!loop_edge(opp)) nbrs.push_back(nv + canon(opp));
           h = M.next_around_origin(h);
         } while (h != h0);
-        return 1;
-      };
-      using Item = std::pair<int, int>;
-      std::priority_queue<Item, std::vector<Item>, std::greater<Item>> pq;
-      for (int v : src) {
-        from[v] = -1;
-        cost[v] = vertex_cost(v);
-        pq.push({cost[v], v});
-      }
-      while (!pq.empty()) {  // each vertex settles once, each edge relaxes once
-        auto [c, v] = pq.top();
-        pq.pop();
-        if (c > cost[v]) continue;
-        if (is_dst[v]) {
-          hit = v;
-          break;
+      } else {
+        const int e = n - nv;
+        for (int h : {e, M.twin(e)}) {
+          const int b = TriMesh::next(h), c2 = TriMesh::prev(h);
+          for (int g : {b, c2})
+            if (!loop_edge(g)) nbrs.push_back(nv + canon(g));
+          if (!on_loop[M.origin(h)]) nbrs.push_back(M.origin(h));
+          if (!on_loop[M.origin(c2)]) nbrs.push_back(M.origin(c2));
         }
-        const int h0 = M.vertex_halfedge(v);
-        int h = h0;
-        do {
-          const int w = M.target(h);
-          if (!on_loop[w]) {
-            const int nc = c + vertex_cost(w);
-            if (nc < cost[w]) {
-              cost[w] = nc;
-              from[w] = v;
-              pq.push({nc, w});
-            }
-          }
-          h = M.next_around_origin(h);
-        } while (h != h0);
+      }
+      for (int w : nbrs) {
+        if (w == root) continue;
+        const int nc = c + node_cost(w);
+        if (nc < cost[w]) {
+          cost[w] = nc;
+          from[w] = n;
+          pq.push({nc, w});
+        }
       }
     }
-    if (hit < 0) internal("handle slide: no path between the root wedges of corners " + std::to_string(s.from_corner) +
-                          " and " + std::to_string(s.to_corner));
+    if (hit < 0)
+      internal("handle slide: no path between the root wedges of corners " + std::to_string(s.from_corner) + " and " +
+               std::to_string(s.to_corner));
+    std::vector<int> nodes;
+    for (int n = hit; n >= 0; n = from[n]) nodes.push_back(n);
+    std::reverse(nodes.begin(), nodes.end());
+    long mids = 0;
+    for (int n : nodes) mids += n >= nv ? 1 : 0;
+    if (res.stats.slide_splits + mids > split_budget)
+      throw Error(ErrorKind::Unsupported,
+                  "normal form: handle slide " + std::to_string(res.stats.num_slides + 1) + " of " +
+                      std::to_string(plan.size()) + " would bring the slides' edge splits to " +
+                      std::to_string(res.stats.slide_splits + mids) + ", over the bound of " +
+                      std::to_string(split_budget) + " (CutOptions::max_slide_growth x " + std::to_string(nv0) +
+                      " vertices); run without the normal form");
+    // Realize: split the path's edges in path order (an edge is found again by its end points,
+    // since splits renumber the half-edges of the faces they cut), then check every step is an edge.
+    std::vector<std::pair<int, int>> ends;
+    for (int n : nodes)
+      ends.push_back(n < nv ? std::pair<int, int>{n, -1} : std::pair<int, int>{M.origin(n - nv), M.target(n - nv)});
     std::vector<int> path;
-    for (int v = hit; v >= 0; v = from[v]) path.push_back(v);
-    std::reverse(path.begin(), path.end());
+    for (auto [a2, b2] : ends) {
+      if (b2 < 0) {
+        path.push_back(a2);
+        continue;
+      }
+      path.push_back(rs.split_edge(find_he(M, a2, b2), make_rational(1, 2)));
+      ++res.stats.slide_splits;
+    }
+    on_loop.resize(M.num_vertices(), 0);
+    for (std::size_t j = 0; j <= path.size(); ++j) {
+      const int a2 = j == 0 ? root : path[j - 1], b2 = j == path.size() ? root : path[j];
+      if (M.find_halfedge(a2, b2) < 0)
+        internal("handle slide: the path does not trace (step " + std::to_string(j) + ")", {a2, b2});
+    }
     // Replace loop s.loop by root, path (from corner i to corner j).
     auto& old = res.loops[s.loop];
     for (std::size_t j = 0; j < old.size(); ++j) loop_edges.erase(edge_key(old[j], old[(j + 1) % old.size()]));
@@ -419,6 +439,281 @@ void normalize(CutResult& res, bool check_each_slide) {
     }
   res.loops = std::move(loops);
 }
+// The greedy homotopy basis at `root` (metric: 3D edge lengths, or hop counts if `hops`) and the
+// plan of its detaching (steps 1-2 up to the owners):
+// the surface with the band splits, the pruned tree, the tour and the owners. `crossings` is the
+// number of edge crossings the strands will make (the dynamic programme's optimum, chord splits
+// not counted). Pre: mesh valid, connected, of genus `genus` >= 1. Cost O(n log n).
+struct DetachPlan {
+  RefinedSurface rs;
+  int root = -1;
+  std::vector<int> parent, leaf_a, leaf_b, leaves, leaf_index, min_leaf, max_leaf, owner;
+  std::vector<char> pruned, is_leaf;
+  long long crossings = 0;
+  int band_splits = 0;
+  Word word;
+  long long slides = 0;  // handle slides planned on `word` (filled by the caller when needed)
+  long long strand_steps = 0;  // total length of the 4g tree paths
+};
+
+DetachPlan plan_detach(const TriMesh& mesh, const std::vector<Vec3d>& positions, int root, int genus, bool hops) {
+  auto edge_length = [&](int a, int b) { return hops ? 1.0 : length(positions[a], positions[b]); };
+  DetachPlan P;
+  P.root = root;
+  const int nv0 = mesh.num_vertices();
+  RefinedSurface& rs = P.rs;
+  rs.mesh = mesh;
+  rs.num_input_vertices = nv0;
+  // ---- 1. greedy homotopy basis: shortest-path tree + dual maximum spanning tree ----
+  std::vector<double> dist(nv0, INFINITY);
+  std::vector<int>& parent = P.parent;
+  parent.assign(nv0, -1);
+  {
+    using Item = std::pair<double, int>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> pq;
+    dist[root] = 0;
+    pq.push({0.0, root});
+    // Each vertex is settled once; each half-edge relaxed once: O(E log E) iterations.
+    while (!pq.empty()) {
+      auto [d, v] = pq.top();
+      pq.pop();
+      if (d > dist[v]) continue;
+      int h0 = mesh.vertex_halfedge(v), h = h0;
+      do {
+        int w = mesh.target(h);
+        double nd = d + edge_length(v, w);
+        if (nd < dist[w]) {
+          dist[w] = nd;
+          parent[w] = v;
+          pq.push({nd, w});
+        }
+        h = mesh.next_around_origin(h);
+      } while (h != h0);
+    }
+    for (int v = 0; v < nv0; ++v)
+      if (!(dist[v] < INFINITY))
+        throw Error(ErrorKind::SeveralComponents, "vertex " + std::to_string(v) + " is not connected to the root", {v});
+  }
+  std::vector<std::pair<int, int>> bands;  // (u, v) with the loop root~u, uv, v~root
+  {
+    const int nh = mesh.num_halfedges();
+    std::vector<char> in_tree(nh, 0);
+    for (int h = 0; h < nh; ++h) {
+      int a = mesh.origin(h), b = mesh.target(h);
+      if (parent[b] == a || parent[a] == b) in_tree[h] = 1;
+    }
+    std::vector<std::pair<double, int>> cand;
+    for (int h = 0; h < nh; ++h) {
+      if (h > mesh.twin(h) || in_tree[h]) continue;
+      int a = mesh.origin(h), b = mesh.target(h);
+      cand.push_back({dist[a] + dist[b] + edge_length(a, b), h});
+    }
+    std::sort(cand.begin(), cand.end(), [](const auto& x, const auto& y) {
+      return x.first != y.first ? x.first > y.first : x.second < y.second;
+    });
+    Dsu dsu(mesh.num_faces());
+    for (const auto& [w, h] : cand) {
+      (void)w;
+      if (!dsu.unite(TriMesh::face(h), TriMesh::face(mesh.twin(h)))) bands.push_back({mesh.origin(h), mesh.target(h)});
+    }
+    if (static_cast<int>(bands.size()) != 2 * genus)
+      internal("tree-cotree left " + std::to_string(bands.size()) + " edges, expected 2g = " + std::to_string(2 * genus));
+  }
+  // ---- 2. detach: band splits, extended tree, strands as normal curves ----
+  std::vector<int>& leaf_a = P.leaf_a;
+  std::vector<int>& leaf_b = P.leaf_b;
+  leaf_a.resize(bands.size());
+  leaf_b.resize(bands.size());
+  // A band end that is a leaf of the tree spanned by all band ends (not the root, the end of no
+  // other band, no band end below it) is the strand's end itself; the other ends get a vertex on
+  // the band edge hanging below them (at 1/3 and 2/3 of the edge, or at 1/2 if one end is a leaf).
+  {
+    std::vector<int> ends(nv0, 0);
+    std::vector<char> has_below(nv0, 0);
+    for (auto [u, v] : bands) ++ends[u], ++ends[v];
+    for (auto [u, v] : bands)
+      for (int x : {u, v})
+        // Climbs at most once per vertex (stops at marked ones): O(V) in total.
+        for (int y = parent[x]; y >= 0 && !has_below[y]; y = parent[y]) has_below[y] = 1;
+    auto own_end = [&](int x) { return x != root && ends[x] == 1 && !has_below[x]; };
+    for (std::size_t i = 0; i < bands.size(); ++i) {
+      auto [u, v] = bands[i];
+      const bool keep_u = own_end(u), keep_v = own_end(v);
+      int a = u, b = v;
+      if (!keep_u && !keep_v) {
+        a = rs.split_edge(find_he(rs.mesh, u, v), make_rational(1, 3));
+        b = rs.split_edge(find_he(rs.mesh, a, v), make_rational(1, 2));
+      } else if (!keep_u) {
+        a = rs.split_edge(find_he(rs.mesh, u, v), make_rational(1, 2));
+      } else if (!keep_v) {
+        b = rs.split_edge(find_he(rs.mesh, u, v), make_rational(1, 2));
+      }
+      parent.resize(rs.mesh.num_vertices(), -1);
+      if (a != u) parent[a] = u, ++P.band_splits;
+      if (b != v) parent[b] = v, ++P.band_splits;
+      leaf_a[i] = a;
+      leaf_b[i] = b;
+    }
+  }
+  auto& M = rs.mesh;
+  std::vector<char>& pruned = P.pruned;
+  std::vector<char>& is_leaf = P.is_leaf;
+  pruned.assign(M.num_vertices(), 0);
+  is_leaf.assign(M.num_vertices(), 0);
+  for (std::size_t i = 0; i < bands.size(); ++i) {
+    is_leaf[leaf_a[i]] = is_leaf[leaf_b[i]] = 1;
+    for (int x : {leaf_a[i], leaf_b[i]})
+      // Climbs at most once per vertex (stops at marked ones): O(V) in total.
+      for (; x >= 0 && !pruned[x]; x = parent[x]) pruned[x] = 1;
+  }
+  if (!pruned[root]) internal("root not on the tree");
+  // Children in ccw order after the parent (root: after its stored half-edge), and for a vertex
+  // other than the root the number of edges strictly between the parent edge and each child edge,
+  // counted counter-clockwise (the other side holds valence - 2 - that many).
+  const int nv_tree = M.num_vertices();
+  auto children = [&](int x, std::vector<int>* ccw_gap) {
+    std::vector<int> ch;
+    const int h0 = x == root ? M.vertex_halfedge(root) : find_he(M, x, parent[x]);
+    int h = h0, steps = 0;
+    do {  // one turn around x: valence steps
+      const int w = M.target(h);
+      if (w != (x == root ? -1 : parent[x]) && pruned[w] && parent[w] == x) {
+        ch.push_back(w);
+        if (ccw_gap) ccw_gap->push_back(steps - 1);
+      }
+      h = M.next_around_origin(h);
+      ++steps;
+    } while (h != h0);
+    return ch;
+  };
+  std::vector<int>&leaf_index = P.leaf_index, &max_leaf = P.max_leaf, &min_leaf = P.min_leaf;
+  leaf_index.assign(nv_tree, -1);
+  max_leaf.assign(nv_tree, -1);
+  min_leaf.assign(nv_tree, -1);
+  std::vector<int>& leaves = P.leaves;  // tour order
+  std::vector<int> post;    // pruned non-leaf vertices, children before parents
+  {
+    // Iterative DFS; each pruned vertex pushed once: O(V + E).
+    std::vector<std::pair<int, std::vector<int>>> stack;
+    std::vector<std::size_t> pos;
+    stack.push_back({root, children(root, nullptr)});
+    pos.push_back(0);
+    while (!stack.empty()) {
+      auto& [x, ch] = stack.back();
+      if (pos.back() < ch.size()) {
+        int c = ch[pos.back()++];
+        if (is_leaf[c]) {
+          leaf_index[c] = static_cast<int>(leaves.size());
+          min_leaf[c] = max_leaf[c] = leaf_index[c];
+          leaves.push_back(c);
+        } else {
+          stack.push_back({c, children(c, nullptr)});
+          pos.push_back(0);
+        }
+      } else {
+        const int xv = x;
+        max_leaf[xv] = max_leaf[ch.back()];
+        min_leaf[xv] = min_leaf[ch.front()];
+        post.push_back(xv);
+        stack.pop_back();
+        pos.pop_back();
+      }
+    }
+    if (static_cast<int>(leaves.size()) != 4 * genus) internal("tour found " + std::to_string(leaves.size()) + " strand ends");
+  }
+
+  // Owners. Every tree vertex x but the root lies on exactly one strand, its owner o(x), the owner
+  // of one of its children (so each strand owns a final part of its path, down to its leaf). The
+  // other strands through x go around it: tour index < o(x) counter-clockwise (from the parent edge
+  // to their child edge), > o(x) clockwise, crossing the edges in between. A strand that reaches x
+  // on the other side (its owner changed at the parent) first crosses the parent edge. The owners
+  // minimise the number of crossings, by dynamic programming over the tree: for each x and each
+  // leaf l below it the cheapest crossings in x's subtree with o(x) = l (an empty sweep counts as
+  // one, the chord split below). Cost O(sum of strand lengths + E).
+  std::vector<int>& owner = P.owner;
+  owner.assign(nv_tree, -1);
+  {
+    std::vector<std::vector<long long>> best(nv_tree);   // by leaf - min_leaf
+    std::vector<long long> arr_ccw(nv_tree), arr_cw(nv_tree), arr_free(nv_tree);  // best on arrival
+    std::vector<int> opt_ccw(nv_tree), opt_cw(nv_tree), opt_free(nv_tree);
+    auto summarize = [&](int x) {  // the three arrival minima of a subtree with its best costs
+      const auto& b = best[x];
+      arr_ccw[x] = arr_cw[x] = arr_free[x] = INT64_MAX;
+      for (int i = 0; i < static_cast<int>(b.size()); ++i) {
+        const int l = min_leaf[x] + i;
+        const long long cc = b[i] + (max_leaf[x] - l), cw = b[i] + (l - min_leaf[x]);
+        if (cc < arr_ccw[x]) arr_ccw[x] = cc, opt_ccw[x] = l;
+        if (cw < arr_cw[x]) arr_cw[x] = cw, opt_cw[x] = l;
+        if (b[i] < arr_free[x]) arr_free[x] = b[i], opt_free[x] = l;
+      }
+    };
+    for (int l : leaves) {
+      best[l].assign(1, 0);
+      summarize(l);
+    }
+    std::vector<int> gap;
+    for (int x : post) {
+      if (x == root) continue;
+      gap.clear();
+      const std::vector<int> ch = children(x, &gap);
+      const int m = static_cast<int>(ch.size());
+      const int val = M.valence(x);
+      std::vector<long long> before(m + 1, 0), after(m + 1, 0);  // sums over children < i, >= i
+      std::vector<long long> s_ccw(m), s_cw(m);
+      for (int i = 0; i < m; ++i) {
+        s_ccw[i] = std::max(gap[i], 1);
+        s_cw[i] = std::max(val - 2 - gap[i], 1);
+      }
+      for (int i = 0; i < m; ++i) {
+        const int c = ch[i];
+        const long long n = max_leaf[c] - min_leaf[c] + 1;
+        before[i + 1] = before[i] + n * s_ccw[i] + arr_ccw[c];
+      }
+      for (int i = m - 1; i >= 0; --i) {
+        const int c = ch[i];
+        const long long n = max_leaf[c] - min_leaf[c] + 1;
+        after[i] = after[i + 1] + n * s_cw[i] + arr_cw[c];
+      }
+      auto& b = best[x];
+      b.assign(max_leaf[x] - min_leaf[x] + 1, 0);
+      for (int i = 0; i < m; ++i) {
+        const int c = ch[i];
+        for (int l = min_leaf[c]; l <= max_leaf[c]; ++l)
+          b[l - min_leaf[x]] = best[c][l - min_leaf[c]] + before[i] + after[i + 1] + (l - min_leaf[c]) * s_ccw[i] +
+                               (max_leaf[c] - l) * s_cw[i];
+        std::vector<long long>().swap(best[c]);
+      }
+      summarize(x);
+    }
+    // Top down (reverse post-order visits parents first).
+    for (auto it = post.rbegin(); it != post.rend(); ++it) {
+      const int x = *it;
+      for (int c : children(x, nullptr)) {
+        if (x == root) owner[c] = opt_free[c];
+        else if (owner[x] >= min_leaf[c] && owner[x] <= max_leaf[c]) owner[c] = owner[x];
+        else owner[c] = owner[x] > max_leaf[c] ? opt_ccw[c] : opt_cw[c];
+      }
+    }
+    for (int l : leaves)
+      if (owner[l] != leaf_index[l]) internal("leaf not owned by its strand", {l});
+    for (int c : children(root, nullptr)) P.crossings += arr_free[c];
+  }
+  // The gluing word the detached loops will give, up to rotation and reversal: the strand ends in
+  // tour order (the order they leave the root in), forward for a, inverse for b.
+  {
+    std::vector<Letter> by_leaf(leaves.size());
+    for (int i = 0; i < static_cast<int>(leaf_a.size()); ++i) {
+      by_leaf[leaf_index[leaf_a[i]]] = {i, false};
+      by_leaf[leaf_index[leaf_b[i]]] = {i, true};
+    }
+    P.word = std::move(by_leaf);
+    for (int l : leaves)
+      for (int x = l; x != root; x = parent[x]) ++P.strand_steps;  // <= depth(l) steps each
+  }
+
+  return P;
+}
+
 }  // namespace
 
 std::string CutResult::word() const {
@@ -447,219 +742,162 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
   const int genus = (2 - chi) / 2;
   if (genus == 0) throw Error(ErrorKind::Unsupported, "genus 0 surface: the topology stage needs genus >= 1");
 
-  int root = options.root;
-  if (root == -1) {
-    int best = -1;
-    for (int v = 0; v < nv0; ++v) {
-      int val = mesh.valence(v);
-      if (val > best) best = val, root = v;
-    }
-  } else if (root < 0 || root >= nv0) {
-    throw Error(ErrorKind::InvalidArgument, "root vertex " + std::to_string(root) + " out of range [0, " +
-                                                std::to_string(nv0) + ")", {root});
-  }
-
   CutResult res;
+  if (options.root < -1 || options.root >= nv0)
+    throw Error(ErrorKind::InvalidArgument, "root vertex " + std::to_string(options.root) + " out of range [0, " +
+                                                std::to_string(nv0) + ")", {options.root});
+  // Root and metric: the given root with 3D edge lengths, or among K deterministic root candidates,
+  // each with 3D lengths and with hop counts as the basis metric, the pair whose detaching crosses
+  // the fewest edges (predicted by plan_detach, without building anything; the first wins ties);
+  // with the normal form, crossings plus the planned slides, each weighted by two mean strand
+  // lengths.
+  // Candidates: the vertex of maximum valence (lowest id among ties), then vertices i * V / K.
+  // K = clamp(1e6 / F, 1, 24) bounds the extra cost to one basis computation on a 1M-face mesh.
+  const std::vector<Vec3d> unit = unit_scaled(positions);  // edge lengths finite at any magnitude
+  DetachPlan P;
+  if (options.root >= 0) {
+    P = plan_detach(mesh, unit, options.root, genus, false);
+  } else {
+    int first = 0, best_valence = -1;
+    for (int v = 0; v < nv0; ++v) {
+      const int val = mesh.valence(v);
+      if (val > best_valence) best_valence = val, first = v;
+    }
+    const long k = std::clamp(1000000L / std::max(1, mesh.num_faces()), 1L, 24L);
+    std::vector<int> candidates{first};
+    for (long i = 1; i < k; ++i) {
+      const int v = static_cast<int>(i * nv0 / k);
+      if (std::find(candidates.begin(), candidates.end(), v) == candidates.end()) candidates.push_back(v);
+    }
+    for (int c : candidates) {
+      for (bool hops : {false, true}) {
+        DetachPlan q = plan_detach(mesh, unit, c, genus, hops);
+        ++res.stats.roots_tried;
+        // With the normal form each planned slide is charged like two average strands of
+        // crossings (a slide path runs about as far as a loop, often beside the strands).
+        if (options.normal_form) q.slides = static_cast<long long>(plan_handle_slides(q.word).size());
+        auto score = [&](const DetachPlan& d) { return d.crossings + d.slides * d.strand_steps / (2 * genus); };
+        if (P.root < 0 || score(q) < score(P)) P = std::move(q);
+      }
+    }
+  }
+  const int root = P.root;
+
   res.root = root;
   res.genus = genus;
   res.stats.genus = genus;
   res.stats.vertices_before = nv0;
   res.stats.faces_before = mesh.num_faces();
   RefinedSurface& rs = res.surface;
-  rs.mesh = mesh;
-  rs.num_input_vertices = nv0;
+  rs = std::move(P.rs);
   rs.input_positions = positions;
 
-  // ---- 1. greedy homotopy basis: shortest-path tree + dual maximum spanning tree ----
-  const std::vector<Vec3d> unit = unit_scaled(positions);  // lengths finite at any magnitude
-  std::vector<double> dist(nv0, INFINITY);
-  std::vector<int> parent(nv0, -1);
-  {
-    using Item = std::pair<double, int>;
-    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> pq;
-    dist[root] = 0;
-    pq.push({0.0, root});
-    // Each vertex is settled once; each half-edge relaxed once: O(E log E) iterations.
-    while (!pq.empty()) {
-      auto [d, v] = pq.top();
-      pq.pop();
-      if (d > dist[v]) continue;
-      int h0 = mesh.vertex_halfedge(v), h = h0;
-      do {
-        int w = mesh.target(h);
-        double nd = d + length(unit[v], unit[w]);
-        if (nd < dist[w]) {
-          dist[w] = nd;
-          parent[w] = v;
-          pq.push({nd, w});
-        }
-        h = mesh.next_around_origin(h);
-      } while (h != h0);
-    }
-    for (int v = 0; v < nv0; ++v)
-      if (!(dist[v] < INFINITY))
-        throw Error(ErrorKind::SeveralComponents, "vertex " + std::to_string(v) + " is not connected to the root", {v});
-  }
-  std::vector<std::pair<int, int>> bands;  // (u, v) with the loop root~u, uv, v~root
-  {
-    const int nh = mesh.num_halfedges();
-    std::vector<char> in_tree(nh, 0);
-    for (int h = 0; h < nh; ++h) {
-      int a = mesh.origin(h), b = mesh.target(h);
-      if (parent[b] == a || parent[a] == b) in_tree[h] = 1;
-    }
-    std::vector<std::pair<double, int>> cand;
-    for (int h = 0; h < nh; ++h) {
-      if (h > mesh.twin(h) || in_tree[h]) continue;
-      int a = mesh.origin(h), b = mesh.target(h);
-      cand.push_back({dist[a] + dist[b] + length(unit[a], unit[b]), h});
-    }
-    std::sort(cand.begin(), cand.end(), [](const auto& x, const auto& y) {
-      return x.first != y.first ? x.first > y.first : x.second < y.second;
-    });
-    Dsu dsu(mesh.num_faces());
-    for (const auto& [w, h] : cand) {
-      (void)w;
-      if (!dsu.unite(TriMesh::face(h), TriMesh::face(mesh.twin(h)))) bands.push_back({mesh.origin(h), mesh.target(h)});
-    }
-    if (static_cast<int>(bands.size()) != 2 * genus)
-      internal("tree-cotree left " + std::to_string(bands.size()) + " edges, expected 2g = " + std::to_string(2 * genus));
-  }
+  res.stats.band_splits = P.band_splits;
+  res.stats.predicted_crossings = P.crossings;
+  auto& M = rs.mesh;
+  const std::vector<int>&parent = P.parent, &leaves = P.leaves, &leaf_index = P.leaf_index, &owner = P.owner;
+  const std::vector<int>&leaf_a = P.leaf_a, &leaf_b = P.leaf_b;
   res.stats.seconds_basis = seconds_since(t_start);
   const auto t_detach = Clock::now();
 
-  // ---- 2. detach: band splits, extended tree, strands as normal curves ----
-  std::vector<int> leaf_a(bands.size()), leaf_b(bands.size());
-  for (std::size_t i = 0; i < bands.size(); ++i) {
-    auto [u, v] = bands[i];
-    int a = rs.split_edge(find_he(rs.mesh, u, v), make_rational(1, 3));
-    int b = rs.split_edge(find_he(rs.mesh, a, v), make_rational(1, 2));
-    parent.resize(rs.mesh.num_vertices(), -1);
-    parent[a] = u;
-    parent[b] = v;
-    leaf_a[i] = a;
-    leaf_b[i] = b;
+  // The root-to-leaf paths, and which side each strand takes at each vertex it does not own.
+  std::vector<std::vector<int>> paths(leaves.size());
+  std::vector<int> first_owned(leaves.size());
+  for (int k = 0; k < static_cast<int>(leaves.size()); ++k) {
+    auto& path = paths[k];
+    // The parent chain is acyclic (a shortest-path tree): at most V steps.
+    for (int x = leaves[k]; x != root; x = parent[x]) path.push_back(x);
+    path.push_back(root);
+    std::reverse(path.begin(), path.end());
+    int j0 = 1;
+    while (j0 < static_cast<int>(path.size()) && owner[path[j0]] != k) ++j0;
+    if (j0 == static_cast<int>(path.size())) internal("strand does not reach its leaf", {leaves[k]});
+    first_owned[k] = j0;
   }
-  auto& M = rs.mesh;
-  std::vector<char> pruned(M.num_vertices(), 0), is_leaf(M.num_vertices(), 0);
-  for (std::size_t i = 0; i < bands.size(); ++i) {
-    is_leaf[leaf_a[i]] = is_leaf[leaf_b[i]] = 1;
-    for (int x : {leaf_a[i], leaf_b[i]})
-      // Climbs at most once per vertex (stops at marked ones): O(V) in total.
-      for (; x >= 0 && !pruned[x]; x = parent[x]) pruned[x] = 1;
-  }
-  if (!pruned[root]) internal("root not on the tree");
-  // A strand around x enters x's sector from the parent side; the sector before the first child
-  // must hold at least one edge, else the curve would run along an edge: split the chord.
+  // A strand that goes around x on the side it arrived on, with no edge between the parent edge
+  // and the child edge on that side, would run along the edge parent-child ("chord"): split it.
   {
     std::vector<std::pair<int, int>> chords;
-    for (int x = 0; x < M.num_vertices(); ++x) {
-      if (!pruned[x] || x == root || is_leaf[x]) continue;
-      int g = M.next_around_origin(find_he(M, x, parent[x]));
-      int c = M.target(g);
-      if (pruned[c] && parent[c] == x) chords.push_back({parent[x], c});
+    for (int k = 0; k < static_cast<int>(leaves.size()); ++k) {
+      const auto& path = paths[k];
+      for (int j = 1; j < first_owned[k]; ++j) {
+        const int x = path[j], p = path[j - 1], c = path[j + 1];
+        const bool ccw = k < owner[x];
+        const bool switched = j > 1 && (k < owner[p]) != ccw && owner[p] != owner[x];
+        if (switched) continue;
+        const int h_in = find_he(M, x, p), h_out = find_he(M, x, c);
+        if (ccw ? M.next_around_origin(h_in) == h_out : M.next_around_origin(h_out) == h_in) chords.push_back({p, c});
+      }
     }
+    std::sort(chords.begin(), chords.end());
+    chords.erase(std::unique(chords.begin(), chords.end()), chords.end());
     for (auto [p, c] : chords) {
-      int h = M.find_halfedge(p, c);
-      if (h < 0) continue;  // already split (each chord is listed once; kept for safety)
+      const int h = M.find_halfedge(p, c);
+      if (h < 0) continue;  // split already from the other side (listed as (c, p)): never twice
       rs.split_edge(h, make_rational(1, 2));
+      ++res.stats.chord_splits;
     }
-    parent.resize(M.num_vertices(), -1);
-    pruned.resize(M.num_vertices(), 0);
-    is_leaf.resize(M.num_vertices(), 0);
   }
   const int nv1 = M.num_vertices();
-  // Children in ccw order after the parent (root: after its stored half-edge); DFS leaf order.
-  std::vector<int> leaf_index(nv1, -1), max_leaf(nv1, -1);
-  std::vector<int> leaves;  // tour order
-  {
-    auto children = [&](int x) {
-      std::vector<int> ch;
-      int h0 = x == root ? M.vertex_halfedge(root) : find_he(M, x, parent[x]);
-      int h = x == root ? h0 : M.next_around_origin(h0);
-      if (x == root) {
-        do {
-          int w = M.target(h);
-          if (pruned[w] && parent[w] == x) ch.push_back(w);
-          h = M.next_around_origin(h);
-        } while (h != h0);
-      } else {
-        for (; h != h0; h = M.next_around_origin(h)) {
-          int w = M.target(h);
-          if (pruned[w] && parent[w] == x) ch.push_back(w);
-        }
-      }
-      return ch;
-    };
-    // Iterative DFS; each pruned vertex pushed once: O(V + E).
-    std::vector<std::pair<int, std::vector<int>>> stack;
-    std::vector<std::size_t> pos;
-    stack.push_back({root, children(root)});
-    pos.push_back(0);
-    while (!stack.empty()) {
-      auto& [x, ch] = stack.back();
-      if (pos.back() < ch.size()) {
-        int c = ch[pos.back()++];
-        if (is_leaf[c]) {
-          leaf_index[c] = static_cast<int>(leaves.size());
-          max_leaf[c] = leaf_index[c];
-          leaves.push_back(c);
-        } else {
-          stack.push_back({c, children(c)});
-          pos.push_back(0);
-        }
-      } else {
-        int xv = x;
-        int mx = -1;
-        for (int c : ch) mx = std::max(mx, max_leaf[c]);
-        max_leaf[xv] = mx;
-        stack.pop_back();
-        pos.pop_back();
-      }
-    }
-    if (static_cast<int>(leaves.size()) != 4 * genus) internal("tour found " + std::to_string(leaves.size()) + " strand ends");
-  }
 
   std::vector<Crossing> crossings;
   std::vector<FaceArc> arcs;
   std::vector<std::vector<int>> strand_points(leaves.size());  // point codes
   for (int k = 0; k < static_cast<int>(leaves.size()); ++k) {
-    std::vector<int> path;
-    // The parent chain is acyclic (a shortest-path tree): at most V steps.
-    for (int x = leaves[k]; x != root; x = parent[x]) path.push_back(x);
-    path.push_back(root);
-    std::reverse(path.begin(), path.end());
-    const int m = static_cast<int>(path.size()) - 1;
-    int j0 = 1;
-    while (j0 <= m && max_leaf[path[j0]] != k) ++j0;
-    if (j0 > m) internal("strand does not reach its leaf", {leaves[k]});
+    const auto& path = paths[k];
+    const int j0 = first_owned[k];
     auto& pts = strand_points[k];
     pts.push_back(root);
     int prev_pt = root;
     int face_cur = -1;
+    auto cross = [&](int g, int x) {  // crosses the edge of half-edge g near x
+      crossings.push_back({std::min(g, M.twin(g)), x, k});
+      const int code = -1 - static_cast<int>(crossings.size() - 1);
+      arcs.push_back({face_cur, prev_pt, code});
+      pts.push_back(code);
+      prev_pt = code;
+    };
     for (int j = 1; j < j0; ++j) {
       const int x = path[j];
       const int h_in = find_he(M, x, path[j - 1]), h_out = find_he(M, x, path[j + 1]);
-      if (j > 1 && face_cur != TriMesh::face(h_in)) internal("strand leaves its face", {x});
-      face_cur = TriMesh::face(h_in);
-      // Sweep the edges at x ccw from the parent to the child: at most valence(x) steps.
-      for (int g = M.next_around_origin(h_in); g != h_out; g = M.next_around_origin(g)) {
-        if (g == h_in) internal("sweep around a tree vertex did not meet the child", {x});
-        int e = std::min(g, M.twin(g));
-        crossings.push_back({e, x, k});
-        int code = -1 - static_cast<int>(crossings.size() - 1);
-        arcs.push_back({face_cur, prev_pt, code});
-        pts.push_back(code);
-        prev_pt = code;
-        face_cur = TriMesh::face(g);
+      const bool ccw = k < owner[x];
+      // The face on the strand's side of the parent edge: left of x->parent for ccw.
+      const int side_face = ccw ? TriMesh::face(h_in) : TriMesh::face(M.twin(h_in));
+      if (j == 1) {
+        face_cur = side_face;
+      } else if (face_cur != side_face) {
+        const int other = ccw ? TriMesh::face(M.twin(h_in)) : TriMesh::face(h_in);
+        if (face_cur != other) internal("strand leaves its face", {x});
+        cross(h_in, x);  // change sides across the parent edge
+        face_cur = side_face;
+      }
+      // Sweep the edges at x from the parent to the child: at most valence(x) steps.
+      if (ccw) {
+        for (int g = M.next_around_origin(h_in); g != h_out; g = M.next_around_origin(g)) {
+          if (g == h_in) internal("sweep around a tree vertex did not meet the child", {x});
+          cross(g, x);
+          face_cur = TriMesh::face(g);
+        }
+      } else {
+        // Clockwise: the half-edge before g around x is the one whose next_around_origin is g.
+        int g = h_in;
+        for (int guard = 0;; ++guard) {
+          const int pg = TriMesh::next(M.twin(g));  // clockwise neighbour: next_around_origin(pg) == g
+          if (pg == h_out) break;
+          if (pg == h_in || guard > M.num_halfedges()) internal("sweep around a tree vertex did not meet the child", {x});
+          face_cur = TriMesh::face(pg);
+          cross(pg, x);
+          g = pg;
+        }
+        face_cur = TriMesh::face(h_out);
       }
     }
     if (j0 > 1) arcs.push_back({face_cur, prev_pt, path[j0]});
-    for (int j = j0; j <= m; ++j) pts.push_back(path[j]);
+    for (int j = j0; j < static_cast<int>(path.size()); ++j) pts.push_back(path[j]);
   }
 
-  // Place crossings on their edges: the ones around the origin first (nearest = highest tour index),
-  // then the ones around the target; parameters i/(n+1).
+  // Place crossings on their edges: the ones around the origin first (nearest = closest to the
+  // origin's owner in tour order), then the ones around the target; parameters i/(n+1).
   int next_vertex = nv1;
   {
     std::vector<int> order(crossings.size());
@@ -667,10 +905,11 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     std::sort(order.begin(), order.end(), [&](int p, int q) {
       const Crossing &a = crossings[p], &b = crossings[q];
       if (a.edge != b.edge) return a.edge < b.edge;
-      int oa = M.origin(a.edge), ob = M.origin(b.edge);
-      bool a_first = a.side == oa, b_first = b.side == ob;
+      const bool a_first = a.side == M.origin(a.edge), b_first = b.side == M.origin(b.edge);
       if (a_first != b_first) return a_first;
-      return a_first ? a.strand > b.strand : a.strand < b.strand;
+      // Nearest to the vertex gone around: the strand closest to its owner in tour order.
+      const int da = std::abs(a.strand - owner[a.side]), db = std::abs(b.strand - owner[b.side]);
+      return a_first ? da < db : da > db;
     });
     rs.constructed.reserve(rs.constructed.size() + crossings.size());
     for (std::size_t i = 0; i < order.size();) {
@@ -771,7 +1010,7 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     internal("constructed points out of step with the mesh");
 
   // Loops: strand to a, band a-b, strand to b backwards.
-  const int nloops = static_cast<int>(bands.size());
+  const int nloops = 2 * genus;
   res.loops.resize(nloops);
   {
     std::vector<std::vector<int>> strand_vertices(leaves.size());
@@ -791,8 +1030,11 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
 
   // ---- 4. normal form by handle slides, then the cut ----
   build_cut(res, -1);
-  if (options.normal_form) normalize(res, options.check_each_slide);
-  res.stats.precondition_splits += precondition_pass(res, false);
+  if (options.normal_form) {
+    normalize(res, options.check_each_slide, options.max_slide_growth);
+    build_cut(res, -1);
+  }
+  res.stats.precondition_splits += precondition_pass(res);
   build_cut(res, find_he(rs.mesh, root, res.loops[0][1]));
   if (options.normal_form && !is_canonical_word(word_of(res)))
     internal("cut word is not canonical: " + to_string(word_of(res)));

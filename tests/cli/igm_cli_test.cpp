@@ -69,7 +69,7 @@ Run in_folder(const std::filesystem::path& cwd, const std::string& command) {
   return r;
 }
 
-TEST_CASE("igm without arguments runs the pipeline on a generated genus-2 mesh; igm-certify accepts its files") {
+TEST_CASE("igm without arguments runs the pipeline on a generated genus-2 mesh, igm-certify accepts its files") {
   const auto cwd = tmp_dir() / "default-run";
   const Run r = in_folder(cwd, quote(IGM_CLI_PATH));
   CHECK(r.code == 0);
@@ -90,7 +90,7 @@ TEST_CASE("igm without arguments runs the pipeline on a generated genus-2 mesh; 
   CHECK(has(slurp(out / "default-genus2.cert.json"), "\"certified\": true"));
 }
 
-TEST_CASE("igm run: shared torus certified; invalid mesh, genus 0 and bad options exit 2") {
+TEST_CASE("igm run: shared torus certified, invalid mesh and bad options exit 2") {
   IGM_REQUIRE_DATA(data);
   const auto cwd = tmp_dir() / "run";
   const std::string igm_cmd = quote(IGM_CLI_PATH);
@@ -104,10 +104,10 @@ TEST_CASE("igm run: shared torus certified; invalid mesh, genus 0 and bad option
   const Run bad = in_folder(cwd, igm_cmd + " run " + quote((data / "meshes/invalid/knot2.off").string()));
   CHECK(bad.code == 2);
   CHECK(has(bad.err, "several_components"));
-  const Run sphere = in_folder(cwd, igm_cmd + " run " + quote((data / "meshes/clean/cube.off").string()));
-  CHECK(sphere.code == 2);
-  CHECK(has(sphere.err, "unsupported"));
-  for (const char* a : {" run", " run x.off --resolution 1", " run x.off --root -3", " run x.off --bogus"}) {
+  const std::string pipe = " run " + quote((data / "meshes/clean/pipe.off").string());
+  for (const std::string& a : {std::string(" run"), std::string(" run x.off --resolution 1"), std::string(" run x.off --root -3"),
+                              std::string(" run x.off --bogus"), pipe + " --resolution 2", pipe + " --resolution 0",
+                              pipe + " --cones 1,2,3,4"}) {
     CAPTURE(a);
     CHECK(in_folder(cwd, igm_cmd + a).code == 2);
   }
@@ -263,4 +263,44 @@ TEST_CASE("info on unreadable files: exit 2 with the reason on stderr") {
     CHECK(has(r.err, "cannot read"));
   }
   std::filesystem::remove_all(d);
+}
+
+TEST_CASE("igm run on genus 0: the five files, certified by igm-certify, bad cone lists exit 2") {
+  IGM_REQUIRE_DATA(data);
+  const auto cwd = tmp_dir() / "run-sphere";
+  const std::string igm_cmd = quote(IGM_CLI_PATH);
+  const std::string cube = quote((data / "meshes/clean/cube.off").string());
+  const Run ok = in_folder(cwd, igm_cmd + " run " + cube + " -o res --resolution 2");
+  CHECK(ok.code == 0);
+  CHECK(has(ok.out, "genus 0"));
+  CHECK(has(ok.out, "certified: VALID"));
+  for (const char* suffix : {".igm.obj", ".igm.exact", ".quad.obj", ".cert.json", ".schema.svg"})
+    CHECK(std::filesystem::file_size(cwd / "res" / (std::string("cube") + suffix)) > 0);
+  const Run exact = in_folder(cwd, quote(IGM_CERTIFY_CLI_PATH) + " res/cube.igm.exact");
+  CHECK(exact.code == 0);
+  CHECK(has(exact.out, "\"cones\": 4"));
+  CHECK(has(exact.out, "\"bins\": {\"2\": 4, \"4\": "));  // four vertices of index 2, the rest regular
+  const Run quads = in_folder(cwd, quote(IGM_CERTIFY_CLI_PATH) + " --quad --genus 0 res/cube.quad.obj");
+  CHECK(quads.code == 0);
+  CHECK(has(quads.out, "\"faces\": 8"));  // 2 N^2
+  CHECK(has(quads.out, "\"vertices\": 10"));  // 2 N^2 + 2
+  const std::string json = slurp(cwd / "res" / "cube.cert.json");
+  CHECK(has(json, "\"certified\": true"));
+  CHECK(has(json, "\"genus0\": {\"cones\": ["));
+  CHECK(has(slurp(cwd / "res" / "cube.schema.svg"), "<circle"));
+  // user cones, in path order, and at resolution 1 (2 quads, 4 vertices of valence 2)
+  const Run user = in_folder(cwd, igm_cmd + " run " + cube + " -o res1 --resolution 1 --cones 7,0,3,5");
+  CHECK(user.code == 0);
+  CHECK(has(user.out, "cones 7 0 3 5"));
+  CHECK(has(slurp(cwd / "res1" / "cube.cert.json"), "\"cones\": [7, 0, 3, 5]"));
+  const Run q1 = in_folder(cwd, quote(IGM_CERTIFY_CLI_PATH) + " --quad --genus 0 res1/cube.quad.obj");
+  CHECK(q1.code == 0);
+  CHECK(has(q1.out, "\"bins\": {\"2\": 4}"));
+  for (const char* cones : {"1,2,3", "1,1,2,3", "0,1,2,8", "0,1,x,3", ""}) {
+    CAPTURE(cones);
+    const Run bad = in_folder(cwd, igm_cmd + " run " + cube + " --cones '" + cones + "'");
+    CHECK(bad.code == 2);
+  }
+  const Run named = in_folder(cwd, igm_cmd + " run " + cube + " --cones 0,1,2,8");
+  CHECK(has(named.err, "entry 3"));
 }

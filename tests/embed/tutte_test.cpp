@@ -251,7 +251,7 @@ TEST_CASE("random triangulated disks, boundary on 4g-gons with general rational 
   }
 }
 
-TEST_CASE("adversarial: deeply nested triangles flip in double; refinement certifies them") {
+TEST_CASE("adversarial: deeply nested triangles flip in double, refinement certifies them") {
   const std::array<Point2q, 3> abc = {Point2q{q(1), q(1)}, Point2q{q(2), q(1)}, Point2q{q(1), q(2)}};
   const DiskMesh d = nested_disk(120, abc);
   const TutteResult r = embed(d);
@@ -263,7 +263,7 @@ TEST_CASE("adversarial: deeply nested triangles flip in double; refinement certi
   check_embedding(d, r);
 }
 
-TEST_CASE("adversarial: long thin tube shrinks below double precision; refinement certifies it") {
+TEST_CASE("adversarial: long thin tube shrinks below double precision, refinement certifies it") {
   const auto sq = canonical_polygon(1);
   const DiskMesh d = rings_disk(sq, 60);
   const TutteResult r = embed(d);
@@ -287,7 +287,7 @@ TEST_CASE("adversarial: long thin strip in a sliver rectangle is degenerate in d
   check_embedding(d, r);
 }
 
-TEST_CASE("adversarial: dense fan collapses onto an edge in double; refinement certifies it") {
+TEST_CASE("adversarial: dense fan collapses onto an edge in double, refinement certifies it") {
   const std::array<Point2q, 3> abc = {Point2q{q(0), q(1)}, Point2q{q(1), q(1)}, Point2q{q(1, 2), q(2)}};
   const DiskMesh d = fan_disk(200, abc);
   const TutteResult r = embed(d);

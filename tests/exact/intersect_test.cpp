@@ -134,7 +134,7 @@ TEST_CASE("classify: hand-made cases") {
   CHECK(std::string(to_string(SegmentRelation::ProperCrossing)) == "proper_crossing");
 }
 
-TEST_CASE("intersection_point rejects parallel lines; intersection of touching cases") {
+TEST_CASE("intersection_point rejects parallel lines, intersection of touching cases") {
   CHECK_THROWS_AS(intersection_point(P(0, 0), P(1, 1), P(0, 1), P(1, 2)), Error);
   CHECK_THROWS_AS(intersection_point(P(0, 0), P(1, 1), P(2, 2), P(3, 3)), Error);
   CHECK_THROWS_AS(intersection_point(P(0, 0), P(0, 0), P(2, 2), P(3, 3)), Error);

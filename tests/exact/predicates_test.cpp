@@ -122,7 +122,7 @@ TEST_CASE("double filter: the error-bound inequalities hold in exact arithmetic"
   CHECK(mpq_class(c / ((1 + u) * (1 + u) * (1 + u))) < mpq_class(3 * u + 8 * u * u));
 }
 
-TEST_CASE("orient2d(double) agrees with GMP on random inputs; the filter answers almost always") {
+TEST_CASE("orient2d(double) agrees with GMP on random inputs, the filter answers almost always") {
   std::mt19937_64 rng(1);
   Counters cnt;
   for (int i = 0; i < 20000; ++i) check_double(rand_pt(rng), rand_pt(rng), rand_pt(rng), &cnt);

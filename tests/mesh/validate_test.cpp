@@ -166,7 +166,7 @@ TEST_CASE("boundary loops and components are counted exactly") {
   CHECK(inspect(two).euler_characteristic == 4);
 }
 
-TEST_CASE("orientation repair flips the minority and warns; off, it is fatal") {
+TEST_CASE("orientation repair flips the minority and warns, off, it is fatal") {
   const PolygonSoup g = generate_closed_mesh({.genus = 2, .faces = 600, .seed = 5});
   std::mt19937_64 rng(11);
   PolygonSoup s = g;
@@ -215,7 +215,7 @@ TEST_CASE("orientation repair flips the minority and warns; off, it is fatal") {
   CHECK(thrown(g, strict) == ErrorKind::Internal);  // consistent input: nothing thrown
 }
 
-TEST_CASE("unreferenced vertices are dropped with a warning; input ids kept") {
+TEST_CASE("unreferenced vertices are dropped with a warning, input ids kept") {
   auto pos = points(7);
   const auto s = soup_of(pos, {{1, 3, 2}, {1, 2, 5}, {1, 5, 3}, {2, 3, 5}});  // 0, 4, 6 unused
   const ValidMesh m = validate(s);

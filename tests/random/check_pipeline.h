@@ -14,9 +14,9 @@
 
 namespace igm_test {
 
-// Genus 0 is being added on another branch (orbifold embedding). Until it lands compute_igm must
-// throw exactly Unsupported on spheres; once merged, set this to true: then every sphere must certify.
-constexpr bool kGenus0Certifies = false;
+// Genus 0 (orbifold embedding) has landed: every sphere must certify too. (Before it landed this
+// was false, and spheres had to give exactly Unsupported.)
+constexpr bool kGenus0Certifies = true;
 
 struct Outcome {
   bool certified = false;
@@ -25,7 +25,7 @@ struct Outcome {
 };
 
 // validate -> compute_igm with `root` (-1: default) -> both certifier reports must be valid, with
-// the expected genus and 5g (1 for a torus) N x N quads. Genus 0: see kGenus0Certifies.
+// the expected genus and 5g (1 for a torus, 2 for a sphere) N x N quads. Genus 0: see kGenus0Certifies.
 // With `files`, the written exact IGM and quad OBJ are also certified through the certifier's reader.
 inline Outcome run_pipeline(const igm::PolygonSoup& soup, int expected_genus, int root, bool files = false, int resolution = 3) {
   Outcome out;
@@ -56,9 +56,8 @@ inline Outcome run_pipeline(const igm::PolygonSoup& soup, int expected_genus, in
   REQUIRE(r.quad_report.genus.has_value());
   CHECK(*r.igm_report.genus == expected_genus);
   CHECK(*r.quad_report.genus == expected_genus);
-  // Layout quads: 1 for a torus, 5g from genus 2 (paper §6.2); genus 0 (orbifold layout, not yet
-  // merged) is only checked against the pipeline's own count: pin it when the genus-0 stage lands.
-  const int layout = expected_genus == 0 ? r.stats.layout_quads : expected_genus == 1 ? 1 : 5 * expected_genus;
+  // Layout quads: the 2 cells of [0,2] x [0,1] for a sphere, 1 for a torus, 5g from genus 2.
+  const int layout = expected_genus == 0 ? 2 : expected_genus == 1 ? 1 : 5 * expected_genus;
   CHECK(static_cast<int>(r.quads.quads.size()) == layout * resolution * resolution);
   if (files) {
     std::ostringstream exact, quads;

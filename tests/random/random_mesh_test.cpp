@@ -1,5 +1,5 @@
-// Randomized property tests of the whole pipeline (issue 7): random closed meshes of genus 1..12
-// (0..12 once kGenus0Certifies in check_pipeline.h is true),
+// Randomized property tests of the whole pipeline (issue 7): random closed meshes of genus 0..12
+// (1..12 if kGenus0Certifies in check_pipeline.h is false),
 // 16 to ~3000 faces (4 for the genus-0 tetrahedron), random refinements, random root, random
 // vertex/face order and near-degenerate or extreme geometry must all certify (both certifier
 // reports); permuting vertex or face order and re-rooting keep the genus and the quad count.
@@ -133,7 +133,7 @@ TEST_CASE("metamorphic: vertex order, face order and root do not change genus or
   }
 }
 
-TEST_CASE("random spheres: genus 0 (Unsupported until the orbifold stage lands, then certified)") {
+TEST_CASE("random spheres from the 4-face tetrahedron up with hostile geometry certify") {
   // Count: 30 spheres, from the 4-face tetrahedron to ~1000 faces, with hostile geometry.
   const std::uint64_t seed = base_seed() + 3;
   std::mt19937_64 rng(seed);

@@ -35,6 +35,11 @@ std::optional<Rational> parse_rational(std::string_view text, long max_exponent 
 /// smallest subnormal 2^-1074. Never Inf or NaN. For output and initial guesses only, never for decisions.
 double to_double(const Rational& q);
 
+/// A double within relative error 2^-51 of q (plus 2^-1074 absolute; +-DBL_MAX beyond the range;
+/// not necessarily the truncation). Fast for power-of-two denominators (no division), which the
+/// refined embeddings produce. For candidate filters with a stated margin and for pictures only.
+double approximate(const Rational& q);
+
 /// "p/q", or "p" when the denominator is 1: the exact text form, read back by parse_rational.
 std::string to_string(const Rational& q);
 

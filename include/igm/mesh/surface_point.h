@@ -31,6 +31,11 @@ SurfacePoint lerp(const SurfacePoint& a, const SurfacePoint& b, const Rational& 
 /// The unweighted average of the points (exact). Pre: non-empty, joint support <= 3 vertices.
 SurfacePoint average(const std::vector<SurfacePoint>& points);
 
+/// The exact point wa*a + wb*b + wc*c (weights >= 0 summing to 1, not checked), where a, b, c are
+/// the corners of one refined face (so their joint support is one input face). O(1) GMP operations.
+SurfacePoint barycentric_point(const SurfacePoint& a, const SurfacePoint& b, const SurfacePoint& c,
+                               const std::array<Rational, 3>& w);
+
 /// The 3D position (doubles, for display and initial guesses only).
 Vec3d evaluate(const SurfacePoint& p, const std::vector<Vec3d>& input_positions);
 

@@ -13,6 +13,9 @@ namespace igm {
 struct SchemaDrawing {
   std::vector<Vec2d> polygon;                          // corners, counter-clockwise
   std::vector<int> side_pair;                          // side s (corner s -> s+1) glues to side_pair[s]
+  /// Optional: side s drawn as this polyline (from corner s to corner s+1) instead of a segment
+  /// (genus 0: the sides of the orbifold disk are mesh paths, not straight).
+  std::vector<std::vector<Vec2d>> side_paths;
   std::vector<std::array<Vec2d, 2>> template_edges;    // layout edges
   std::vector<std::array<Vec2d, 2>> diagonals;         // quad diagonals of the piecewise-affine map (dashed)
   std::vector<std::array<Vec2d, 2>> mesh_edges;        // embedded mesh edges (drawn faintly)

@@ -1,11 +1,13 @@
 #pragma once
 // The whole pipeline on a validated mesh: topology -> embed -> arrange -> igm -> extract ->
 // certify (design.md). Returns the IGM, the quad mesh and the certifier's reports on both.
+#include <array>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "certify/certify.h"
+#include "igm/embed/orbifold_tutte.h"
 #include "igm/embed/tutte.h"
 #include "igm/mesh/validate.h"
 #include "igm/output/igm_mesh.h"
@@ -25,15 +27,21 @@ struct PipelineOptions {
   /// N: the quad mesh has N x N quads per layout quad (N >= 1). For N < 3 the quad mesh has
   /// loops and multi-edges at the root (inherent to the layout, paper §6.2: every polygon corner
   /// is the root); the certifier identifies edges by their end points and rejects such a mesh,
-  /// so only N >= 3 gives a certified quad mesh.
+  /// so only N >= 3 gives a certified quad mesh. Genus 0: 2 N^2 quads, certified for every N >= 1.
   int resolution = 4;
-  int root = -1;       // root vertex of the loops (-1: deterministic default)
+  int root = -1;       // root vertex of the loops (-1: deterministic default); genus 0 has no root (ignored)
   /// Bring the gluing word to the normal form a1 b1 a1^-1 b1^-1 ... by handle slides. Validity
   /// does not need it: every polygon side is a whole edge of one layout quad mapped onto a
   /// unit-square edge, so any pairing of sides glues by R^k x + t with integer t (the certifier
-  /// checks it). Off by default: the slides' paths grow the mesh a lot at high genus
-  /// (couplingdown g9: 1.8k -> 20k vertices; cheese g133 does not finish in 2 minutes).
+  /// checks it). Off by default: the slides' paths run between earlier loops and grow the mesh
+  /// (couplingdown g9: 3.6k instead of 2.2k refined vertices and 12x instead of 3.8x output
+  /// triangles, anchor 5.5x instead of 3.4x; a 1M-face g20 mesh 0.5M -> 1.05M vertices in ~20 s;
+  /// cheese g133 exceeds the topology stage's slide bound, a typed error).
   bool normal_form = false;
+  /// Genus 0 only: the four cone vertices (input vertex ids) in path order A, B, C, D; empty: the
+  /// deterministic default (topology/sphere_cut.h). Bad lists give igm::Error(InvalidArgument).
+  std::vector<int> cones;
+  /// Refinement bounds of the embedding (Tutte for g >= 1, orbifold Tutte for g = 0).
   TutteOptions tutte;
   std::size_t max_witnesses = 20;
   std::function<void(const StageEvent&)> progress;  // optional
@@ -44,10 +52,14 @@ struct PipelineStats {
   int input_vertices = 0, input_faces = 0;
   int refined_vertices = 0, refined_faces = 0;  // after the topology stage's splits
   int output_vertices = 0, output_triangles = 0;  // the IGM triangle mesh
-  int layout_quads = 0, quads = 0;
+  int layout_quads = 0, quads = 0;  // genus 0: the 2 cells of the domain [0,2] x [0,1]
   std::size_t max_uv_bits = 0;  // largest bit_size of an exact UV coordinate
   CutStats cut;
   TutteStats tutte;
+  // genus 0 (orbifold Tutte): the cones (vertex ids of the input and of the IGM), the cut, the embedding
+  std::array<int, 4> cones{-1, -1, -1, -1};
+  SphereCutStats sphere_cut;
+  OrbifoldTutteStats orbifold;
   std::vector<StageEvent> stages;
 };
 
@@ -61,13 +73,16 @@ struct PipelineResult {
   bool certified() const { return igm_report.valid() && quad_report.valid(); }
 };
 
-/// Computes a certified IGM of a closed orientable mesh of genus g >= 1 (paper §4–5): loops and
+/// Computes a certified IGM of a closed orientable mesh (paper §4–5). Genus g >= 1: loops and
 /// cut (topology), rational convex 4g-gon and exact Tutte map (embed), exact overlay of the quad
 /// template (arrange), piecewise-affine map of each layout quad to the unit square (igm), quad
-/// extraction at the requested resolution (extract), then the independent certifier on both
-/// outputs. Throws igm::Error(Unsupported) for genus 0 (see the genus-0 orbifold stage),
-/// igm::Error(InvalidArgument) for resolution < 1 or a bad root. Cost: dominated by the
-/// embedding and the overlay, about O(n log n) plus the exact arithmetic.
+/// extraction at the requested resolution (extract). Genus 0: cut along a path through four
+/// cones (topology/sphere_cut.h), orbifold Tutte map onto the pillowcase [0,2] x [0,1] with four
+/// pi-cones at integer points (embed/orbifold_tutte.h; the map is the IGM), the 2 N^2 grid cells of
+/// the domain as quads (extract/orbifold_quads.h; valid for every N >= 1). Then the independent
+/// certifier on both outputs. Throws igm::Error(InvalidArgument) for resolution < 1, a bad root or
+/// a bad cone list. Cost: dominated by the embedding and the overlay, about O(n log n) plus the
+/// exact arithmetic.
 PipelineResult compute_igm(const ValidMesh& mesh, const PipelineOptions& options = {});
 
 }  // namespace igm

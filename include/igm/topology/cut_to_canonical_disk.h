@@ -3,28 +3,36 @@
 // root, and the disk obtained by cutting the surface along them (paper §3–4.1).
 //
 //  1. greedy homotopy basis (Erickson & Whittlesey 2005) by tree–cotree: Dijkstra shortest-path
-//     tree T from the root on 3D edge lengths, maximum spanning tree of the dual graph on the
-//     edges not in T weighted by dist(u)+|uv|+dist(v); the 2g leftover edges ("bands") close the
-//     loops root~u, uv, v~root. O(n log n).
-//  2. detaching: each band uv is split at 1/3 and 2/3 into u-a-b-v, a hangs below u and b below v
-//     in T. The 4g paths root~a, root~b ("strands") are drawn pairwise disjoint as normal curves
-//     in a thin neighbourhood of T: strands are ordered by the counter-clockwise depth-first tour of
-//     T; at each tree vertex x only the last strand of x's subtree passes through x, the others
-//     go around x on one side, crossing the edges at x at exact rational points (ordered by tour
-//     index along each edge). Each face is then re-triangulated along the curves. Growth: one new
-//     vertex per crossing (plus a few to keep triangles non-degenerate). Cost O(n + total crossings).
-//  3. embedding pre-conditions: every edge that is not on a loop but joins two loop vertices (the
-//     root included) is split at its midpoint, so that no interior disk edge joins two boundary
-//     vertices, no triangle has three boundary vertices and every root wedge has an interior vertex.
-//  4. normal form: the slides planned by plan_handle_slides (handle_slides.h, <= 2g of them) are
-//     realized one by one: the new loop is a shortest path between the two root wedges through
-//     vertices on no loop (it exists because of step 3), the replaced loop is dropped, and the edges
-//     joining the new loop to other loop vertices are split (step 3 again, locally). Loops are then
+//     tree T from the root (metric: 3D edge lengths or hop counts), maximum spanning tree of the
+//     dual graph on the edges not in T weighted by dist(u)+|uv|+dist(v); the 2g leftover edges
+//     ("bands") close the loops root~u, uv, v~root. O(n log n). With CutOptions::root = -1 the
+//     root and the metric are chosen among a few deterministic candidates by the crossings step 2
+//     would make (planned, not built; with the normal form also by the number of slides step 3
+//     would need, read off the planned word): on the shared meshes this lowers the growth 2-10x.
+//  2. detaching: a band end that is a leaf of the tree spanned by all band ends ends its strand
+//     itself; the others get a vertex on the band edge hanging below them in T (u-a-b-v at 1/3 and
+//     2/3, or u-b-v at 1/2). The 4g paths root~a, root~b ("strands") are drawn pairwise disjoint
+//     as normal curves in a thin neighbourhood of T, ordered by the counter-clockwise depth-first
+//     tour of T: every tree vertex x but the root lies on one strand, its owner (the owner of one
+//     of its children); the other strands go around x, those before the owner in tour order
+//     counter-clockwise and those after it clockwise, crossing the edges at x at exact rational
+//     points (ordered along each edge by tour distance to the owner); a strand that reaches x on
+//     the wrong side first crosses the parent edge. The owners minimise the crossings (dynamic
+//     programming over T, O(sum of strand lengths)). Each face is then re-triangulated along the
+//     curves. Growth: one vertex per crossing (plus a split where a curve would run along an edge,
+//     and a face vertex where a fan would be flat). Cost O(n + total crossings).
+//  3. normal form (CutOptions::normal_form): the slides planned by plan_handle_slides
+//     (handle_slides.h, <= 2g of them) are realized one by one: the new loop is a cheapest path
+//     between the two root wedges through vertices on no loop and midpoints of edges on no loop,
+//     which are split where the path uses them; the replaced loop is dropped. Loops are then
 //     renumbered and reoriented so that the word is exactly L0 L1 L0^-1 L1^-1 L2 L3 ...
-//     Known limitation: near the root the new loops run in thin strips between earlier loops, and
-//     each slide refines those strips again, so growth compounds with the number of slides
-//     (couplingdown g9: 1841 -> ~20k vertices; genus >= 20 is impractical). normal_form = false
-//     avoids it (growth of steps 2-3 only).
+//     Known limitation: later slides' paths run in thin strips between earlier loops, so their
+//     length compounds with the number of slides (couplingdown g9: 1.8k -> 3.6k vertices instead
+//     of 2.2k without; a generated 1M-face g20: 0.5M -> 1.05M in ~20 s; cheese g133 exceeds the
+//     bound CutOptions::max_slide_growth, a typed error). Off, the word is whatever step 2 gives.
+//  4. embedding pre-conditions (embed/tutte.h): every interior disk edge joining two vertices of
+//     one polygon side (a root copy lies on its two sides) is split at its midpoint; then no
+//     triangle has three vertices on one side. O(n).
 //  5. cut: the disk whose face f is face f of the refined surface; its boundary is one ccw cycle of
 //     4g sides, each from a root copy to the next, labelled (loop, direction) and paired.
 // Every constructed vertex is an exact point of one input face (SurfacePoint).
@@ -39,11 +47,19 @@
 namespace igm {
 
 struct CutOptions {
-  /// Root vertex; -1 picks the vertex of maximum valence, the lowest id among ties.
+  /// Root vertex (the basis then uses 3D edge lengths); -1 picks, among a few deterministic
+  /// candidates (the vertex of maximum valence, then evenly spaced ids) and two metrics (3D
+  /// lengths, hop counts), the pair whose detaching crosses the fewest edges (with normal_form:
+  /// crossings plus the planned slides, weighted).
   int root = -1;
-  /// Bring the word into a1 b1 a1^-1 b1^-1 ... by handle slides (<= 2g). Off: the word is whatever
-  /// the detached greedy loops give (still 4g sides, paired), for tests and measurements.
+  /// Bring the word into a1 b1 a1^-1 b1^-1 ... by handle slides (<= 2g; step 3). Off: the word is
+  /// whatever the detached greedy loops give (still 4g sides, paired). The pipeline runs with it off
+  /// by default (PipelineOptions::normal_form, step 3's growth); here it is on by default.
   bool normal_form = true;
+  /// Bound on the slides' edge splits, as a multiple of the vertex count before the slides;
+  /// exceeding it is igm::Error(Unsupported) (the slides' paths run between earlier loops, and on
+  /// high genus their length compounds: cheese g133 would grow past 10M vertices).
+  double max_slide_growth = 4.0;
   /// Debug: rebuild the cut after every slide and compare its word with the planned one (O(n) each).
   bool check_each_slide = false;
 };
@@ -54,9 +70,13 @@ struct CutStats {
   int vertices_after = 0, faces_after = 0;
   int crossings = 0;            // vertices created where strands cross edges (step 2)
   int steiner_vertices = 0;     // face-interior vertices added to avoid flat triangles (step 2)
-  int precondition_splits = 0;  // edge splits of step 3
+  int band_splits = 0;          // band edge vertices (step 2; at most two per band)
+  int chord_splits = 0;         // edges split so that no strand runs along an edge (step 2)
+  int precondition_splits = 0;  // edge splits of step 4
+  long long predicted_crossings = 0;  // the detaching plan's count for the chosen root (step 2)
+  int roots_tried = 0;          // (root, metric) candidates whose detaching was planned (root = -1)
   int num_slides = 0;           // handle slides performed (normal form)
-  int slide_retries = 0;        // slides that needed a global split pass before a path existed
+  int slide_splits = 0;         // edges split where the slides' paths cross them (normal form)
   double seconds_basis = 0, seconds_detach = 0, seconds_cut = 0, seconds_total = 0;
 };
 
@@ -90,8 +110,11 @@ struct CutResult {
 /// Cuts a closed, connected, oriented surface of genus g >= 1 into a disk along 2g loops through one
 /// root vertex (see the steps above). Pre: `mesh` is valid (closed, manifold, connected, every
 /// vertex used), positions.size() == mesh.num_vertices(). Throws igm::Error(Unsupported) for genus 0,
-/// igm::Error(InvalidArgument) for an out-of-range root or bad sizes, igm::Error(Internal) if an
-/// invariant breaks. Cost O(n log n + crossings).
+/// igm::Error(InvalidArgument) for an out-of-range root or bad sizes, igm::Error(Unsupported) if the
+/// handle slides exceed CutOptions::max_slide_growth, igm::Error(Internal) if an invariant breaks
+/// (a slide path that does not trace included). Cost O(K n log n + crossings) for K root candidates
+/// (2K plans, K = clamp(1e6 / F, 1, 24); K = 1 and one plan if the root is given), plus
+/// O(g (V + E) log(V + E)) for the slides.
 CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& positions,
                                 const CutOptions& options = {});
 
