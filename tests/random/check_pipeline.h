@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <sstream>
+#include <string>
 
 #include "certify/certify.h"
 #include "igm/core/error.h"
@@ -39,7 +40,7 @@ inline Outcome run_pipeline(const igm::PolygonSoup& soup, int expected_genus, in
       igm::compute_igm(mesh, o);
       FAIL("genus 0 accepted: set kGenus0Certifies = true");
     } catch (const igm::Error& e) {
-      CHECK_MESSAGE(e.kind() == igm::ErrorKind::Unsupported, e.what());
+      CHECK_MESSAGE(e.kind() == igm::ErrorKind::Unsupported, std::string(e.what()));
     }
     return out;
   }
@@ -47,7 +48,7 @@ inline Outcome run_pipeline(const igm::PolygonSoup& soup, int expected_genus, in
   try {
     r = igm::compute_igm(mesh, o);
   } catch (const igm::Error& e) {
-    FAIL("compute_igm threw on a valid closed mesh: " << e.what());
+    FAIL("compute_igm threw on a valid closed mesh: " << std::string(e.what()));
     return out;
   }
   CHECK_MESSAGE(r.igm_report.valid(), igm::certify::summary(r.igm_report));
