@@ -1,8 +1,25 @@
 #!/usr/bin/env bash
-# Set-up command 2 (and CI): installs the packages, builds, and runs the whole test suite.
+# Set-up command 2 (and CI): installs the packages, builds, and runs the whole test suite twice:
+#   1. Release build in ${IGM_BUILD_DIR:-build};
+#   2. AddressSanitizer + UndefinedBehaviorSanitizer build (-DIGM_SANITIZE=ON, RelWithDebInfo,
+#      no benchmarks) in ${IGM_ASAN_BUILD_DIR:-build-asan}: every test again (the 1M-face torus
+#      and the cheese included: ~260 s together under the sanitizers), with a quarter of the
+#      random meshes of tests/random (IGM_RANDOM_SCALE=0.25: ~10x slower under the sanitizers;
+#      the plain run does them all).
+#      IGM_TEST_ASAN=0 skips this part (for quick local runs; CI always runs it).
 # Tests that need ../shared read IGM_DATA_DIR (default: ../shared beside the checkout).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 bash scripts/build.sh
 ctest --test-dir "${IGM_BUILD_DIR:-build}" --output-on-failure -j "$(nproc)"
+
+if [ "${IGM_TEST_ASAN:-1}" != 0 ]; then
+  ASAN_DIR="${IGM_ASAN_BUILD_DIR:-build-asan}"
+  echo "[test] the whole suite again under AddressSanitizer + UndefinedBehaviorSanitizer ($ASAN_DIR)"
+  IGM_BUILD_DIR="$ASAN_DIR" IGM_BUILD_TYPE=RelWithDebInfo bash scripts/build.sh -DIGM_SANITIZE=ON -DIGM_BUILD_BENCH=OFF
+  # Any report fails the test: UBSan is built with -fno-sanitize-recover, ASan aborts on error.
+  ASAN_OPTIONS="abort_on_error=1:detect_leaks=1" IGM_RANDOM_SCALE=0.25 \
+  UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
+    ctest --test-dir "$ASAN_DIR" --output-on-failure -j "$(nproc)"
+fi

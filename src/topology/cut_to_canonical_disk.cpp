@@ -32,6 +32,29 @@ double length(const Vec3d& a, const Vec3d& b) {
   return std::sqrt(dx * dx + dy * dy + dz * dz);
 }
 
+// The positions scaled by one power of two so that the largest |coordinate| is in [1, 2): edge
+// lengths and path sums are then finite (at most 2*sqrt(3) per edge) whatever the input's
+// magnitude (1e300 would overflow the squares to inf, and Dijkstra would reach nothing), and a
+// power-of-two scale changes no comparison except by underflow to 0, which only makes ties.
+// The lengths only choose among homotopy bases: any finite non-negative lengths are correct.
+// Throws NonFinite for a NaN or infinite coordinate.
+std::vector<Vec3d> unit_scaled(const std::vector<Vec3d>& positions) {
+  double m = 0;
+  for (std::size_t v = 0; v < positions.size(); ++v) {
+    const Vec3d& p = positions[v];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw Error(ErrorKind::NonFinite, "vertex " + std::to_string(v) + " has a non-finite coordinate",
+                  {static_cast<std::int64_t>(v)});
+    m = std::max({m, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+  }
+  if (m == 0) return positions;
+  const int e = std::ilogb(m);  // m in [2^e, 2^(e+1))
+  std::vector<Vec3d> out(positions.size());
+  for (std::size_t v = 0; v < positions.size(); ++v)
+    out[v] = {std::ldexp(positions[v].x, -e), std::ldexp(positions[v].y, -e), std::ldexp(positions[v].z, -e)};
+  return out;
+}
+
 int find_he(const TriMesh& m, int a, int b) {
   int h = m.find_halfedge(a, b);
   if (h < 0) internal("missing edge", {a, b});
@@ -730,9 +753,10 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
   // lengths.
   // Candidates: the vertex of maximum valence (lowest id among ties), then vertices i * V / K.
   // K = clamp(1e6 / F, 1, 24) bounds the extra cost to one basis computation on a 1M-face mesh.
+  const std::vector<Vec3d> unit = unit_scaled(positions);  // edge lengths finite at any magnitude
   DetachPlan P;
   if (options.root >= 0) {
-    P = plan_detach(mesh, positions, options.root, genus, false);
+    P = plan_detach(mesh, unit, options.root, genus, false);
   } else {
     int first = 0, best_valence = -1;
     for (int v = 0; v < nv0; ++v) {
@@ -747,7 +771,7 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     }
     for (int c : candidates) {
       for (bool hops : {false, true}) {
-        DetachPlan q = plan_detach(mesh, positions, c, genus, hops);
+        DetachPlan q = plan_detach(mesh, unit, c, genus, hops);
         ++res.stats.roots_tried;
         // With the normal form each planned slide is charged like two average strands of
         // crossings (a slide path runs about as far as a loop, often beside the strands).

@@ -1,0 +1,111 @@
+// libFuzzer target: the whole pipeline on a small random closed mesh decoded from the bytes.
+//
+// Bytes -> RandomMeshSpec (tests/support/random_mesh.h: genus 0..12, 4..2000 target faces, seed,
+// jitter, up to 15 edge and 15 face splits, a hostile geometry, permuted order), a root, a
+// resolution 3..5, then up to 64 coordinate perturbations (collapse a vertex onto another, put it
+// on the segment of two others, scale it by 1e300 / 1e-300, send it to +-1e308, zero it). The
+// combinatorics stay those of a closed genus-g surface, so:
+//   validate() must accept it with genus g, and compute_igm must return an output that BOTH
+//   certifier reports accept, with genus g and 5g (1 for a torus, 2 for a sphere) N x N quads.
+// No igm::Error is accepted (the mesh is valid by construction; with kGenus0Certifies false only
+// Unsupported for genus 0 was): any igm::Error, any other exception, a rejected output, a crash
+// or a hang is a finding (abort).
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+
+#include "igm/core/error.h"
+#include "igm/pipeline/pipeline.h"
+#include "random_mesh.h"
+
+namespace {
+
+// Genus 0 (orbifold embedding) has landed: spheres must certify too (false: exactly Unsupported).
+constexpr bool kGenus0Certifies = true;
+
+struct Reader {  // the fuzz bytes, read front to back; past the end every read gives 0
+  const std::uint8_t* p;
+  std::size_t n;
+  std::uint64_t get(int bytes) {
+    std::uint64_t v = 0;
+    for (int i = 0; i < bytes; ++i) {
+      v = (v << 8) | (n > 0 ? *p : 0u);
+      if (n > 0) ++p, --n;
+    }
+    return v;
+  }
+};
+
+[[noreturn]] void finding(const char* what, const igm_test::RandomMeshSpec& s, const char* detail) {
+  std::fprintf(stderr, "pipeline_fuzz: %s\n  mesh: %s\n  %s\n", what, igm_test::describe(s).c_str(), detail);
+  std::abort();
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  if (size > 4096) return 0;  // 18 header bytes + 64 perturbations of 5 bytes are all that is read
+  Reader in{data, size};
+  igm_test::RandomMeshSpec s;
+  s.genus = static_cast<int>(in.get(1) % 13);
+  s.faces = 4 + static_cast<std::int64_t>(in.get(2) % 1997);
+  s.seed = in.get(8);
+  s.geometry = static_cast<igm_test::Geometry>(in.get(1) % static_cast<unsigned>(igm_test::Geometry::Count));
+  s.jitter = 0.45 * static_cast<double>(in.get(1)) / 255.0;
+  s.edge_splits = static_cast<int>(in.get(1) % 16);
+  s.face_splits = static_cast<int>(in.get(1) % 16);
+  const std::uint64_t root_bytes = in.get(2);
+  const std::uint64_t flags = in.get(1);
+  s.permute = (flags & 0x80) != 0;
+  const int resolution = 3 + static_cast<int>(flags % 3);
+
+  igm::PolygonSoup soup = igm_test::random_closed_mesh(s);
+  auto& pos = soup.positions;
+  const std::size_t nv = pos.size();
+  for (int k = 0; k < 64 && in.n >= 5; ++k) {  // at most 64 perturbations
+    const unsigned op = static_cast<unsigned>(in.get(1));
+    const std::size_t a = in.get(2) % nv, b = in.get(2) % nv, c = (b + 1) % nv;
+    igm::Vec3d& q = pos[a];
+    switch (op % 6) {
+      case 0: q = pos[b]; break;  // coincident
+      case 1: q = {0.5 * pos[b].x + 0.5 * pos[c].x, 0.5 * pos[b].y + 0.5 * pos[c].y, 0.5 * pos[b].z + 0.5 * pos[c].z}; break;
+      case 2: if (std::isfinite(q.x * 1e300) && std::isfinite(q.y * 1e300) && std::isfinite(q.z * 1e300)) q = {q.x * 1e300, q.y * 1e300, q.z * 1e300}; break;
+      case 3: q = {q.x * 1e-300, q.y * 1e-300, q.z * 1e-300}; break;
+      case 4: q = {(op & 8) ? 1e308 : -1e308, (op & 16) ? 1e308 : -1e308, (op & 32) ? 1e308 : -1e308}; break;
+      default: q = {0.0, 0.0, 0.0}; break;
+    }
+  }
+
+  igm::ValidMesh mesh;
+  try {
+    mesh = igm::validate(soup);
+  } catch (const igm::Error& e) {
+    finding("validate rejected a closed mesh", s, e.what());
+  }
+  if (mesh.genus != s.genus) finding("wrong genus from validate", s, "");
+  igm::PipelineOptions o;
+  o.resolution = resolution;
+  o.root = root_bytes == 0xFFFF ? -1 : static_cast<int>(root_bytes % static_cast<std::uint64_t>(mesh.mesh.num_vertices()));
+  o.max_witnesses = 3;
+  try {
+    const igm::PipelineResult r = igm::compute_igm(mesh, o);
+    if (s.genus == 0 && !kGenus0Certifies) finding("genus 0 accepted: set kGenus0Certifies = true", s, "");
+    if (!r.igm_report.valid()) finding("IGM rejected by the certifier", s, igm::certify::summary(r.igm_report).c_str());
+    if (!r.quad_report.valid()) finding("quads rejected by the certifier", s, igm::certify::summary(r.quad_report).c_str());
+    // Layout quads: 2 for a sphere ([0,2] x [0,1]), 1 for a torus, 5g from genus 2.
+    const int layout = s.genus == 0 ? 2 : s.genus == 1 ? 1 : 5 * s.genus;
+    if (r.igm_report.genus != s.genus || r.quad_report.genus != s.genus ||
+        static_cast<int>(r.quads.quads.size()) != layout * resolution * resolution)
+      finding("wrong genus or quad count", s, "");
+  } catch (const igm::Error& e) {
+    if (s.genus == 0 && !kGenus0Certifies && e.kind() == igm::ErrorKind::Unsupported) return 0;
+    finding("typed error on a valid closed mesh", s, e.what());
+  } catch (const std::exception& e) {
+    finding("untyped exception", s, e.what());
+  }
+  return 0;
+}

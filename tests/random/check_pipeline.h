@@ -1,0 +1,80 @@
+#pragma once
+// The property every random mesh must have (tests/random): validate accepts it with its genus, and
+// compute_igm returns outputs that both certifier reports accept.
+#include <doctest/doctest.h>
+
+#include <sstream>
+#include <string>
+
+#include "certify/certify.h"
+#include "igm/core/error.h"
+#include "igm/mesh/soup.h"
+#include "igm/mesh/validate.h"
+#include "igm/output/igm_mesh.h"
+#include "igm/pipeline/pipeline.h"
+
+namespace igm_test {
+
+// Genus 0 (orbifold embedding) has landed: every sphere must certify too. (Before it landed this
+// was false, and spheres had to give exactly Unsupported.)
+constexpr bool kGenus0Certifies = true;
+
+struct Outcome {
+  bool certified = false;
+  int genus = -1;
+  int quads = -1;
+};
+
+// validate -> compute_igm with `root` (-1: default) -> both certifier reports must be valid, with
+// the expected genus and 5g (1 for a torus, 2 for a sphere) N x N quads. Genus 0: see kGenus0Certifies.
+// With `files`, the written exact IGM and quad OBJ are also certified through the certifier's reader.
+inline Outcome run_pipeline(const igm::PolygonSoup& soup, int expected_genus, int root, bool files = false, int resolution = 3) {
+  Outcome out;
+  const igm::ValidMesh mesh = igm::validate(soup);  // the geometry never changes the combinatorics: must pass
+  REQUIRE(mesh.genus == expected_genus);
+  igm::PipelineOptions o;
+  o.resolution = resolution;
+  o.root = root < 0 ? -1 : root % mesh.mesh.num_vertices();
+  if (expected_genus == 0 && !kGenus0Certifies) {
+    try {
+      igm::compute_igm(mesh, o);
+      FAIL("genus 0 accepted: set kGenus0Certifies = true");
+    } catch (const igm::Error& e) {
+      CHECK_MESSAGE(e.kind() == igm::ErrorKind::Unsupported, std::string(e.what()));
+    }
+    return out;
+  }
+  igm::PipelineResult r;
+  try {
+    r = igm::compute_igm(mesh, o);
+  } catch (const igm::Error& e) {
+    FAIL("compute_igm threw on a valid closed mesh: " << std::string(e.what()));
+    return out;
+  }
+  CHECK_MESSAGE(r.igm_report.valid(), igm::certify::summary(r.igm_report));
+  CHECK_MESSAGE(r.quad_report.valid(), igm::certify::summary(r.quad_report));
+  REQUIRE(r.igm_report.genus.has_value());
+  REQUIRE(r.quad_report.genus.has_value());
+  CHECK(*r.igm_report.genus == expected_genus);
+  CHECK(*r.quad_report.genus == expected_genus);
+  // Layout quads: the 2 cells of [0,2] x [0,1] for a sphere, 1 for a torus, 5g from genus 2.
+  const int layout = expected_genus == 0 ? 2 : expected_genus == 1 ? 1 : 5 * expected_genus;
+  CHECK(static_cast<int>(r.quads.quads.size()) == layout * resolution * resolution);
+  if (files) {
+    std::ostringstream exact, quads;
+    igm::write_igm_obj(exact, r.igm, true);
+    igm::write_quad_obj(quads, r.quads);
+    const igm::certify::Report re = igm::certify::certify_igm_text(exact.str());
+    CHECK_MESSAGE(re.valid(), igm::certify::summary(re));
+    igm::certify::Options qo;
+    qo.expected_genus = expected_genus;
+    const igm::certify::Report rq = igm::certify::certify_quads_text(quads.str(), qo);
+    CHECK_MESSAGE(rq.valid(), igm::certify::summary(rq));
+  }
+  out.certified = r.certified();
+  out.genus = *r.igm_report.genus;
+  out.quads = static_cast<int>(r.quads.quads.size());
+  return out;
+}
+
+}  // namespace igm_test

@@ -1,0 +1,185 @@
+#pragma once
+// Random closed meshes with hostile geometry, shared by the randomized property tests
+// (tests/random/) and the pipeline fuzz target (fuzz/pipeline_fuzz.cpp).
+//
+// A mesh is generate_closed_mesh(genus, faces, seed) (a tetrahedron for genus 0 below 16 faces),
+// refined by random edge and face splits, given near-degenerate or extreme geometry (which must
+// not matter for topology), and finally put in random vertex order, face order and corner
+// rotation. The combinatorics (closed, oriented, connected, genus g) are never changed by the
+// geometry, so validate() must accept every such mesh and the pipeline must certify it.
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <numeric>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "igm/mesh/generate.h"
+#include "igm/mesh/soup.h"
+#include "igm/mesh/trimesh.h"
+#include "igm/mesh/validate.h"
+
+namespace igm_test {
+
+/// How vertex positions are replaced after refinement (all finite: topology must not care).
+enum class Geometry {
+  Plain,       // the generator's positions (refinement vertices at edge midpoints / centroids)
+  Tiny,        // all scaled by 1e-300: squared edge lengths underflow to 0
+  Huge,        // all scaled by 1e300: squared edge lengths overflow to inf
+  Extreme,     // every coordinate +-1e308 at random: differences overflow to inf
+  Mixed,       // each vertex scaled by 1e-300, 1 or 1e300 at random
+  Collinear,   // every vertex on one line, at few distinct parameters (collinear and coincident)
+  Coincident,  // every vertex at the same point
+  Collapse,    // about half the vertices moved onto another vertex (coincident points)
+  Count
+};
+
+inline const char* to_string(Geometry g) {
+  static const char* names[] = {"plain",     "tiny",       "huge",     "extreme", "mixed",
+                                "collinear", "coincident", "collapse", "?"};
+  return names[static_cast<int>(g)];
+}
+
+struct RandomMeshSpec {
+  int genus = 1;                 // 0..12 in the tests and the fuzz target
+  std::int64_t faces = 200;      // generator target (min 16); genus 0 below 16: a tetrahedron (4)
+  std::uint64_t seed = 1;        // everything below is drawn from this seed
+  double jitter = 0.25;          // generator's in-plane jitter, [0, 0.5)
+  int edge_splits = 0;           // random edge splits after generation
+  int face_splits = 0;           // random face splits after generation
+  Geometry geometry = Geometry::Plain;
+  bool permute = true;           // random vertex order, face order and corner rotation
+};
+
+inline std::string describe(const RandomMeshSpec& s) {
+  return "genus " + std::to_string(s.genus) + ", faces " + std::to_string(s.faces) + ", seed " +
+         std::to_string(s.seed) + ", jitter " + std::to_string(s.jitter) + ", edge splits " +
+         std::to_string(s.edge_splits) + ", face splits " + std::to_string(s.face_splits) + ", geometry " +
+         to_string(s.geometry) + (s.permute ? ", permuted" : "");
+}
+
+/// The triangles of a mesh as a soup over `positions`.
+inline igm::PolygonSoup to_soup(const igm::TriMesh& m, const std::vector<igm::Vec3d>& positions) {
+  igm::PolygonSoup soup;
+  soup.positions = positions;
+  for (int f = 0; f < m.num_faces(); ++f) {
+    const auto t = m.face_vertices(f);
+    soup.add_face(t.begin(), t.end());
+  }
+  return soup;
+}
+
+/// A random relabelling of the soup: vertex ids permuted, faces reordered, each face's corners
+/// rotated (orientation kept). Same surface, same genus.
+inline igm::PolygonSoup permute_soup(const igm::PolygonSoup& in, std::mt19937_64& rng, bool vertices = true,
+                                     bool faces = true, bool rotate = true) {
+  const std::size_t nv = in.positions.size(), nf = in.num_faces();
+  std::vector<std::int64_t> vmap(nv);  // old id -> new id
+  std::iota(vmap.begin(), vmap.end(), 0);
+  if (vertices) std::shuffle(vmap.begin(), vmap.end(), rng);
+  std::vector<std::size_t> order(nf);  // new face position -> old face
+  std::iota(order.begin(), order.end(), 0);
+  if (faces) std::shuffle(order.begin(), order.end(), rng);
+  igm::PolygonSoup out;
+  out.positions.resize(nv);
+  for (std::size_t v = 0; v < nv; ++v) out.positions[static_cast<std::size_t>(vmap[v])] = in.positions[v];
+  std::vector<std::int64_t> face;
+  for (std::size_t f : order) {  // nf faces, each of face_size(f) corners
+    const std::size_t k = in.face_size(f);
+    const std::size_t r = rotate ? static_cast<std::size_t>(rng() % k) : 0;
+    face.clear();
+    for (std::size_t i = 0; i < k; ++i) face.push_back(vmap[static_cast<std::size_t>(in.corners[in.face_begin[f] + (i + r) % k])]);
+    out.add_face(face.begin(), face.end());
+  }
+  return out;
+}
+
+/// Replaces the positions as `geometry` says (see Geometry). Bound: one pass over the vertices.
+inline void apply_geometry(std::vector<igm::Vec3d>& p, Geometry geometry, std::mt19937_64& rng) {
+  const std::size_t n = p.size();
+  if (n == 0) return;
+  auto scale = [](igm::Vec3d& q, double s) { q = {q.x * s, q.y * s, q.z * s}; };
+  switch (geometry) {
+    case Geometry::Plain:
+    case Geometry::Count:
+      break;
+    case Geometry::Tiny:
+      for (auto& q : p) scale(q, 1e-300);
+      break;
+    case Geometry::Huge:
+      for (auto& q : p) scale(q, 1e300);
+      break;
+    case Geometry::Extreme:
+      for (auto& q : p) {
+        auto c = [&] { return (rng() & 1) ? 1e308 : -1e308; };
+        q = {c(), c(), c()};
+      }
+      break;
+    case Geometry::Mixed:
+      for (auto& q : p) scale(q, std::array<double, 3>{1e-300, 1.0, 1e300}[rng() % 3]);
+      break;
+    case Geometry::Collinear:
+      for (auto& q : p) {
+        const double t = static_cast<double>(rng() % 5);  // few parameters: many coincident points
+        q = {t, 2 * t, -3 * t};
+      }
+      break;
+    case Geometry::Coincident:
+      for (auto& q : p) q = {1.0, 2.0, 3.0};
+      break;
+    case Geometry::Collapse:
+      for (auto& q : p)
+        if (rng() & 1) q = p[rng() % n];
+      break;
+  }
+}
+
+/// The random closed mesh of `spec` (see the top of this file). Deterministic in `spec`.
+inline igm::PolygonSoup random_closed_mesh(const RandomMeshSpec& spec) {
+  std::mt19937_64 rng(spec.seed);
+  igm::PolygonSoup soup;
+  if (spec.genus == 0 && spec.faces < 16) {
+    soup.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    for (auto t : {std::array<std::int64_t, 3>{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}}) soup.add_face(t.begin(), t.end());
+  } else {
+    igm::GenerateOptions g;
+    g.genus = spec.genus;
+    g.faces = spec.faces;
+    g.seed = rng();
+    g.jitter = spec.jitter;
+    g.shuffle = false;  // permuted below, after the refinements
+    soup = igm::generate_closed_mesh(g);
+  }
+  if (spec.edge_splits > 0 || spec.face_splits > 0) {
+    igm::ValidMesh v = igm::validate(soup);
+    igm::TriMesh& m = v.mesh;
+    std::vector<igm::Vec3d>& pos = v.positions;
+    auto mid = [](const igm::Vec3d& a, const igm::Vec3d& b) {
+      return igm::Vec3d{0.5 * a.x + 0.5 * b.x, 0.5 * a.y + 0.5 * b.y, 0.5 * a.z + 0.5 * b.z};
+    };
+    int e = spec.edge_splits, f = spec.face_splits;
+    while (e + f > 0) {  // edge_splits + face_splits iterations
+      if (f == 0 || (e > 0 && rng() % (e + f) < static_cast<unsigned>(e))) {
+        const int h = static_cast<int>(rng() % static_cast<unsigned>(m.num_halfedges()));
+        const igm::Vec3d a = pos[m.origin(h)], b = pos[m.target(h)];
+        m.split_edge(h);
+        pos.push_back(mid(a, b));
+        --e;
+      } else {
+        const int face = static_cast<int>(rng() % static_cast<unsigned>(m.num_faces()));
+        const auto t = m.face_vertices(face);
+        m.split_face(face);
+        pos.push_back(mid(mid(pos[t[0]], pos[t[1]]), pos[t[2]]));
+        --f;
+      }
+    }
+    soup = to_soup(m, pos);
+  }
+  apply_geometry(soup.positions, spec.geometry, rng);
+  if (spec.permute) soup = permute_soup(soup, rng);
+  return soup;
+}
+
+}  // namespace igm_test
