@@ -8,19 +8,14 @@
 #include "igm/embed/orbifold_tutte.h"
 #include "igm/mesh/generate.h"
 #include "igm/mesh/validate.h"
+#include "generated_mesh.h"
 #include "test_data.h"
 
 using namespace igm;
 
 namespace {
 
-ValidMesh generated_sphere(std::int64_t faces, std::uint64_t seed) {
-  GenerateOptions o;
-  o.genus = 0;
-  o.faces = faces;
-  o.seed = seed;
-  return validate(generate_closed_mesh(o));
-}
+ValidMesh generated_sphere(std::int64_t faces, std::uint64_t seed) { return igm_test::generated_mesh(0, faces, seed); }
 
 // Returns "" or the first broken promise.
 std::string verify(const SphereCut& c, const OrbifoldTutteResult& r) {

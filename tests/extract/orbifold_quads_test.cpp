@@ -11,6 +11,7 @@
 #include "igm/extract/orbifold_quads.h"
 #include "igm/mesh/generate.h"
 #include "igm/mesh/validate.h"
+#include "generated_mesh.h"
 
 using namespace igm;
 
@@ -22,11 +23,7 @@ struct Embedded {
 };
 
 Embedded embed(std::int64_t faces, std::uint64_t seed) {
-  GenerateOptions o;
-  o.genus = 0;
-  o.faces = faces;
-  o.seed = seed;
-  const ValidMesh in = validate(generate_closed_mesh(o));
+  const ValidMesh in = igm_test::generated_mesh(0, faces, seed);
   Embedded e{cut_sphere(in.mesh, in.positions), {}};
   e.map = orbifold_tutte_embed(e.cut);
   return e;

@@ -13,19 +13,13 @@
 #include "igm/mesh/validate.h"
 #include "igm/output/igm_mesh.h"
 #include "igm/pipeline/pipeline.h"
+#include "generated_mesh.h"
 #include "test_data.h"
 
 using namespace igm;
 
 namespace {
 
-ValidMesh generated(int genus, std::int64_t faces, std::uint64_t seed) {
-  GenerateOptions o;
-  o.genus = genus;
-  o.faces = faces;
-  o.seed = seed;
-  return validate(generate_closed_mesh(o));
-}
 
 // Independent check (issue 6) that `igm` is an exact refinement of `input`, from the raw input
 // triangles only (not the producer's adjacency). Returns "" or the first violation found:
@@ -208,19 +202,19 @@ PipelineStats check_run(const ValidMesh& mesh, int resolution, bool normal_form 
 }  // namespace
 
 TEST_CASE("genus 1 generated tori: certified IGM and N x N quads") {
-  for (std::uint64_t seed : {1, 2, 3}) check_run(generated(1, 600 * seed, seed), 2 + int(seed));
+  for (std::uint64_t seed : {1, 2, 3}) check_run(igm_test::generated_mesh(1, 600 * seed, seed), 2 + int(seed));
 }
 
 TEST_CASE("genus 2..7 generated meshes, odd and even: certified, 5g N^2 quads") {
-  for (int g = 2; g <= 7; ++g) check_run(generated(g, 400 * g, std::uint64_t(g)), 3 + g % 2);
+  for (int g = 2; g <= 7; ++g) check_run(igm_test::generated_mesh(g, 400 * g, std::uint64_t(g)), 3 + g % 2);
 }
 
 TEST_CASE("generated genus 12, 25 and 50 (odd and even): certified") {
-  for (int g : {12, 25, 50}) check_run(generated(g, 200 * g, std::uint64_t(g)), 3);
+  for (int g : {12, 25, 50}) check_run(igm_test::generated_mesh(g, 200 * g, std::uint64_t(g)), 3);
 }
 
 TEST_CASE("with the gluing word in normal form (handle slides) the outputs are certified too") {
-  for (int g = 2; g <= 4; ++g) check_run(generated(g, 500 * g, std::uint64_t(40 + g)), 3, true);
+  for (int g = 2; g <= 4; ++g) check_run(igm_test::generated_mesh(g, 500 * g, std::uint64_t(40 + g)), 3, true);
   IGM_REQUIRE_DATA(dir);
   for (const char* name : {"eight.off", "joint.off", "helmet.off", "anchor.off", "elephant.off", "couplingdown.off"}) {
     INFO(std::string(name));
@@ -258,7 +252,7 @@ void check_layout_at_resolution_1(const ValidMesh& mesh) {
 }  // namespace
 
 TEST_CASE("resolution 1 layout: 5g quads, 2+3g vertices, valences 8g, 3g and 3g vertices of valence 3") {
-  for (int g : {2, 3, 7}) check_layout_at_resolution_1(generated(g, 300 * g, 11));
+  for (int g : {2, 3, 7}) check_layout_at_resolution_1(igm_test::generated_mesh(g, 300 * g, 11));
   IGM_REQUIRE_DATA(dir);
   for (const char* name : {"eight.off", "joint.off", "helmet.off", "anchor.off", "elephant.off", "couplingdown.off"}) {
     INFO(std::string(name));
@@ -271,7 +265,7 @@ TEST_CASE("resolution 1 layout: 5g quads, 2+3g vertices, valences 8g, 3g and 3g 
 }
 
 TEST_CASE("bad options give typed errors") {
-  const ValidMesh torus = generated(1, 200, 5);
+  const ValidMesh torus = igm_test::generated_mesh(1, 200, 5);
   PipelineOptions o;
   o.resolution = 0;
   CHECK_THROWS_AS(compute_igm(torus, o), Error);
@@ -313,7 +307,7 @@ TEST_CASE("cheese (genus 133, 17.8k faces) is certified") {
 }
 
 TEST_CASE("a generated 1M-face torus: every triangle certified, N x N quads") {
-  const ValidMesh torus = generated(1, 1000000, 77);
+  const ValidMesh torus = igm_test::generated_mesh(1, 1000000, 77);
   REQUIRE(torus.mesh.num_faces() >= 1000000);
   PipelineOptions o;
   o.resolution = 3;
@@ -422,9 +416,9 @@ TEST_CASE("genus 0: shared spheres (tetrahedron .. armadillo, bull self-intersec
 TEST_CASE("genus 0: generated spheres of several sizes and user cones certified") {
   for (std::int64_t faces : {16, 500, 5000, 50000}) {
     INFO(faces);
-    check_sphere(generated(0, faces, std::uint64_t(faces)), 3);
+    check_sphere(igm_test::generated_mesh(0, faces, std::uint64_t(faces)), 3);
   }
-  const ValidMesh m = generated(0, 800, 4);
+  const ValidMesh m = igm_test::generated_mesh(0, 800, 4);
   check_sphere(m, 2, {5, m.mesh.num_vertices() - 1, 0, 17});
   check_sphere(m, 2, {0, 1, 2, 3});  // cones near each other
 }
@@ -446,7 +440,7 @@ TEST_CASE("genus 0: the tetrahedron and a 3-vertex sphere at any scale or with c
 }
 
 TEST_CASE("genus 0: bad cone lists are typed errors naming the entry") {
-  const ValidMesh m = generated(0, 300, 6);
+  const ValidMesh m = igm_test::generated_mesh(0, 300, 6);
   for (const std::vector<int>& cones : std::vector<std::vector<int>>{
            {1, 2, 3}, {4, 4, 5, 6}, {0, 1, 2, m.mesh.num_vertices()}, {-5, 1, 2, 3}}) {
     PipelineOptions o;
@@ -462,7 +456,7 @@ TEST_CASE("genus 0: bad cone lists are typed errors naming the entry") {
 }
 
 TEST_CASE("genus 0: a generated 1M-face sphere is certified") {
-  const ValidMesh m = generated(0, 1000000, 1);
+  const ValidMesh m = igm_test::generated_mesh(0, 1000000, 1);
   REQUIRE(m.mesh.num_faces() >= 900000);
   check_sphere(m, 4, {}, false);  // the text round trip is tested on the smaller meshes
 }
@@ -470,7 +464,7 @@ TEST_CASE("genus 0: a generated 1M-face sphere is certified") {
 TEST_CASE("the refinement check rejects a corrupted refinement (genus 2 and genus 0)") {
   for (int g : {2, 0}) {
     INFO("genus " << g);
-    const ValidMesh mesh = generated(g, 600, 9);
+    const ValidMesh mesh = igm_test::generated_mesh(g, 600, 9);
     const int n = mesh.mesh.num_vertices();
     PipelineOptions o;
     o.resolution = 3;

@@ -10,19 +10,14 @@
 #include "igm/mesh/generate.h"
 #include "igm/mesh/validate.h"
 #include "igm/topology/sphere_cut.h"
+#include "generated_mesh.h"
 #include "test_data.h"
 
 using namespace igm;
 
 namespace {
 
-ValidMesh generated_sphere(std::int64_t faces, std::uint64_t seed) {
-  GenerateOptions o;
-  o.genus = 0;
-  o.faces = faces;
-  o.seed = seed;
-  return validate(generate_closed_mesh(o));
-}
+ValidMesh generated_sphere(std::int64_t faces, std::uint64_t seed) { return igm_test::generated_mesh(0, faces, seed); }
 
 // Everything the cut promises, recomputed; returns "" or the first failure.
 std::string verify(const ValidMesh& in, const SphereCut& c) {
