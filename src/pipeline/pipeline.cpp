@@ -61,6 +61,21 @@ void certify_outputs(PipelineResult& result, int genus, const PipelineOptions& o
   result.quad_report = certify::certify_quads(qin, qopt);
 }
 
+std::vector<SurfacePoint> take_locations(RefinedSurface& surface, std::size_t more) {
+  std::vector<SurfacePoint> locations;
+  locations.reserve(surface.mesh.num_vertices() + more);
+  for (int v = 0; v < surface.num_input_vertices; ++v) locations.push_back(SurfacePoint::vertex(v));
+  for (SurfacePoint& p : surface.constructed) locations.push_back(std::move(p));
+  surface.constructed = {};
+  return locations;
+}
+
+Vec3d position_in_triangle(const IgmMesh& igm, int triangle, const std::array<Rational, 3>& w,
+                           const std::vector<Vec3d>& input_positions) {
+  const std::array<int, 3>& t = igm.triangles[triangle];
+  return evaluate(barycentric_point(igm.locations[t[0]], igm.locations[t[1]], igm.locations[t[2]], w), input_positions);
+}
+
 PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& options) {
   if (options.resolution < 1 || options.resolution > 1024)
     throw Error(ErrorKind::InvalidArgument, "resolution must be in 1..1024, got " + std::to_string(options.resolution));
@@ -129,14 +144,10 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
   // polygon corners); the others are new interior points, each a vertex of its own. Output
   // vertex ids: the surface's (input vertices first, then its constructed ones), then the new points.
   RefinedSurface& surface = cut.surface;
-  const int num_surface_vertices = surface.mesh.num_vertices();
   const int num_overlay_vertices = static_cast<int>(overlay.mesh.positions.size());
   IgmMesh& igm = result.igm;
+  igm.locations = take_locations(surface, num_overlay_vertices - num_disk_vertices);  // surface.point() is not used below
   std::vector<SurfacePoint>& locations = igm.locations;
-  locations.reserve(num_surface_vertices + (num_overlay_vertices - num_disk_vertices));
-  for (int v = 0; v < surface.num_input_vertices; ++v) locations.push_back(SurfacePoint::vertex(v));
-  for (SurfacePoint& p : surface.constructed) locations.push_back(std::move(p));
-  surface.constructed = {};  // moved into the locations (surface.point() is not used below)
   std::vector<int> out_vertex(num_overlay_vertices);
   for (int v = 0; v < num_overlay_vertices; ++v) {
     const VertexOrigin& o = overlay.origin[v];
@@ -177,11 +188,8 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
   QuadMesh& quads = result.quads;
   quads.quads = planar.quads;
   quads.positions.reserve(planar.vertices.size());
-  for (const QuadVertexLocation& loc : planar.vertices) {
-    const std::array<int, 3>& t = igm.triangles[loc.triangle];  // = overlay triangle loc.triangle, in output ids
-    const SurfacePoint p = barycentric_point(locations[t[0]], locations[t[1]], locations[t[2]], loc.barycentric);
-    quads.positions.push_back(evaluate(p, surface.input_positions));
-  }
+  for (const QuadVertexLocation& loc : planar.vertices)  // igm triangle i = overlay triangle i, in output ids
+    quads.positions.push_back(position_in_triangle(igm, loc.triangle, loc.barycentric, surface.input_positions));
   stats.quads = static_cast<int>(quads.quads.size());
   igm.corner_uv = std::move(charts.uv);  // charts are not needed after extraction
   stage.done("extract", t0,

@@ -1,6 +1,11 @@
 #pragma once
 // Internal to the pipeline (pipeline.h): the genus-0 branch of compute_igm (sphere_pipeline.cpp)
 // and the certification of a run's outputs shared by both branches (pipeline.cpp).
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "igm/mesh/surface_point.h"
 #include "igm/pipeline/pipeline.h"
 
 namespace igm {
@@ -11,5 +16,15 @@ PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions&
 /// Runs the independent certifier on result.igm (checks 1-4) and result.quads (check 5, expected
 /// genus `genus`) and stores both reports in `result`.
 void certify_outputs(PipelineResult& result, int genus, const PipelineOptions& options);
+
+/// The first output locations (IgmMesh::locations): the input vertices as weight-1 points, then the
+/// surface's constructed points, moved out of `surface` (surface.constructed is left empty), with
+/// room reserved for `more` further points. O(n).
+std::vector<SurfacePoint> take_locations(RefinedSurface& surface, std::size_t more = 0);
+
+/// The 3D position of the point with barycentric weights `w` in output triangle `triangle` of
+/// `igm` (exact location from igm.locations, then evaluate()). O(1) GMP operations.
+Vec3d position_in_triangle(const IgmMesh& igm, int triangle, const std::array<Rational, 3>& w,
+                           const std::vector<Vec3d>& input_positions);
 
 }  // namespace igm

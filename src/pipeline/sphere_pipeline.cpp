@@ -69,10 +69,7 @@ PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions&
   const int nv = surface.mesh.num_vertices(), nf = surface.mesh.num_faces();
   igm.positions.reserve(nv);
   for (int v = 0; v < nv; ++v) igm.positions.push_back(surface.position(v));
-  igm.locations.reserve(nv);
-  for (int v = 0; v < surface.num_input_vertices; ++v) igm.locations.push_back(SurfacePoint::vertex(v));
-  for (SurfacePoint& p : surface.constructed) igm.locations.push_back(std::move(p));
-  surface.constructed = {};  // moved into the locations (surface.point() is not used below)
+  igm.locations = take_locations(surface);  // surface.point() is not used below
   igm.triangles.resize(nf);
   igm.corner_uv.resize(nf);
   for (int f = 0; f < nf; ++f) {
@@ -91,11 +88,8 @@ PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions&
   QuadMesh& quads = result.quads;
   quads.quads = grid.quads;
   quads.positions.reserve(grid.triangle.size());
-  for (std::size_t v = 0; v < grid.triangle.size(); ++v) {
-    const std::array<int, 3>& t = igm.triangles[grid.triangle[v]];  // = disk triangle grid.triangle[v], in output ids
-    const SurfacePoint p = barycentric_point(igm.locations[t[0]], igm.locations[t[1]], igm.locations[t[2]], grid.barycentric[v]);
-    quads.positions.push_back(evaluate(p, surface.input_positions));
-  }
+  for (std::size_t v = 0; v < grid.triangle.size(); ++v)  // igm triangle f = disk triangle f, in output ids
+    quads.positions.push_back(position_in_triangle(igm, grid.triangle[v], grid.barycentric[v], surface.input_positions));
   stats.quads = static_cast<int>(quads.quads.size());
   std::snprintf(line, sizeof line, "resolution %d: %d quads, %zu vertices", options.resolution, stats.quads,
                 quads.positions.size());
