@@ -17,21 +17,11 @@ namespace igm {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using Clock = StageReporter::Clock;
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 Vec2d to_vec2d(const Point2q& p) { return {to_double(p.x), to_double(p.y)}; }
-
-struct Stage {
-  PipelineStats& stats;
-  const PipelineOptions& options;
-  void done(const char* name, Clock::time_point t0, std::string detail) {
-    StageEvent e{name, seconds_since(t0), std::move(detail)};
-    stats.stages.push_back(e);
-    if (options.progress) options.progress(e);
-  }
-};
 
 std::string format(const char* fmt, double a = 0, double b = 0, double c = 0, double d = 0) {
   char buf[256];
@@ -40,6 +30,12 @@ std::string format(const char* fmt, double a = 0, double b = 0, double c = 0, do
 }
 
 }  // namespace
+
+void StageReporter::done(const char* name, Clock::time_point t0, std::string detail) {
+  StageEvent e{name, seconds_since(t0), std::move(detail)};
+  stats.stages.push_back(e);
+  if (options.progress) options.progress(e);
+}
 
 void certify_outputs(PipelineResult& result, int genus, const PipelineOptions& options) {
   const IgmMesh& igm = result.igm;
@@ -85,7 +81,7 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
                                                 std::to_string(input.genus) + ")");
   PipelineResult result;
   PipelineStats& stats = result.stats;
-  Stage stage{stats, options};
+  StageReporter stage{stats, options};
   stats.genus = input.genus;
   stats.input_vertices = input.mesh.num_vertices();
   stats.input_faces = input.mesh.num_faces();

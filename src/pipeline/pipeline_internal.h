@@ -2,13 +2,25 @@
 // Internal to the pipeline (pipeline.h): the genus-0 branch of compute_igm (sphere_pipeline.cpp)
 // and the certification of a run's outputs shared by both branches (pipeline.cpp).
 #include <array>
+#include <chrono>
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "igm/mesh/surface_point.h"
 #include "igm/pipeline/pipeline.h"
 
 namespace igm {
+
+/// Reports the pipeline's stages (both branches): done() appends a StageEvent to stats.stages and
+/// passes it to options.progress if set. The library itself never prints.
+struct StageReporter {
+  using Clock = std::chrono::steady_clock;
+  PipelineStats& stats;
+  const PipelineOptions& options;
+  /// The stage `name` ran from t0 until now.
+  void done(const char* name, Clock::time_point t0, std::string detail);
+};
 
 /// compute_igm for input.genus == 0 (options already range-checked by compute_igm).
 PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions& options);

@@ -14,7 +14,7 @@ namespace igm {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using Clock = StageReporter::Clock;
 
 Vec2d to_vec2d(const Point2q& p) { return {approximate(p.x), approximate(p.y)}; }  // for the picture
 
@@ -26,11 +26,11 @@ PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions&
   stats.genus = 0;
   stats.input_vertices = input.mesh.num_vertices();
   stats.input_faces = input.mesh.num_faces();
+  StageReporter stage{stats, options};
   auto t0 = Clock::now();
-  auto done = [&](const char* name, const std::string& detail) {
-    StageEvent e{name, std::chrono::duration<double>(Clock::now() - t0).count(), detail};
-    stats.stages.push_back(e);
-    if (options.progress) options.progress(e);
+  // Each stage runs from the end of the one before.
+  auto done = [&](const char* name, std::string detail) {
+    stage.done(name, t0, std::move(detail));
     t0 = Clock::now();
   };
   char line[256];

@@ -264,6 +264,35 @@ TEST_CASE("resolution 1 layout: 5g quads, 2+3g vertices, valences 8g, 3g and 3g 
   }
 }
 
+TEST_CASE("both branches report every stage once, in order, through progress and in the stats") {
+  // Genus 0 has no arrangement stage (the pillowcase quads are read off the embedding).
+  for (int g : {0, 2}) {
+    CAPTURE(g);
+    const ValidMesh mesh = igm_test::generated_mesh(g, 300, 5);
+    std::vector<StageEvent> seen;
+    PipelineOptions options;
+    options.resolution = 3;
+    options.progress = [&](const StageEvent& e) { seen.push_back(e); };
+    const PipelineResult r = compute_igm(mesh, options);
+    const std::vector<std::string> expected =
+        g == 0 ? std::vector<std::string>{"topology", "embed", "igm", "extract", "certify"}
+               : std::vector<std::string>{"topology", "embed", "arrange", "igm", "extract", "certify"};
+    REQUIRE(seen.size() == expected.size());
+    REQUIRE(r.stats.stages.size() == expected.size());
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+      CHECK(seen[i].stage == expected[i]);
+      CHECK(r.stats.stages[i].stage == expected[i]);
+      CHECK(r.stats.stages[i].seconds == seen[i].seconds);
+      CHECK(seen[i].seconds >= 0);
+      CHECK(!seen[i].detail.empty());
+    }
+    // The last stage's line is the certifier's verdict, and the verdict is valid.
+    CHECK(seen.back().detail.find("IGM: ") == 0);
+    CHECK(r.igm_report.valid());
+    CHECK(r.quad_report.valid());
+  }
+}
+
 TEST_CASE("bad options give typed errors") {
   const ValidMesh torus = igm_test::generated_mesh(1, 200, 5);
   PipelineOptions o;
