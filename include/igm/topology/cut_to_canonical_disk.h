@@ -30,6 +30,11 @@
 //     length compounds with the number of slides (couplingdown g9: 1.8k -> 3.6k vertices instead
 //     of 2.2k without; a generated 1M-face g20: 0.5M -> 1.05M in ~20 s; cheese g133 exceeds the
 //     bound CutOptions::max_slide_growth, a typed error). Off, the word is whatever step 2 gives.
+//     Measured and rejected: choosing, per handle, the linked pair (and rotation) whose two new
+//     loops are shortest by the lengths of the boundary arcs they are homotopic to (with or
+//     without one step of lookahead, or keeping the blocks contiguous) delays the doubling of the
+//     new loops' lengths on cheese from handle ~10 to handle ~60 of 129, but does not stop it
+//     (a 4.9M-vertex loop at handle 97), and makes anchor worse (+58 instead of +35 splits).
 //  4. embedding pre-conditions (embed/tutte.h): every interior disk edge joining two vertices of
 //     one polygon side (a root copy lies on its two sides) is split at its midpoint; then no
 //     triangle has three vertices on one side. O(n).
