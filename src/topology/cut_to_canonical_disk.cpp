@@ -716,15 +716,7 @@ DetachPlan plan_detach(const TriMesh& mesh, const std::vector<Vec3d>& positions,
 
 }  // namespace
 
-std::string CutResult::word() const {
-  std::string w;
-  for (const auto& s : sides) {
-    if (!w.empty()) w += ' ';
-    w += 'L' + std::to_string(s.loop);
-    if (s.inverse) w += "'";
-  }
-  return w;
-}
+std::string CutResult::word() const { return to_string(word_of(*this)); }
 
 CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& positions,
                                 const CutOptions& options) {
