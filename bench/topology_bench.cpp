@@ -1,11 +1,12 @@
 // Topology stage measurements: time and mesh growth of cut_to_canonical_disk.
-// Usage: igm_bench_topology [shared_dir] [--normal-form-all]
+// Usage: igm_bench_topology [shared_dir] [--normal-form-all] [--only NAME|g3|g20]
 // Growth is broken down by source: crossings, Steiner, band, chord and pre-condition splits, and
-// the handle slides' splits. By default the normal form (handle slides) is measured for genus <= 10
-// only (cheese exceeds the slide bound, the 1M-face g20 takes ~20 s); --normal-form-all measures it
-// everywhere.
+// the normal form's rounds and chord splits. By default the normal form is measured for genus <= 10
+// only (cheese exceeds the growth bound, the 1M-face g20 takes ~30 s); --normal-form-all measures
+// it everywhere; --only runs one mesh, with and without it.
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -57,10 +58,10 @@ void run(const std::string& name, const Input& in, bool normal_form) {
     CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
     const auto& s = r.stats;
     std::printf("%-24s g=%-4d F=%-8d nf=%d  V %8d -> %8d (+%6.1f%%) | crossings %6d steiner %5d band %4d chord %5d"
-                " precond %6d | slides %3d splits %5d | %7.3f s (basis %.3f, detach %.3f, slides+cut %.3f)\n",
+                " precond %6d | rounds %3d chords %6d | roots %2d | %7.3f s (basis %.3f, detach %.3f, cut %.3f)\n",
                 name.c_str(), s.genus, s.faces_before, normal_form ? 1 : 0, s.vertices_before, s.vertices_after,
                 100.0 * (s.vertices_after - s.vertices_before) / s.vertices_before, s.crossings, s.steiner_vertices,
-                s.band_splits, s.chord_splits, s.precondition_splits, s.num_slides, s.slide_splits, s.seconds_total,
+                s.band_splits, s.chord_splits, s.precondition_splits, s.normal_form_rounds, s.round_chord_splits, s.roots_tried, s.seconds_total,
                 s.seconds_basis, s.seconds_detach, s.seconds_cut);
   } catch (const Error& e) {
     std::printf("%-24s nf=%d error: %s\n", name.c_str(), normal_form ? 1 : 0, e.what());
@@ -72,8 +73,10 @@ void run(const std::string& name, const Input& in, bool normal_form) {
 int main(int argc, char** argv) {
   std::filesystem::path shared = "../shared";
   bool all = false;
+  std::string only;  // --only NAME: that shared mesh alone, with the normal form too
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--normal-form-all") == 0) all = true;
+    else if (std::strcmp(argv[i], "--only") == 0 && i + 1 < argc) only = argv[++i];
     else shared = argv[i];
   }
   struct Named {
@@ -82,23 +85,25 @@ int main(int argc, char** argv) {
   };
   for (Named m : {Named{"eight", 2}, Named{"joint", 2}, Named{"helmet", 3}, Named{"elephant", 3}, Named{"anchor", 4},
                  Named{"couplingdown", 9}, Named{"cheese", 133}}) {
+    if (!only.empty() && only != m.name) continue;
     Input in;
     if (!read_off(shared / "meshes" / "clean" / (std::string(m.name) + ".off"), in)) {
       std::printf("%-26s skipped: not found under %s\n", m.name, shared.c_str());
       continue;
     }
     run(m.name, in, false);
-    if (m.genus <= 10 || all) run(m.name, in, true);
+    if (m.genus <= 10 || all || !only.empty()) run(m.name, in, true);
   }
-  {
+  if (!only.empty() && only != "g3" && only != "g20") return 0;
+  if (only.empty() || only == "g3") {
     Input in = generated(3, 52000);
     run("generated g3 52k faces", in, false);
     run("generated g3 52k faces", in, true);
   }
-  {
+  if (only.empty() || only == "g20") {
     Input in = generated(20, 1000000);
     run("generated g20 1M faces", in, false);
-    if (all) run("generated g20 1M faces", in, true);
+    if (all || only == "g20") run("generated g20 1M faces", in, true);
   }
   return 0;
 }

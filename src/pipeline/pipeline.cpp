@@ -99,7 +99,8 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
   stage.done("topology", t0,
              format("genus %.0f, root %.0f, %.0f -> %.0f vertices", g, cut.root, stats.input_vertices,
                     stats.refined_vertices) +
-                 ", " + std::to_string(cut.stats.num_slides) + " handle slides");
+                 (options.normal_form ? ", normal form in " + std::to_string(cut.stats.normal_form_rounds) + " rounds"
+                                      : std::string()));
 
   // --- embed: rational convex 4g-gon, boundary at matched parameters, certified Tutte ---
   t0 = Clock::now();

@@ -8,7 +8,6 @@
 #include <numeric>
 #include <queue>
 #include <string>
-#include <unordered_set>
 #include <utility>
 
 #include "igm/core/error.h"
@@ -75,11 +74,6 @@ struct Dsu {
     return true;
   }
 };
-
-std::uint64_t edge_key(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-}
 
 // A point of a strand before realization: a mesh vertex (>= 0) or a crossing (-1 - crossing id).
 struct Crossing {
@@ -217,17 +211,6 @@ Word word_of(const CutResult& res) {
   return w;
 }
 
-bool cyclically_equal(const Word& a, const Word& b) {
-  if (a.size() != b.size()) return false;
-  const std::size_t n = a.size();
-  for (std::size_t r = 0; r < n; ++r) {
-    bool ok = true;
-    for (std::size_t i = 0; i < n && ok; ++i) ok = a[(i + r) % n] == b[i];
-    if (ok) return true;
-  }
-  return false;
-}
-
 // The embedding pre-conditions (embed/tutte.h, Floater 2003), made to hold by edge splits at
 // midpoints on the disk that build_cut made: no interior disk edge joins two vertices of one
 // polygon side (a root copy lies on its two sides). This also excludes triangles with three
@@ -262,172 +245,12 @@ int precondition_pass(CutResult& res) {
   return static_cast<int>(todo.size());
 }
 
-// Brings the word into a1 b1 a1^-1 b1^-1 ... by the planned handle slides (at most 2g,
-// plan_handle_slides), each realized as a cheapest path between two root wedges through vertices on
-// no loop and midpoints of edges on no loop (split where used); relabels and reorients the loops.
-// A path that does not exist or does not trace is igm::Error(Internal). Pre: build_cut done.
-// Each slide O((V + E) log(V + E)).
-void normalize(CutResult& res, bool check_each_slide, double max_growth) {
-  const int root = res.root;
-  auto& rs = res.surface;
-  const int nv0 = rs.mesh.num_vertices();
-  const long split_budget = static_cast<long>(max_growth * nv0);
-  Word cur = word_of(res);
-  Word planned_final;
-  const std::vector<Slide> plan = plan_handle_slides(cur, &planned_final);
-  std::vector<char> on_loop(rs.mesh.num_vertices(), 0);
-  std::unordered_set<std::uint64_t> loop_edges;
-  for (const auto& L : res.loops)
-    for (std::size_t j = 0; j < L.size(); ++j) {
-      on_loop[L[j]] = 1;
-      loop_edges.insert(edge_key(L[j], L[(j + 1) % L.size()]));
-    }
-  auto first_vertex = [&](Letter l) { const auto& L = res.loops[l.loop]; return l.inverse ? L.back() : L[1]; };
-  // Search graph of a slide: node v < V is a vertex on no loop, node V + e the midpoint of the
-  // edge of canonical half-edge e (e < twin(e)) that is on no loop, to be split if used. Two nodes
-  // are adjacent if they lie in one face (a vertex and an edge of one face, two edges of one face,
-  // a vertex and an edge at it, two vertices joined by an edge). Midpoints cost more than existing
-  // vertices, so the path uses existing vertices wherever they connect and splits only the edges
-  // it crosses. Arrays are reused across slides.
-  std::vector<int> cost, from;
-  std::vector<char> is_dst;
-  constexpr int kVertexCost = 2, kMidpointCost = 3;
-  for (const Slide& s : plan) {
-    auto& M = rs.mesh;
-    const int nv = M.num_vertices();
-    on_loop.resize(nv, 0);
-    auto canon = [&](int h) { return std::min(h, M.twin(h)); };
-    auto loop_edge = [&](int h) { return loop_edges.count(edge_key(M.origin(h), M.target(h))) > 0; };
-    // The nodes next to the root inside the wedge that starts at corner c: free spoke ends, spoke
-    // midpoints and the midpoints of the edges opposite the root. O(valence(root)).
-    auto wedge_nodes = [&](int corner) {
-      std::vector<int> out;
-      const int h0 = find_he(M, root, first_vertex(cur[corner]));
-      int h = h0;
-      do {  // <= valence(root) steps
-        const int opp = TriMesh::next(h);
-        if (!loop_edge(opp)) out.push_back(nv + canon(opp));
-        h = M.next_around_origin(h);
-        if (loop_edge(h)) break;
-        if (!on_loop[M.target(h)]) out.push_back(M.target(h));
-        out.push_back(nv + canon(h));
-      } while (h != h0);
-      return out;
-    };
-    const std::vector<int> src = wedge_nodes(s.from_corner), dst = wedge_nodes(s.to_corner);
-    const int nn = nv + M.num_halfedges();
-    cost.assign(nn, INT32_MAX);
-    from.assign(nn, -2);
-    is_dst.assign(nn, 0);
-    for (int v : dst) is_dst[v] = 1;
-    using Item = std::pair<int, int>;
-    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> pq;
-    auto node_cost = [&](int n) { return n < nv ? kVertexCost : kMidpointCost; };
-    for (int n : src) {
-      if (cost[n] <= node_cost(n)) continue;
-      cost[n] = node_cost(n);
-      from[n] = -1;
-      pq.push({cost[n], n});
-    }
-    int hit = -1;
-    std::vector<int> nbrs;
-    // Dijkstra: each node settles once; a vertex node has 3 * valence neighbours, an edge node at
-    // most 6: O((V + E) log(V + E)) per slide.
-    while (!pq.empty()) {
-      auto [c, n] = pq.top();
-      pq.pop();
-      if (c > cost[n]) continue;
-      if (is_dst[n]) {
-        hit = n;
-        break;
-      }
-      nbrs.clear();
-      if (n < nv) {
-        const int h0 = M.vertex_halfedge(n);
-        int h = h0;
-        do {
-          const int w = M.target(h);
-          if (!on_loop[w]) nbrs.push_back(w);
-          if (!loop_edge(h)) nbrs.push_back(nv + canon(h));
-          const int opp = TriMesh::next(h);
-          if (!loop_edge(opp)) nbrs.push_back(nv + canon(opp));
-          h = M.next_around_origin(h);
-        } while (h != h0);
-      } else {
-        const int e = n - nv;
-        for (int h : {e, M.twin(e)}) {
-          const int b = TriMesh::next(h), c2 = TriMesh::prev(h);
-          for (int g : {b, c2})
-            if (!loop_edge(g)) nbrs.push_back(nv + canon(g));
-          if (!on_loop[M.origin(h)]) nbrs.push_back(M.origin(h));
-          if (!on_loop[M.origin(c2)]) nbrs.push_back(M.origin(c2));
-        }
-      }
-      for (int w : nbrs) {
-        if (w == root) continue;
-        const int nc = c + node_cost(w);
-        if (nc < cost[w]) {
-          cost[w] = nc;
-          from[w] = n;
-          pq.push({nc, w});
-        }
-      }
-    }
-    if (hit < 0)
-      internal("handle slide: no path between the root wedges of corners " + std::to_string(s.from_corner) + " and " +
-               std::to_string(s.to_corner));
-    std::vector<int> nodes;
-    for (int n = hit; n >= 0; n = from[n]) nodes.push_back(n);
-    std::reverse(nodes.begin(), nodes.end());
-    long mids = 0;
-    for (int n : nodes) mids += n >= nv ? 1 : 0;
-    if (res.stats.slide_splits + mids > split_budget)
-      throw Error(ErrorKind::Unsupported,
-                  "normal form: handle slide " + std::to_string(res.stats.num_slides + 1) + " of " +
-                      std::to_string(plan.size()) + " would bring the slides' edge splits to " +
-                      std::to_string(res.stats.slide_splits + mids) + ", over the bound of " +
-                      std::to_string(split_budget) + " (CutOptions::max_slide_growth x " + std::to_string(nv0) +
-                      " vertices); run without the normal form");
-    // Realize: split the path's edges in path order (an edge is found again by its end points,
-    // since splits renumber the half-edges of the faces they cut), then check every step is an edge.
-    std::vector<std::pair<int, int>> ends;
-    for (int n : nodes)
-      ends.push_back(n < nv ? std::pair<int, int>{n, -1} : std::pair<int, int>{M.origin(n - nv), M.target(n - nv)});
-    std::vector<int> path;
-    for (auto [a2, b2] : ends) {
-      if (b2 < 0) {
-        path.push_back(a2);
-        continue;
-      }
-      path.push_back(rs.split_edge(find_he(M, a2, b2), make_rational(1, 2)));
-      ++res.stats.slide_splits;
-    }
-    on_loop.resize(M.num_vertices(), 0);
-    for (std::size_t j = 0; j <= path.size(); ++j) {
-      const int a2 = j == 0 ? root : path[j - 1], b2 = j == path.size() ? root : path[j];
-      if (M.find_halfedge(a2, b2) < 0)
-        internal("handle slide: the path does not trace (step " + std::to_string(j) + ")", {a2, b2});
-    }
-    // Replace loop s.loop by root, path (from corner i to corner j).
-    auto& old = res.loops[s.loop];
-    for (std::size_t j = 0; j < old.size(); ++j) loop_edges.erase(edge_key(old[j], old[(j + 1) % old.size()]));
-    for (std::size_t j = 1; j < old.size(); ++j) on_loop[old[j]] = 0;
-    old.assign(1, root);
-    old.insert(old.end(), path.begin(), path.end());
-    for (std::size_t j = 0; j < old.size(); ++j) {
-      on_loop[old[j]] = 1;
-      loop_edges.insert(edge_key(old[j], old[(j + 1) % old.size()]));
-    }
-    cur = apply_slide(cur, s);
-    ++res.stats.num_slides;
-    if (check_each_slide) {
-      build_cut(res, -1);
-      if (!cyclically_equal(word_of(res), cur))
-        internal("handle slide realized " + to_string(word_of(res)) + ", planned " + to_string(cur));
-    }
-  }
+// Renumbers and reorients res.loops so that the word `cur` (the loops' word up to rotation, in g
+// commutator blocks) reads exactly L0 L1 L0^-1 L1^-1 L2 L3 ... Throws Internal if it is not in
+// blocks. O(n).
+void relabel_blocks(CutResult& res, const Word& cur) {
   const int r = commutator_rotation(cur);
-  if (r < 0) internal("planned word is not in commutator blocks: " + to_string(cur));
+  if (r < 0) internal("word is not in commutator blocks: " + to_string(cur));
   const int n = static_cast<int>(cur.size());
   std::vector<std::vector<int>> loops(res.loops.size());
   for (int k = 0; k < n / 4; ++k)
@@ -439,6 +262,7 @@ void normalize(CutResult& res, bool check_each_slide, double max_growth) {
     }
   res.loops = std::move(loops);
 }
+
 // The greedy homotopy basis at `root` (metric: 3D edge lengths, or hop counts if `hops`) and the
 // plan of its detaching (steps 1-2 up to the owners):
 // the surface with the band splits, the pruned tree, the tour and the owners. `crossings` is the
@@ -447,14 +271,14 @@ void normalize(CutResult& res, bool check_each_slide, double max_growth) {
 struct DetachPlan {
   RefinedSurface rs;
   int root = -1;
+  int root_start = -1;  // the tour starts at the root's edge to this vertex (-1: its stored half-edge)
   std::vector<int> parent, leaf_a, leaf_b, leaves, leaf_index, min_leaf, max_leaf, owner;
   std::vector<char> pruned, is_leaf;
   long long crossings = 0;
   int band_splits = 0;
-  Word word;
-  long long slides = 0;  // handle slides planned on `word` (filled by the caller when needed)
-  long long strand_steps = 0;  // total length of the 4g tree paths
 };
+
+void plan_strands(DetachPlan& P, const std::vector<std::pair<int, int>>& bands);
 
 DetachPlan plan_detach(const TriMesh& mesh, const std::vector<Vec3d>& positions, int root, int genus, bool hops) {
   auto edge_length = [&](int a, int b) { return hops ? 1.0 : length(positions[a], positions[b]); };
@@ -519,6 +343,20 @@ DetachPlan plan_detach(const TriMesh& mesh, const std::vector<Vec3d>& positions,
     if (static_cast<int>(bands.size()) != 2 * genus)
       internal("tree-cotree left " + std::to_string(bands.size()) + " edges, expected 2g = " + std::to_string(2 * genus));
   }
+  plan_strands(P, bands);
+  return P;
+}
+
+// Step 2 planned for the loops root~u, uv, v~root of `bands` on the tree P.parent (rooted at P.root;
+// every band end reaches the root through it): the band splits (done on P.rs), the pruned tree, the
+// tour (counter-clockwise from the root's edge to P.root_start), the owners and the word. Pre:
+// P.rs, P.root, P.parent (size V) set; the tree edges at the root lie in one wedge that the tour
+// start does not cut. Cost O(n + total strand length).
+void plan_strands(DetachPlan& P, const std::vector<std::pair<int, int>>& bands) {
+  RefinedSurface& rs = P.rs;
+  const int root = P.root;
+  std::vector<int>& parent = P.parent;
+  const int nv_bands = rs.mesh.num_vertices();
   // ---- 2. detach: band splits, extended tree, strands as normal curves ----
   std::vector<int>& leaf_a = P.leaf_a;
   std::vector<int>& leaf_b = P.leaf_b;
@@ -528,8 +366,8 @@ DetachPlan plan_detach(const TriMesh& mesh, const std::vector<Vec3d>& positions,
   // other band, no band end below it) is the strand's end itself; the other ends get a vertex on
   // the band edge hanging below them (at 1/3 and 2/3 of the edge, or at 1/2 if one end is a leaf).
   {
-    std::vector<int> ends(nv0, 0);
-    std::vector<char> has_below(nv0, 0);
+    std::vector<int> ends(nv_bands, 0);
+    std::vector<char> has_below(nv_bands, 0);
     for (auto [u, v] : bands) ++ends[u], ++ends[v];
     for (auto [u, v] : bands)
       for (int x : {u, v})
@@ -556,6 +394,7 @@ DetachPlan plan_detach(const TriMesh& mesh, const std::vector<Vec3d>& positions,
     }
   }
   auto& M = rs.mesh;
+  const int root_h0 = P.root_start >= 0 ? find_he(M, root, P.root_start) : M.vertex_halfedge(root);
   std::vector<char>& pruned = P.pruned;
   std::vector<char>& is_leaf = P.is_leaf;
   pruned.assign(M.num_vertices(), 0);
@@ -573,7 +412,7 @@ DetachPlan plan_detach(const TriMesh& mesh, const std::vector<Vec3d>& positions,
   const int nv_tree = M.num_vertices();
   auto children = [&](int x, std::vector<int>* ccw_gap) {
     std::vector<int> ch;
-    const int h0 = x == root ? M.vertex_halfedge(root) : find_he(M, x, parent[x]);
+    const int h0 = x == root ? root_h0 : find_he(M, x, parent[x]);
     int h = h0, steps = 0;
     do {  // one turn around x: valence steps
       const int w = M.target(h);
@@ -619,7 +458,7 @@ DetachPlan plan_detach(const TriMesh& mesh, const std::vector<Vec3d>& positions,
         pos.pop_back();
       }
     }
-    if (static_cast<int>(leaves.size()) != 4 * genus) internal("tour found " + std::to_string(leaves.size()) + " strand ends");
+    if (leaves.size() != 2 * bands.size()) internal("tour found " + std::to_string(leaves.size()) + " strand ends");
   }
 
   // Owners. Every tree vertex x but the root lies on exactly one strand, its owner o(x), the owner
@@ -698,100 +537,19 @@ DetachPlan plan_detach(const TriMesh& mesh, const std::vector<Vec3d>& positions,
       if (owner[l] != leaf_index[l]) internal("leaf not owned by its strand", {l});
     for (int c : children(root, nullptr)) P.crossings += arr_free[c];
   }
-  // The gluing word the detached loops will give, up to rotation and reversal: the strand ends in
-  // tour order (the order they leave the root in), forward for a, inverse for b.
-  {
-    std::vector<Letter> by_leaf(leaves.size());
-    for (int i = 0; i < static_cast<int>(leaf_a.size()); ++i) {
-      by_leaf[leaf_index[leaf_a[i]]] = {i, false};
-      by_leaf[leaf_index[leaf_b[i]]] = {i, true};
-    }
-    P.word = std::move(by_leaf);
-    for (int l : leaves)
-      for (int x = l; x != root; x = parent[x]) ++P.strand_steps;  // <= depth(l) steps each
-  }
 
-  return P;
 }
 
-}  // namespace
-
-std::string CutResult::word() const { return to_string(word_of(*this)); }
-
-CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& positions,
-                                const CutOptions& options) {
-  const auto t_start = Clock::now();
-  const int nv0 = mesh.num_vertices();
-  if (static_cast<int>(positions.size()) != nv0)
-    throw Error(ErrorKind::InvalidArgument, "positions (" + std::to_string(positions.size()) +
-                                                ") do not match the mesh vertices (" + std::to_string(nv0) + ")");
-  if (nv0 == 0) throw Error(ErrorKind::Empty, "mesh has no vertices");
-  for (int v = 0; v < nv0; ++v)
-    if (mesh.vertex_halfedge(v) < 0)
-      throw Error(ErrorKind::InvalidArgument, "vertex " + std::to_string(v) + " is used by no face", {v});
-  const int chi = mesh.num_vertices() - mesh.num_edges() + mesh.num_faces();
-  if (chi > 2 || chi % 2 != 0) throw Error(ErrorKind::InvalidArgument, "Euler characteristic " + std::to_string(chi));
-  const int genus = (2 - chi) / 2;
-  if (genus == 0) throw Error(ErrorKind::Unsupported, "genus 0 surface: the topology stage needs genus >= 1");
-
-  CutResult res;
-  if (options.root < -1 || options.root >= nv0)
-    throw Error(ErrorKind::InvalidArgument, "root vertex " + std::to_string(options.root) + " out of range [0, " +
-                                                std::to_string(nv0) + ")", {options.root});
-  // Root and metric: the given root with 3D edge lengths, or among K deterministic root candidates,
-  // each with 3D lengths and with hop counts as the basis metric, the pair whose detaching crosses
-  // the fewest edges (predicted by plan_detach, without building anything; the first wins ties);
-  // with the normal form, crossings plus the planned slides, each weighted by two mean strand
-  // lengths.
-  // Candidates: the vertex of maximum valence (lowest id among ties), then vertices i * V / K.
-  // K = clamp(1e6 / F, 1, 24) bounds the extra cost to one basis computation on a 1M-face mesh.
-  const std::vector<Vec3d> unit = unit_scaled(positions);  // edge lengths finite at any magnitude
-  DetachPlan P;
-  if (options.root >= 0) {
-    P = plan_detach(mesh, unit, options.root, genus, false);
-  } else {
-    int first = 0, best_valence = -1;
-    for (int v = 0; v < nv0; ++v) {
-      const int val = mesh.valence(v);
-      if (val > best_valence) best_valence = val, first = v;
-    }
-    const long k = std::clamp(1000000L / std::max(1, mesh.num_faces()), 1L, 24L);
-    std::vector<int> candidates{first};
-    for (long i = 1; i < k; ++i) {
-      const int v = static_cast<int>(i * nv0 / k);
-      if (std::find(candidates.begin(), candidates.end(), v) == candidates.end()) candidates.push_back(v);
-    }
-    for (int c : candidates) {
-      for (bool hops : {false, true}) {
-        DetachPlan q = plan_detach(mesh, unit, c, genus, hops);
-        ++res.stats.roots_tried;
-        // With the normal form each planned slide is charged like two average strands of
-        // crossings (a slide path runs about as far as a loop, often beside the strands).
-        if (options.normal_form) q.slides = static_cast<long long>(plan_handle_slides(q.word).size());
-        auto score = [&](const DetachPlan& d) { return d.crossings + d.slides * d.strand_steps / (2 * genus); };
-        if (P.root < 0 || score(q) < score(P)) P = std::move(q);
-      }
-    }
-  }
-  const int root = P.root;
-
-  res.root = root;
-  res.genus = genus;
-  res.stats.genus = genus;
-  res.stats.vertices_before = nv0;
-  res.stats.faces_before = mesh.num_faces();
-  RefinedSurface& rs = res.surface;
-  rs = std::move(P.rs);
-  rs.input_positions = positions;
-
-  res.stats.band_splits = P.band_splits;
-  res.stats.predicted_crossings = P.crossings;
+// Step 2 realized: draws the strands planned in P as pairwise disjoint normal curves around the
+// pruned tree and re-triangulates the faces they cross (on P.rs; vertex ids are kept, new ones are
+// appended). Returns the loops, one per band in band order, each from the root. Adds to
+// stats.crossings, steiner_vertices and chord_splits. Cost O(n + total crossings).
+std::vector<std::vector<int>> realize_strands(DetachPlan& P, CutStats& stats) {
+  RefinedSurface& rs = P.rs;
   auto& M = rs.mesh;
+  const int root = P.root;
   const std::vector<int>&parent = P.parent, &leaves = P.leaves, &leaf_index = P.leaf_index, &owner = P.owner;
   const std::vector<int>&leaf_a = P.leaf_a, &leaf_b = P.leaf_b;
-  res.stats.seconds_basis = seconds_since(t_start);
-  const auto t_detach = Clock::now();
-
   // The root-to-leaf paths, and which side each strand takes at each vertex it does not own.
   std::vector<std::vector<int>> paths(leaves.size());
   std::vector<int> first_owned(leaves.size());
@@ -827,7 +585,7 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
       const int h = M.find_halfedge(p, c);
       if (h < 0) continue;  // split already from the other side (listed as (c, p)): never twice
       rs.split_edge(h, make_rational(1, 2));
-      ++res.stats.chord_splits;
+      ++stats.chord_splits;
     }
   }
   const int nv1 = M.num_vertices();
@@ -917,7 +675,7 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
       i = j;
     }
   }
-  res.stats.crossings = static_cast<int>(crossings.size());
+  stats.crossings += static_cast<int>(crossings.size());
   auto vid = [&](int code) { return code >= 0 ? code : crossings[-1 - code].vertex; };
 
   // Re-triangulate every face along its arcs.
@@ -938,7 +696,7 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
       std::vector<SurfacePoint> ps;
       for (int v : ids) ps.push_back(rs.point(v));
       rs.constructed.push_back(average(ps));
-      ++res.stats.steiner_vertices;
+      ++stats.steiner_vertices;
       return next_vertex++;
     };
     std::vector<int> cyc;
@@ -1002,8 +760,8 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     internal("constructed points out of step with the mesh");
 
   // Loops: strand to a, band a-b, strand to b backwards.
-  const int nloops = 2 * genus;
-  res.loops.resize(nloops);
+  const int nloops = static_cast<int>(leaf_a.size());
+  std::vector<std::vector<int>> loops(nloops);
   {
     std::vector<std::vector<int>> strand_vertices(leaves.size());
     for (std::size_t k = 0; k < leaves.size(); ++k)
@@ -1011,25 +769,561 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     for (int i = 0; i < nloops; ++i) {
       const auto& sa = strand_vertices[leaf_index[leaf_a[i]]];
       const auto& sb = strand_vertices[leaf_index[leaf_b[i]]];
-      auto& L = res.loops[i];
+      auto& L = loops[i];
       L = sa;
       for (std::size_t j = sb.size() - 1; j >= 1; --j) L.push_back(sb[j]);
     }
   }
+  return loops;
+}
+
+// Step 3 by rounds: the canonical system built handle by handle, with no slides. Gamma is the
+// union of the loops already final, in commutator blocks; the corners between blocks are the
+// sectors at the root where a new block keeps the word in blocks (all of the rotation in round 0).
+// One round:
+//  a. F: the corner whose spokes reach the largest connected set of vertices off Gamma;
+//  b. greedy basis of the surface cut along Gamma, with its boundary contracted to the root (genus
+//     g - |Gamma|/2): Dijkstra tree T (metric: `hops` or 3D lengths) from the root that leaves it
+//     only through F and never enters Gamma; dual maximum spanning tree on the edges off T and off
+//     Gamma, every other edge at a Gamma vertex or at a vertex T misses forced in first. The
+//     leftover edges whose ends T reaches close loops that run in the cut surface and leave the
+//     root through F;
+//  c. their ends are ordered along F by the counter-clockwise tour of T; two loops whose ends
+//     interleave (a linked pair) cross once at the root, so once detached they form a handle whose
+//     ends are consecutive in F. A largest set of linked pairs whose end intervals are disjoint is
+//     taken (greedy by right end), and only these pairs are detached (step 2 on T). If there is
+//     none, the round is tried again after splitting chords of Gamma (edges off Gamma joining two
+//     Gamma vertices; their midpoints are off Gamma): those of F's triangles, then those a tree
+//     through chord midpoints needs, then all (after which T reaches everything, the forced edges
+//     close no dual cycle, and a linked pair exists since the intersection form is nondegenerate);
+//  d. the new pairs join Gamma; the corners around each new block join the list; the word traced
+//     from the rotation at the root is checked to be one cycle in commutator blocks.
+// Every round adds at least one handle: at most g rounds and 4g attempts, each O(n log n +
+// crossings). Returns false as soon as the mesh has more than vertex_limit vertices.
+// Post (true): res.loops holds the 2g loops, their word in commutator blocks (relabelled by the
+// caller); res.stats has the rounds' counts.
+bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops, long vertex_limit) {
+  const int root = res.root, genus = res.genus;
+  RefinedSurface& rs = res.surface;
+  auto& M = rs.mesh;
+  std::vector<std::vector<int>> gamma;
+  int f_start = -1, f_end = -1;  // F: ccw from the edge root->f_start to the edge root->f_end
+  std::vector<std::pair<int, int>> corners;  // the other corners between blocks, as (f_start, f_end)
+  std::vector<Vec3d> pos(unit.begin(), unit.begin() + rs.num_input_vertices);
+  auto len = [&](int a, int b) { return hops ? 1.0 : length(pos[a], pos[b]); };
+  std::vector<char> on_g, is_g;
+  auto mark = [&] {  // O(n)
+    on_g.assign(M.num_vertices(), 0);
+    is_g.assign(M.num_halfedges(), 0);
+    on_g[root] = 1;
+    for (const auto& L : gamma)
+      for (std::size_t j = 0; j < L.size(); ++j) {
+        on_g[L[j]] = 1;
+        const int h = find_he(M, L[j], L[(j + 1) % L.size()]);
+        is_g[h] = is_g[M.twin(h)] = 1;
+      }
+  };
+  // The root's half-edges strictly inside F, ccw (all of them in round 0). O(valence(root)).
+  auto free_wedge = [&] {
+    std::vector<int> wedge;
+    const int h_first = f_start >= 0 ? find_he(M, root, f_start) : M.vertex_halfedge(root);
+    const int h_stop = f_start >= 0 ? find_he(M, root, f_end) : h_first;
+    int h = f_start >= 0 ? M.next_around_origin(h_first) : h_first;
+    for (int guard = 0; !(f_start >= 0 && h == h_stop); ++guard) {  // <= valence(root) steps
+      if (guard > M.valence(root)) internal("normal form: the free wedge does not close");
+      wedge.push_back(h);
+      h = M.next_around_origin(h);
+      if (f_start < 0 && h == h_first) break;
+    }
+    return wedge;
+  };
+  auto update_positions = [&] {
+    while (static_cast<int>(pos.size()) < M.num_vertices())
+      pos.push_back(evaluate(rs.constructed[pos.size() - rs.num_input_vertices], unit));
+  };
+  // The chords a round splits: 0 none, 1 those of the root's triangles in F, 2 those a tree through
+  // chord midpoints needs, 3 all. A round that finds no usable linked pair is tried again with the
+  // next level (a round with no spoke off Gamma in F starts at level 1).
+  int chord_level = 0;
+  for (int round = 0, attempts = 0; static_cast<int>(gamma.size()) < 2 * genus; ++round, ++attempts) {
+    if (attempts >= 4 * genus) internal("normal form: more than 4g attempts");
+    if (round >= genus) internal("normal form: round " + std::to_string(round) + " with g = " + std::to_string(genus));
+    const int want = 2 * genus - static_cast<int>(gamma.size());
+    // F: the corner between blocks whose spokes reach the most vertices off Gamma (connected by
+    // edges off Gamma), so that T does not start in a pocket. O(n + corners * valence(root)).
+    if (round > 0 && chord_level == 0) {
+      Dsu comp(M.num_vertices());
+      for (int h = 0; h < M.num_halfedges(); ++h)
+        if (!on_g[M.origin(h)] && !on_g[M.target(h)]) comp.unite(M.origin(h), M.target(h));
+      std::vector<int> size(M.num_vertices(), 0);
+      for (int v = 0; v < M.num_vertices(); ++v)
+        if (!on_g[v]) ++size[comp.find(v)];
+      std::size_t best = 0;
+      int best_score = -1;
+      for (std::size_t k = 0; k < corners.size(); ++k) {
+        f_start = corners[k].first, f_end = corners[k].second;
+        int score = 0;
+        for (int h : free_wedge())
+          if (!on_g[M.target(h)]) score = std::max(score, size[comp.find(M.target(h))]);
+        if (score > best_score) best_score = score, best = k;
+      }
+      f_start = corners[best].first, f_end = corners[best].second;
+      corners.erase(corners.begin() + static_cast<long>(best));
+    }
+    // a. chords of Gamma (only when the round found no usable linked pair without: chord_level).
+    mark();
+    update_positions();
+    if (chord_level == 0 && round > 0) {  // F without a spoke off Gamma: T could not start
+      bool live = false;
+      for (int h : free_wedge()) live = live || !on_g[M.target(h)];
+      if (!live) chord_level = 1;
+    }
+    if (chord_level > 0) {
+      auto is_chord = [&](int h) { return !is_g[h] && on_g[M.origin(h)] && on_g[M.target(h)]; };
+      std::vector<std::pair<int, int>> chords;
+      if (chord_level == 3) {
+        for (int h = 0; h < M.num_halfedges(); ++h)
+          if (h < M.twin(h) && is_chord(h)) chords.push_back({M.origin(h), M.target(h)});
+      } else if (chord_level == 1) {
+        // The chords of the triangles at the root in F: a spoke, or the edge opposite the root.
+        std::vector<int> faces_h = free_wedge();
+        if (f_start >= 0) faces_h.push_back(find_he(M, root, f_start));
+        for (int h : faces_h)
+          for (int g : {h, TriMesh::next(h)})
+            if (is_chord(g)) chords.push_back({M.origin(g), M.target(g)});
+        std::sort(chords.begin(), chords.end());
+        chords.erase(std::unique(chords.begin(), chords.end()), chords.end());
+      } else {
+        // Dijkstra from F over the vertices off Gamma and the midpoints of chords (node V + e for
+        // the canonical half-edge e); two nodes are adjacent if they lie in one face. The chords
+        // whose midpoint is the parent of another node are the ones split. O(E log E).
+        const int nv1 = M.num_vertices();
+        auto canon = [&](int h) { return std::min(h, M.twin(h)); };
+        auto at = [&](int n) {
+          if (n < nv1) return pos[n];
+          const Vec3d &a = pos[M.origin(n - nv1)], &b = pos[M.target(n - nv1)];
+          return Vec3d{(a.x + b.x) / 2, (a.y + b.y) / 2, (a.z + b.z) / 2};
+        };
+        constexpr double kMidpointPenalty = 1e9;  // unit-scaled lengths: a path is < 4 V <= 1e9
+        std::vector<double> d(nv1 + M.num_halfedges(), INFINITY);
+        std::vector<int> par(d.size(), -1);
+        std::vector<char> used(d.size(), 0);
+        using Item = std::pair<double, int>;
+        std::priority_queue<Item, std::vector<Item>, std::greater<Item>> pq;
+        auto relax = [&](int from, int n) {
+          // A midpoint costs more than any path of vertices: chords are crossed only where needed.
+          const double nd = (from < 0 ? 0.0 : d[from]) + (hops ? 1.0 : length(from < 0 ? pos[root] : at(from), at(n))) +
+                            (n >= nv1 ? kMidpointPenalty : 0.0);
+          if (nd < d[n]) d[n] = nd, par[n] = from, pq.push({nd, n});
+        };
+        const std::vector<int> wedge0 = free_wedge();
+        std::vector<int> faces_h(wedge0);  // half-edges whose left face lies in F
+        if (f_start >= 0) faces_h.push_back(find_he(M, root, f_start));
+        for (int h : wedge0) {
+          if (!on_g[M.target(h)]) relax(-1, M.target(h));
+          else if (is_chord(h)) relax(-1, nv1 + canon(h));
+        }
+        for (int h : faces_h)
+          if (is_chord(TriMesh::next(h))) relax(-1, nv1 + canon(TriMesh::next(h)));
+        while (!pq.empty()) {  // each node settles once
+          auto [dd, n] = pq.top();
+          pq.pop();
+          if (dd > d[n]) continue;
+          if (n < nv1) {
+            const int h0 = M.vertex_halfedge(n);
+            int h = h0;
+            do {
+              if (!on_g[M.target(h)]) relax(n, M.target(h));
+              if (is_chord(TriMesh::next(h))) relax(n, nv1 + canon(TriMesh::next(h)));
+              h = M.next_around_origin(h);
+            } while (h != h0);
+          } else {
+            const int e = n - nv1;
+            for (int h : {e, M.twin(e)}) {
+              const int c = M.target(TriMesh::next(h));
+              if (!on_g[c]) relax(n, c);
+              for (int g : {TriMesh::next(h), TriMesh::prev(h)})
+                if (is_chord(g)) relax(n, nv1 + canon(g));
+            }
+          }
+        }
+        for (std::size_t n = 0; n < d.size(); ++n)
+          if (par[n] >= nv1) used[par[n]] = 1;
+        for (int e = 0; e < M.num_halfedges(); ++e)
+          if (used[nv1 + e]) chords.push_back({M.origin(e), M.target(e)});
+      }
+      for (auto [a, b] : chords) rs.split_edge(find_he(M, a, b), make_rational(1, 2));
+      res.stats.round_chord_splits += static_cast<int>(chords.size());
+      if (!chords.empty()) mark();
+    }
+    update_positions();
+    const int nv = M.num_vertices(), nh = M.num_halfedges();
+    // b. the wedge F at the root (ccw), the tree T, the cotree.
+    std::vector<int> wedge = free_wedge();
+    std::vector<char> spoke(nh, 0);
+    for (int h : wedge) spoke[h] = spoke[M.twin(h)] = 1;
+    std::vector<double> dist(nv, INFINITY);
+    std::vector<int> parent(nv, -1);
+    {
+      using Item = std::pair<double, int>;
+      std::priority_queue<Item, std::vector<Item>, std::greater<Item>> pq;
+      dist[root] = 0;
+      for (int h : wedge) {
+        const int w = M.target(h);
+        if (!on_g[w] && len(root, w) < dist[w]) dist[w] = len(root, w), parent[w] = root, pq.push({dist[w], w});
+      }
+      // Each vertex settles once, each half-edge is relaxed once: O(E log E).
+      while (!pq.empty()) {
+        auto [d, v] = pq.top();
+        pq.pop();
+        if (d > dist[v]) continue;
+        const int h0 = M.vertex_halfedge(v);
+        int h = h0;
+        do {
+          const int w = M.target(h);
+          if (!on_g[w] && d + len(v, w) < dist[w]) dist[w] = d + len(v, w), parent[w] = v, pq.push({dist[w], w});
+          h = M.next_around_origin(h);
+        } while (h != h0);
+      }
+    }
+    auto tree_edge = [&](int a, int b) { return (b != root && parent[b] == a) || (a != root && parent[a] == b); };
+    std::vector<std::pair<int, int>> bands;
+    std::vector<double> band_len;
+    std::vector<char> band_ok;
+    {
+      std::vector<std::pair<double, int>> cand;
+      for (int h = 0; h < nh; ++h) {
+        if (h > M.twin(h) || is_g[h]) continue;
+        const int a = M.origin(h), b = M.target(h);
+        if (tree_edge(a, b)) continue;
+        const bool forced = (!spoke[h] && (on_g[a] || on_g[b])) || !(dist[a] < INFINITY) || !(dist[b] < INFINITY);
+        cand.push_back({forced ? INFINITY : dist[a] + dist[b] + len(a, b), h});
+      }
+      std::sort(cand.begin(), cand.end(), [](const auto& x, const auto& y) {
+        return x.first != y.first ? x.first > y.first : x.second < y.second;
+      });
+      Dsu dsu(M.num_faces());
+      for (const auto& [w, h] : cand)
+        if (!dsu.unite(TriMesh::face(h), TriMesh::face(M.twin(h)))) {
+          bands.push_back({M.origin(h), M.target(h)});
+          band_len.push_back(w);
+          band_ok.push_back(w < INFINITY);
+        }
+      // A vertex off Gamma that T does not reach (cut off by chords) adds one edge.
+      int dead = 0;
+      for (int v = 0; v < nv; ++v) dead += !on_g[v] && !(dist[v] < INFINITY);
+      if (static_cast<int>(bands.size()) != want + dead)
+        internal("normal form: round " + std::to_string(round) + " left " + std::to_string(bands.size()) +
+                 " edges, expected " + std::to_string(want) + " + " + std::to_string(dead));
+    }
+    // c. band ends in tour order along F, then the linked pairs.
+    // Round 0: the tour starts at a tree edge of the root (never split by the band splits).
+    if (f_start < 0) {
+      std::size_t k = 0;
+      while (k < wedge.size() && parent[M.target(wedge[k])] != root) ++k;
+      if (k == wedge.size()) internal("normal form: no tree edge at the root");
+      std::rotate(wedge.begin(), wedge.begin() + static_cast<long>(k), wedge.end());
+    }
+    const int tour_start = f_start >= 0 ? f_start : M.target(wedge[0]);
+    const int nb = static_cast<int>(bands.size());
+    std::vector<std::array<int, 2>> end_pos(nb, {-1, -1});
+    {
+      std::vector<int> band_of(nh, -1);
+      for (int i = 0; i < nb; ++i) {
+        const int h = find_he(M, bands[i].first, bands[i].second);
+        band_of[h] = band_of[M.twin(h)] = i;
+      }
+      int counter = 0;
+      // Depth-first tour, ccw after the parent edge (the root: along F); band ends are numbered as
+      // met. A stack of (vertex, next half-edge, its parent half-edge); each vertex once: O(E).
+      struct It { int x, h, stop; };
+      std::vector<It> st;
+      {
+        // The root: its wedge half-edges in order.
+        std::size_t wi = 0;
+        while (wi < wedge.size() || !st.empty()) {
+          if (st.empty()) {
+            const int h = wedge[wi++];
+            const int i = band_of[h];
+            if (i >= 0) end_pos[i][M.origin(h) == bands[i].first ? 0 : 1] = counter++;
+            else if (parent[M.target(h)] == root) {
+              const int c = M.target(h), hp = find_he(M, c, root);
+              st.push_back({c, M.next_around_origin(hp), hp});
+            }
+            continue;
+          }
+          It& t = st.back();
+          if (t.h == t.stop) {
+            st.pop_back();
+            continue;
+          }
+          const int h = t.h;
+          t.h = M.next_around_origin(h);
+          const int i = band_of[h];
+          if (i >= 0) {
+            end_pos[i][M.origin(h) == bands[i].first ? 0 : 1] = counter++;
+          } else {
+            const int c = M.target(h);
+            if (c != root && parent[c] == t.x) {
+              const int hp = find_he(M, c, t.x);
+              st.push_back({c, M.next_around_origin(hp), hp});
+            }
+          }
+        }
+      }
+    }
+    struct Pair { int lo, hi, i, j; double cost; };
+    std::vector<Pair> pairs;
+    for (int i = 0; i < nb; ++i) {
+      if (!band_ok[i] || end_pos[i][0] < 0 || end_pos[i][1] < 0) continue;
+      const int li = std::min(end_pos[i][0], end_pos[i][1]), hi = std::max(end_pos[i][0], end_pos[i][1]);
+      for (int j = 0; j < nb; ++j) {
+        if (j == i || !band_ok[j] || end_pos[j][0] < 0 || end_pos[j][1] < 0) continue;
+        const int lj = std::min(end_pos[j][0], end_pos[j][1]), hj = std::max(end_pos[j][0], end_pos[j][1]);
+        if (li < lj && lj < hi && hi < hj) pairs.push_back({li, hj, i, j, band_len[i] + band_len[j]});
+      }
+    }
+    if (pairs.empty()) {
+      if (chord_level == 3) internal("normal form: round " + std::to_string(round) + " found no linked pair of loops");
+      ++chord_level;  // once more, with room
+      --round;
+      continue;
+    }
+    chord_level = 0;
+    std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
+      return a.hi != b.hi ? a.hi < b.hi : a.cost != b.cost ? a.cost < b.cost : a.lo > b.lo;
+    });
+    std::vector<std::pair<int, int>> chosen;
+    int last_hi = -1;
+    for (const Pair& p : pairs)
+      if (p.lo > last_hi) {
+        chosen.push_back(bands[p.i]);
+        chosen.push_back(bands[p.j]);
+        last_hi = p.hi;
+      }
+    // d. detach the chosen pairs along T; they join Gamma.
+    DetachPlan P;
+    P.root = root;
+    P.root_start = tour_start;
+    P.parent = std::move(parent);
+    P.rs = std::move(rs);
+    plan_strands(P, chosen);
+    std::vector<std::vector<int>> fresh = realize_strands(P, res.stats);
+    rs = std::move(P.rs);
+    res.stats.band_splits += P.band_splits;
+    ++res.stats.normal_form_rounds;
+    // The new ends at the root in tour order (the order the strands leave the root in, ccw): the
+    // first and the last of them bound the new F.
+    const int nleaves = static_cast<int>(2 * chosen.size());
+    std::vector<int> end_vertex(nleaves, -1);
+    for (std::size_t i = 0; i < fresh.size(); ++i) {
+      end_vertex[P.leaf_index[P.leaf_a[i]]] = fresh[i][1];
+      end_vertex[P.leaf_index[P.leaf_b[i]]] = fresh[i].back();
+    }
+    for (auto& L : fresh) gamma.push_back(std::move(L));
+    // Check: walking ccw through F (round 0: from the last new end round to it), the root's edges
+    // meet the new ends in tour order. O(valence(root)).
+    {
+      std::vector<int> rank(M.num_vertices(), -1);
+      for (int k = 0; k < nleaves; ++k) rank[end_vertex[k]] = k;
+      const int h_last = find_he(M, root, end_vertex.back());
+      const int h_begin = f_start >= 0 ? find_he(M, root, f_start) : h_last;
+      const int h_stop = f_start >= 0 ? find_he(M, root, f_end) : h_last;
+      int next = 0;
+      for (int h = M.next_around_origin(h_begin), guard = 0; h != h_stop; h = M.next_around_origin(h), ++guard) {
+        if (guard > M.valence(root)) internal("normal form: the free wedge does not close");
+        if (rank[M.target(h)] >= 0 && rank[M.target(h)] != next++)
+          internal("normal form: new loop ends out of tour order at the root");
+      }
+      if (next != (f_start >= 0 ? nleaves : nleaves - 1)) internal("normal form: new loop ends outside the free wedge");
+    }
+    // The corners between blocks that this round makes (F's own is used up): around each new block.
+    {
+      const int t = nleaves / 4;
+      const int a0 = f_start >= 0 ? f_start : end_vertex.back(), b1 = f_start >= 0 ? f_end : end_vertex.front();
+      corners.push_back({a0, end_vertex.front()});
+      for (int p = 0; p + 1 < t; ++p) corners.push_back({end_vertex[4 * p + 3], end_vertex[4 * p + 4]});
+      if (f_start >= 0) corners.push_back({end_vertex.back(), b1});
+      else corners.front().second = b1;  // round 0: the outer corner, from the last end to the first
+    }
+    // Check: the loops so far, read around the root, trace one boundary word in commutator blocks.
+    {
+      std::vector<Letter> at_end(M.num_vertices(), Letter{});
+      for (std::size_t i = 0; i < gamma.size(); ++i) {
+        at_end[gamma[i][1]] = {static_cast<int>(i), false};
+        at_end[gamma[i].back()] = {static_cast<int>(i), true};
+      }
+      std::vector<Letter> rot;  // loop ends ccw around the root
+      const int h0 = M.vertex_halfedge(root);
+      int h = h0;
+      do {  // valence(root) steps
+        if (at_end[M.target(h)].loop >= 0) rot.push_back(at_end[M.target(h)]);
+        h = M.next_around_origin(h);
+      } while (h != h0);
+      const int m = static_cast<int>(rot.size());
+      std::vector<int> mate(m, -1);
+      for (int i = 0; i < m; ++i)
+        for (int j = 0; j < m; ++j)
+          if (j != i && rot[j].loop == rot[i].loop) mate[i] = j;
+      // The boundary walk leaves along an end, comes back at its mate and leaves along the next end
+      // clockwise (build_cut's rule). m steps.
+      Word w;
+      int leave = 0;
+      for (int k = 0; k < m; ++k) {
+        w.push_back(rot[leave]);
+        leave = (mate[leave] + m - 1) % m;
+        if (leave == 0 && k + 1 < m) internal("normal form: the loops so far bound more than one boundary");
+      }
+      if (m != static_cast<int>(2 * gamma.size()) || commutator_rotation(w) < 0)
+        internal("normal form: after round " + std::to_string(round) + " the word is not in blocks: " + to_string(w));
+    }
+    if (M.num_vertices() > vertex_limit) return false;
+  }
+  res.loops = std::move(gamma);
+  return true;
+}
+
+}  // namespace
+
+std::string CutResult::word() const { return to_string(word_of(*this)); }
+
+CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& positions,
+                                const CutOptions& options) {
+  const auto t_start = Clock::now();
+  const int nv0 = mesh.num_vertices();
+  if (static_cast<int>(positions.size()) != nv0)
+    throw Error(ErrorKind::InvalidArgument, "positions (" + std::to_string(positions.size()) +
+                                                ") do not match the mesh vertices (" + std::to_string(nv0) + ")");
+  if (nv0 == 0) throw Error(ErrorKind::Empty, "mesh has no vertices");
+  for (int v = 0; v < nv0; ++v)
+    if (mesh.vertex_halfedge(v) < 0)
+      throw Error(ErrorKind::InvalidArgument, "vertex " + std::to_string(v) + " is used by no face", {v});
+  const int chi = mesh.num_vertices() - mesh.num_edges() + mesh.num_faces();
+  if (chi > 2 || chi % 2 != 0) throw Error(ErrorKind::InvalidArgument, "Euler characteristic " + std::to_string(chi));
+  const int genus = (2 - chi) / 2;
+  if (genus == 0) throw Error(ErrorKind::Unsupported, "genus 0 surface: the topology stage needs genus >= 1");
+
+  CutResult res;
+  if (options.root < -1 || options.root >= nv0)
+    throw Error(ErrorKind::InvalidArgument, "root vertex " + std::to_string(options.root) + " out of range [0, " +
+                                                std::to_string(nv0) + ")", {options.root});
+  // Root and metric: the given root with 3D edge lengths, or among K deterministic root candidates,
+  // each with 3D lengths and with hop counts as the basis metric, the pair whose detaching crosses
+  // the fewest edges (predicted by plan_detach, without building anything; the first wins ties).
+  // Candidates: the vertex of maximum valence (lowest id among ties), then vertices i * V / K.
+  // K = clamp(1e6 / F, 1, 24) bounds the extra cost to one basis computation on a 1M-face mesh.
+  const std::vector<Vec3d> unit = unit_scaled(positions);  // edge lengths finite at any magnitude
+  if (options.normal_form) {
+    // Root and metric: the given root with 3D lengths, or among K deterministic candidates (as
+    // below, K = clamp(2e5 / F, 1, 12)) with 3D lengths and (K > 1) hop counts, the pair whose rounds
+    // end with the fewest vertices; a candidate stops once it has more than the best so far.
+    const long limit = nv0 + static_cast<long>(options.max_normal_form_growth * nv0);
+    std::vector<std::pair<int, bool>> candidates;
+    if (options.root >= 0) {
+      candidates.push_back({options.root, false});
+    } else {
+      int first = 0, best_valence = -1;
+      for (int v = 0; v < nv0; ++v)
+        if (mesh.valence(v) > best_valence) best_valence = mesh.valence(v), first = v;
+      const long k = std::clamp(200000L / std::max(1, mesh.num_faces()), 1L, 12L);
+      std::vector<int> roots{first};
+      for (long i = 1; i < k; ++i) {
+        const int v = static_cast<int>(i * nv0 / k);
+        if (std::find(roots.begin(), roots.end(), v) == roots.end()) roots.push_back(v);
+      }
+      // Hop counts only where several roots are tried (a large mesh gets one candidate).
+      for (int c : roots)
+        for (bool hops : {false, true})
+          if (!hops || k > 1) candidates.push_back({c, hops});
+    }
+    bool found = false;
+    for (auto [c, hops] : candidates) {
+      CutResult trial;
+      trial.root = c;
+      trial.genus = genus;
+      trial.surface.mesh = mesh;
+      trial.surface.num_input_vertices = nv0;
+      trial.surface.input_positions = positions;
+      const long bound = found ? res.surface.mesh.num_vertices() - 1 : limit;
+      if (canonical_rounds(trial, unit, hops, bound)) {
+        trial.stats.roots_tried = res.stats.roots_tried;
+        res = std::move(trial);
+        found = true;
+      }
+      ++res.stats.roots_tried;
+    }
+    if (!found)
+      throw Error(ErrorKind::Unsupported,
+                  "normal form: the canonical loops would grow the mesh past " + std::to_string(limit) +
+                      " vertices (CutOptions::max_normal_form_growth x " + std::to_string(nv0) +
+                      " input vertices); run without the normal form");
+    const int root = res.root;
+    RefinedSurface& rs = res.surface;
+    res.stats.genus = genus;
+    res.stats.vertices_before = nv0;
+    res.stats.faces_before = mesh.num_faces();
+    res.stats.seconds_detach = seconds_since(t_start);
+    const auto t_cut = Clock::now();
+    build_cut(res, -1);
+    relabel_blocks(res, word_of(res));
+    res.stats.precondition_splits += precondition_pass(res);
+    build_cut(res, find_he(rs.mesh, root, res.loops[0][1]));
+    if (!is_canonical_word(word_of(res))) internal("cut word is not canonical: " + to_string(word_of(res)));
+    res.stats.seconds_cut = seconds_since(t_cut);
+    res.stats.vertices_after = rs.mesh.num_vertices();
+    res.stats.faces_after = rs.mesh.num_faces();
+    res.stats.seconds_total = seconds_since(t_start);
+    return res;
+  }
+  DetachPlan P;
+  if (options.root >= 0) {
+    P = plan_detach(mesh, unit, options.root, genus, false);
+  } else {
+    int first = 0, best_valence = -1;
+    for (int v = 0; v < nv0; ++v) {
+      const int val = mesh.valence(v);
+      if (val > best_valence) best_valence = val, first = v;
+    }
+    const long k = std::clamp(1000000L / std::max(1, mesh.num_faces()), 1L, 24L);
+    std::vector<int> candidates{first};
+    for (long i = 1; i < k; ++i) {
+      const int v = static_cast<int>(i * nv0 / k);
+      if (std::find(candidates.begin(), candidates.end(), v) == candidates.end()) candidates.push_back(v);
+    }
+    for (int c : candidates) {
+      for (bool hops : {false, true}) {
+        DetachPlan q = plan_detach(mesh, unit, c, genus, hops);
+        ++res.stats.roots_tried;
+        if (P.root < 0 || q.crossings < P.crossings) P = std::move(q);
+      }
+    }
+  }
+  const int root = P.root;
+
+  res.root = root;
+  res.genus = genus;
+  res.stats.genus = genus;
+  res.stats.vertices_before = nv0;
+  res.stats.faces_before = mesh.num_faces();
+  RefinedSurface& rs = res.surface;
+
+  res.stats.band_splits = P.band_splits;
+  res.stats.predicted_crossings = P.crossings;
+  res.stats.seconds_basis = seconds_since(t_start);
+  const auto t_detach = Clock::now();
+
+  P.rs.input_positions = positions;
+  res.loops = realize_strands(P, res.stats);
+  rs = std::move(P.rs);
+
 
   res.stats.seconds_detach = seconds_since(t_detach);
   const auto t_cut = Clock::now();
 
-  // ---- 4. normal form by handle slides, then the cut ----
+  // ---- 4. the cut ----
   build_cut(res, -1);
-  if (options.normal_form) {
-    normalize(res, options.check_each_slide, options.max_slide_growth);
-    build_cut(res, -1);
-  }
   res.stats.precondition_splits += precondition_pass(res);
   build_cut(res, find_he(rs.mesh, root, res.loops[0][1]));
-  if (options.normal_form && !is_canonical_word(word_of(res)))
-    internal("cut word is not canonical: " + to_string(word_of(res)));
   res.stats.seconds_cut = seconds_since(t_cut);
   res.stats.vertices_after = rs.mesh.num_vertices();
   res.stats.faces_after = rs.mesh.num_faces();

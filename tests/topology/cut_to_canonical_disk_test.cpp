@@ -314,8 +314,9 @@ TEST_CASE("surface points combine exactly and stay in one face") {
 }
 
 TEST_CASE("generated meshes of genus 1 to 200 are cut into verified disks") {
-  // Normal form is verified up to genus 10; above, the slides exceed CutOptions::max_slide_growth
-  // (a typed error, tested below), so genus 20..200 check everything except the normal form.
+  // Normal form is verified up to genus 10; above, its rounds exceed CutOptions::max_normal_form_growth
+  // (a typed error, tested below; genus 20 on 5000 faces already does), so genus 20..200 check
+  // everything except the normal form.
   struct Case {
     int genus;
     long faces;
@@ -333,24 +334,24 @@ TEST_CASE("generated meshes of genus 1 to 200 are cut into verified disks") {
     CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
     CHECK(r.genus == c.genus);
     CHECK(verify_cut(in, r, c.normal_form) == "");
-    CHECK(r.stats.num_slides <= 2 * c.genus);
+    CHECK(r.stats.normal_form_rounds <= c.genus);
     MESSAGE("genus " << c.genus << ": V " << r.stats.vertices_before << " -> " << r.stats.vertices_after
-                     << " crossings " << r.stats.crossings << " splits " << r.stats.precondition_splits << " slides "
-                     << r.stats.num_slides);
+                     << " crossings " << r.stats.crossings << " splits " << r.stats.precondition_splits << " rounds "
+                     << r.stats.normal_form_rounds << " in " << r.stats.seconds_total << " s");
   }
 }
 
-TEST_CASE("each handle slide realizes the planned word, without slides the cut is still verified") {
+TEST_CASE("the normal form takes at most g rounds; without it the cut is still verified") {
   for (int g : {2, 3, 6}) {
     Input in = generated(g, 600 * g, 20 + g);
     CutOptions o;
-    o.check_each_slide = true;
     CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
     CHECK(verify_cut(in, r) == "");
-    CHECK(r.stats.num_slides <= 2 * g);
+    CHECK(r.stats.normal_form_rounds >= 1);
+    CHECK(r.stats.normal_form_rounds <= g);
     o.normal_form = false;
     CutResult raw = cut_to_canonical_disk(in.mesh, in.positions, o);
-    CHECK(raw.stats.num_slides == 0);
+    CHECK(raw.stats.normal_form_rounds == 0);
     CHECK(verify_cut(in, raw, false) == "");
   }
 }
@@ -392,20 +393,20 @@ TEST_CASE("the default root crosses no more edges than the vertex of maximum val
   }
 }
 
-TEST_CASE("handle slides beyond the growth bound are a typed error, not a blow-up") {
+TEST_CASE("a normal form beyond the growth bound is a typed error, not a blow-up") {
   Input in = generated(5, 1500, 6);
   CutOptions o;
-  o.max_slide_growth = 0.001;  // 1 split allowed on ~1000 vertices: the first long path exceeds it
+  o.max_normal_form_growth = 0.001;  // 1 vertex allowed on ~750: the first round exceeds it
   try {
     cut_to_canonical_disk(in.mesh, in.positions, o);
     FAIL("slides over the bound accepted");
   } catch (const Error& e) {
     CHECK(e.kind() == ErrorKind::Unsupported);
-    CHECK(std::string(e.what()).find("max_slide_growth") != std::string::npos);
+    CHECK(std::string(e.what()).find("max_normal_form_growth") != std::string::npos);
   }
-  o.max_slide_growth = 4.0;
+  o.max_normal_form_growth = 4.0;
   CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
-  CHECK(r.stats.slide_splits <= 4.0 * r.stats.vertices_after);
+  CHECK(r.stats.vertices_after <= 5.0 * r.stats.vertices_before);
   CHECK(verify_cut(in, r) == "");
 }
 
@@ -435,7 +436,7 @@ TEST_CASE("invalid use gets typed errors") {
 
 TEST_CASE("shared clean meshes of genus >= 1 are cut into verified disks") {
   IGM_REQUIRE_DATA(dir);
-  // cheese (g133) is checked without the normal form: its 266 slides exceed the slide bound.
+  // cheese (g133) is checked without the normal form: its rounds exceed the growth bound.
   struct Case {
     const char* name;
     int genus;
@@ -452,7 +453,7 @@ TEST_CASE("shared clean meshes of genus >= 1 are cut into verified disks") {
     CHECK(r.genus == c.genus);
     CHECK(verify_cut(in, r, c.normal_form) == "");
     MESSAGE(std::string(c.name) << ": V " << r.stats.vertices_before << " -> " << r.stats.vertices_after << " crossings " << r.stats.crossings
-                   << " splits " << r.stats.precondition_splits << " slides " << r.stats.num_slides << " in "
+                   << " splits " << r.stats.precondition_splits << " rounds " << r.stats.normal_form_rounds << " in "
                    << r.stats.seconds_total << " s");
   }
 }

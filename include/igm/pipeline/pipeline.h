@@ -30,13 +30,12 @@ struct PipelineOptions {
   /// so only N >= 3 gives a certified quad mesh. Genus 0: 2 N^2 quads, certified for every N >= 1.
   int resolution = 4;
   int root = -1;       // root vertex of the loops (-1: deterministic default); genus 0 has no root (ignored)
-  /// Bring the gluing word to the normal form a1 b1 a1^-1 b1^-1 ... by handle slides. Validity
-  /// does not need it: every polygon side is a whole edge of one layout quad mapped onto a
-  /// unit-square edge, so any pairing of sides glues by R^k x + t with integer t (the certifier
-  /// checks it). Off by default: the slides' paths run between earlier loops and grow the mesh
-  /// (couplingdown g9: 3.6k instead of 2.2k refined vertices and 12x instead of 3.8x output
-  /// triangles, anchor 5.5x instead of 3.4x; a 1M-face g20 mesh 0.5M -> 1.05M vertices in ~20 s;
-  /// cheese g133 exceeds the topology stage's slide bound, a typed error).
+  /// Bring the gluing word to the normal form a1 b1 a1^-1 b1^-1 ... (topology step 3, in rounds).
+  /// Validity does not need it: every polygon side is a whole edge of one layout quad mapped onto
+  /// a unit-square edge, so any pairing of sides glues by R^k x + t with integer t (the certifier
+  /// checks it). Off by default: later rounds' loops run beside earlier ones and grow the mesh
+  /// (couplingdown g9: 3.5k instead of 2.2k refined vertices; a 1M-face g20 mesh 0.5M -> 0.77M
+  /// vertices in ~28 s; cheese g133 exceeds the topology stage's growth bound, a typed error).
   bool normal_form = false;
   /// Genus 0 only: the four cone vertices (input vertex ids) in path order A, B, C, D; empty: the
   /// deterministic default (topology/sphere_cut.h). Bad lists give igm::Error(InvalidArgument).

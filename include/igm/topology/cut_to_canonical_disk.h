@@ -7,8 +7,7 @@
 //     dual graph on the edges not in T weighted by dist(u)+|uv|+dist(v); the 2g leftover edges
 //     ("bands") close the loops root~u, uv, v~root. O(n log n). With CutOptions::root = -1 the
 //     root and the metric are chosen among a few deterministic candidates by the crossings step 2
-//     would make (planned, not built; with the normal form also by the number of slides step 3
-//     would need, read off the planned word): on the shared meshes this lowers the growth 2-10x.
+//     would make (planned, not built): on the shared meshes this lowers the growth 2-10x.
 //  2. detaching: a band end that is a leaf of the tree spanned by all band ends ends its strand
 //     itself; the others get a vertex on the band edge hanging below them in T (u-a-b-v at 1/3 and
 //     2/3, or u-b-v at 1/2). The 4g paths root~a, root~b ("strands") are drawn pairwise disjoint
@@ -21,20 +20,28 @@
 //     programming over T, O(sum of strand lengths)). Each face is then re-triangulated along the
 //     curves. Growth: one vertex per crossing (plus a split where a curve would run along an edge,
 //     and a face vertex where a fan would be flat). Cost O(n + total crossings).
-//  3. normal form (CutOptions::normal_form): the slides planned by plan_handle_slides
-//     (handle_slides.h, <= 2g of them) are realized one by one: the new loop is a cheapest path
-//     between the two root wedges through vertices on no loop and midpoints of edges on no loop,
-//     which are split where the path uses them; the replaced loop is dropped. Loops are then
-//     renumbered and reoriented so that the word is exactly L0 L1 L0^-1 L1^-1 L2 L3 ...
-//     Known limitation: later slides' paths run in thin strips between earlier loops, so their
-//     length compounds with the number of slides (couplingdown g9: 1.8k -> 3.6k vertices instead
-//     of 2.2k without; a generated 1M-face g20: 0.5M -> 1.05M in ~20 s; cheese g133 exceeds the
-//     bound CutOptions::max_slide_growth, a typed error). Off, the word is whatever step 2 gives.
-//     Measured and rejected: choosing, per handle, the linked pair (and rotation) whose two new
-//     loops are shortest by the lengths of the boundary arcs they are homotopic to (with or
-//     without one step of lookahead, or keeping the blocks contiguous) delays the doubling of the
-//     new loops' lengths on cheese from handle ~10 to handle ~60 of 129, but does not stop it
-//     (a 4.9M-vertex loop at handle 97), and makes anchor worse (+58 instead of +35 splits).
+//  3. normal form (CutOptions::normal_form), built handle by handle in rounds instead of steps 1-2
+//     (no handle slides). Gamma = the loops already final, in commutator blocks; F = one corner
+//     of the root between two blocks (the whole rotation in round 0). A round: the greedy basis of
+//     the surface cut along Gamma (step 1 with a tree that leaves the root only through F and
+//     never enters Gamma, every other edge at Gamma forced into the cotree first); the loops'
+//     ends in tour order along F; a largest set of linked pairs (ends X Y X' Y') whose end
+//     intervals are disjoint (greedy by right end); only these pairs are detached (step 2); they
+//     join Gamma as new blocks, and F becomes the corner between blocks whose spokes reach the
+//     largest connected set of vertices off Gamma. If a round finds no usable linked pair it is
+//     tried again after splitting chords (edges off Gamma joining two Gamma vertices): those of
+//     F's triangles, then those a tree through chord midpoints needs, then all. After every round
+//     the word traced from the rotation at the root is checked to be one cycle in commutator
+//     blocks. At most g rounds (each adds a block), at most 4g attempts. The root and metric are
+//     chosen among candidates by the final vertex count. Loops are renumbered and reoriented so
+//     that the word is exactly L0 L1 L0^-1 L1^-1 L2 L3 ... Off, the word is whatever step 2 gives.
+//     Known limitation: later rounds' loops run beside earlier ones, and chords between parallel
+//     strands must be split, so the growth compounds with the genus (couplingdown g9: 1.8k ->
+//     3.5k vertices instead of 2.2k without; a generated 1M-face g20: 0.5M -> 0.77M; cheese g133
+//     and a generated 5000-face g20 exceed CutOptions::max_normal_form_growth, a typed error).
+//     Measured and rejected before: handle slides on the detached greedy loops (plan_handle_slides,
+//     handle_slides.h): the slides' paths double in length per handle on cheese with every plan
+//     variant tried (couplingdown 3.6k, 1M-face g20 1.05M vertices).
 //  4. embedding pre-conditions (embed/tutte.h): every interior disk edge joining two vertices of
 //     one polygon side (a root copy lies on its two sides) is split at its midpoint; then no
 //     triangle has three vertices on one side. O(n).
@@ -55,18 +62,16 @@ struct CutOptions {
   /// Root vertex (the basis then uses 3D edge lengths); -1 picks, among a few deterministic
   /// candidates (the vertex of maximum valence, then evenly spaced ids) and two metrics (3D
   /// lengths, hop counts), the pair whose detaching crosses the fewest edges (with normal_form:
-  /// crossings plus the planned slides, weighted).
+  /// whose rounds end with the fewest vertices).
   int root = -1;
-  /// Bring the word into a1 b1 a1^-1 b1^-1 ... by handle slides (<= 2g; step 3). Off: the word is
-  /// whatever the detached greedy loops give (still 4g sides, paired). The pipeline runs with it off
-  /// by default (PipelineOptions::normal_form, step 3's growth); here it is on by default.
+  /// Bring the word into a1 b1 a1^-1 b1^-1 ... (step 3, <= g rounds). Off: the word is whatever the
+  /// detached greedy loops give (still 4g sides, paired). The pipeline runs with it off by default
+  /// (PipelineOptions::normal_form, step 3's growth); here it is on by default.
   bool normal_form = true;
-  /// Bound on the slides' edge splits, as a multiple of the vertex count before the slides;
-  /// exceeding it is igm::Error(Unsupported) (the slides' paths run between earlier loops, and on
-  /// high genus their length compounds: cheese g133 would grow past 10M vertices).
-  double max_slide_growth = 4.0;
-  /// Debug: rebuild the cut after every slide and compare its word with the planned one (O(n) each).
-  bool check_each_slide = false;
+  /// Bound on the vertices the normal form's rounds may add, as a multiple of the input's vertex
+  /// count; exceeding it is igm::Error(Unsupported) (later rounds' loops run beside earlier ones,
+  /// and on high genus their length compounds: cheese g133 would grow past millions of vertices).
+  double max_normal_form_growth = 4.0;
 };
 
 struct CutStats {
@@ -80,8 +85,8 @@ struct CutStats {
   int precondition_splits = 0;  // edge splits of step 4
   long long predicted_crossings = 0;  // the detaching plan's count for the chosen root (step 2)
   int roots_tried = 0;          // (root, metric) candidates whose detaching was planned (root = -1)
-  int num_slides = 0;           // handle slides performed (normal form)
-  int slide_splits = 0;         // edges split where the slides' paths cross them (normal form)
+  int normal_form_rounds = 0;   // rounds of the canonical construction (normal form, <= g)
+  int round_chord_splits = 0;   // edges between two loop vertices split before a round (normal form)
   double seconds_basis = 0, seconds_detach = 0, seconds_cut = 0, seconds_total = 0;
 };
 
@@ -116,10 +121,11 @@ struct CutResult {
 /// root vertex (see the steps above). Pre: `mesh` is valid (closed, manifold, connected, every
 /// vertex used), positions.size() == mesh.num_vertices(). Throws igm::Error(Unsupported) for genus 0,
 /// igm::Error(InvalidArgument) for an out-of-range root or bad sizes, igm::Error(Unsupported) if the
-/// handle slides exceed CutOptions::max_slide_growth, igm::Error(Internal) if an invariant breaks
-/// (a slide path that does not trace included). Cost O(K n log n + crossings) for K root candidates
-/// (2K plans, K = clamp(1e6 / F, 1, 24); K = 1 and one plan if the root is given), plus
-/// O(g (V + E) log(V + E)) for the slides.
+/// normal form would exceed CutOptions::max_normal_form_growth, igm::Error(Internal) if an
+/// invariant breaks (a round whose word is not in blocks included). Cost without the normal form
+/// O(K n log n + crossings) for K root candidates (2K plans, K = clamp(1e6 / F, 1, 24); one plan if
+/// the root is given); with it O(K' g n log n) for K' = clamp(2e5 / F, 1, 12) roots (x2 metrics
+/// if K' > 1; 1 if the root is given), n the refined size.
 CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& positions,
                                 const CutOptions& options = {});
 
