@@ -777,6 +777,42 @@ std::vector<std::vector<int>> realize_strands(DetachPlan& P, CutStats& stats) {
   return loops;
 }
 
+// The word of loops whose ends lie in one wedge of the root, in the order `ends` (per end: loop
+// id, and whether it is the loop's last edge; each loop twice), closed through the outside of the
+// wedge and read from the corner there: the boundary walk leaves along an end, comes back at its
+// mate and leaves along the next end clockwise (build_cut's rule). departures[k] is the position
+// letter k leaves from. O(m log m).
+Word wedge_word(const std::vector<Letter>& ends, std::vector<int>* departures) {
+  const int m = static_cast<int>(ends.size());
+  std::vector<int> order(m), mate(m, -1);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return ends[a].loop != ends[b].loop ? ends[a].loop < ends[b].loop : a < b; });
+  for (int k = 0; k + 1 < m; k += 2) {
+    if (ends[order[k]].loop != ends[order[k + 1]].loop) internal("wedge word: a loop without two ends");
+    mate[order[k]] = order[k + 1], mate[order[k + 1]] = order[k];
+  }
+  Word w;
+  departures->clear();
+  int leave = m - 1;
+  for (int k = 0; k < m; ++k) {  // m steps
+    w.push_back(ends[leave]);
+    departures->push_back(leave);
+    leave = (mate[leave] + m - 1) % m;
+  }
+  return w;
+}
+
+// True if w is p q p^-1 q^-1 blocks from letter 0 on (any ids and orientations).
+bool blocks_from_start(const Word& w) {
+  if (w.size() % 4 != 0) return false;
+  for (std::size_t k = 0; k < w.size(); k += 4) {
+    const Letter &p = w[k], &q = w[k + 1], &pi = w[k + 2], &qi = w[k + 3];
+    if (p.loop == q.loop || pi.loop != p.loop || qi.loop != q.loop || pi.inverse == p.inverse || qi.inverse == q.inverse)
+      return false;
+  }
+  return true;
+}
+
 // Step 3 by rounds: the canonical system built handle by handle, with no slides. Gamma is the
 // union of the loops already final, in commutator blocks; the corners between blocks are the
 // sectors at the root where a new block keeps the word in blocks (all of the rotation in round 0).
@@ -790,8 +826,10 @@ std::vector<std::vector<int>> realize_strands(DetachPlan& P, CutStats& stats) {
 //     root through F;
 //  c. their ends are ordered along F by the counter-clockwise tour of T; two loops whose ends
 //     interleave (a linked pair) cross once at the root, so once detached they form a handle whose
-//     ends are consecutive in F. A largest set of linked pairs whose end intervals are disjoint is
-//     taken (greedy by right end), and only these pairs are detached (step 2 on T). If there is
+//     ends are consecutive in F. Linked pairs are taken greedily (by right end, then length) as
+//     long as the word of the pairs taken, read from F's outside, stays in blocks from its first
+//     letter (pairs side by side, or nested where that keeps the blocks), and only these pairs
+//     are detached (step 2 on T). If there is
 //     none, the round is tried again after splitting chords of Gamma (edges off Gamma joining two
 //     Gamma vertices; their midpoints are off Gamma): those of F's triangles, then those a tree
 //     through chord midpoints needs, then all (after which T reaches everything, the forced edges
@@ -1090,17 +1128,37 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
       continue;
     }
     chord_level = 0;
+    // Cheapest first, a pair is taken if the word of the pairs taken so far, read from F's outside,
+    // stays in blocks from its first letter (so that inserted at F it keeps the whole word in
+    // blocks): side by side, or nested where a block may hold another. O(pairs * taken log taken).
     std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
       return a.hi != b.hi ? a.hi < b.hi : a.cost != b.cost ? a.cost < b.cost : a.lo > b.lo;
     });
-    std::vector<std::pair<int, int>> chosen;
-    int last_hi = -1;
-    for (const Pair& p : pairs)
-      if (p.lo > last_hi) {
-        chosen.push_back(bands[p.i]);
-        chosen.push_back(bands[p.j]);
-        last_hi = p.hi;
+    std::vector<int> taken;  // band ids, pairs in order
+    std::vector<char> used(nb, 0);
+    std::vector<int> departures;
+    auto word_of_taken = [&](const std::vector<int>& ids) {
+      std::vector<std::pair<int, Letter>> e;
+      for (int i : ids)
+        for (int t = 0; t < 2; ++t) e.push_back({end_pos[i][t], Letter{i, t == 1}});
+      std::sort(e.begin(), e.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+      std::vector<Letter> ends;
+      for (const auto& x : e) ends.push_back(x.second);
+      return wedge_word(ends, &departures);
+    };
+    for (const Pair& p : pairs) {
+      if (used[p.i] || used[p.j]) continue;
+      taken.push_back(p.i);
+      taken.push_back(p.j);
+      if (blocks_from_start(word_of_taken(taken))) {
+        used[p.i] = used[p.j] = 1;
+      } else {
+        taken.resize(taken.size() - 2);
       }
+    }
+    std::vector<std::pair<int, int>> chosen;
+    for (int i : taken) chosen.push_back(bands[i]);
+    word_of_taken(taken);  // departures of the final set, for its corners below
     // d. detach the chosen pairs along T; they join Gamma.
     DetachPlan P;
     P.root = root;
@@ -1142,7 +1200,13 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
       const int t = nleaves / 4;
       const int a0 = f_start >= 0 ? f_start : end_vertex.back(), b1 = f_start >= 0 ? f_end : end_vertex.front();
       corners.push_back({a0, end_vertex.front()});
-      for (int p = 0; p + 1 < t; ++p) corners.push_back({end_vertex[4 * p + 3], end_vertex[4 * p + 4]});
+      // Between two new blocks: the corner before letter 4p of the wedge word, i.e. the sector
+      // from the end that letter leaves along to the next end ccw (tour positions = leaf indices).
+      for (int p = 1; p < t; ++p) {
+        const int d = departures[4 * p];
+        if (d + 1 >= nleaves) internal("normal form: a block corner outside the wedge");
+        corners.push_back({end_vertex[d], end_vertex[d + 1]});
+      }
       if (f_start >= 0) corners.push_back({end_vertex.back(), b1});
       else corners.front().second = b1;  // round 0: the outer corner, from the last end to the first
     }

@@ -341,7 +341,7 @@ TEST_CASE("generated meshes of genus 1 to 200 are cut into verified disks") {
   }
 }
 
-TEST_CASE("the normal form takes at most g rounds; without it the cut is still verified") {
+TEST_CASE("the normal form takes at most g rounds, and without it the cut is still verified") {
   for (int g : {2, 3, 6}) {
     Input in = generated(g, 600 * g, 20 + g);
     CutOptions o;

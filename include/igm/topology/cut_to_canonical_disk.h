@@ -25,10 +25,10 @@
 //     of the root between two blocks (the whole rotation in round 0). A round: the greedy basis of
 //     the surface cut along Gamma (step 1 with a tree that leaves the root only through F and
 //     never enters Gamma, every other edge at Gamma forced into the cotree first); the loops'
-//     ends in tour order along F; a largest set of linked pairs (ends X Y X' Y') whose end
-//     intervals are disjoint (greedy by right end); only these pairs are detached (step 2); they
-//     join Gamma as new blocks, and F becomes the corner between blocks whose spokes reach the
-//     largest connected set of vertices off Gamma. If a round finds no usable linked pair it is
+//     ends in tour order along F; linked pairs (ends X Y X' Y'), taken greedily by right end as
+//     long as their word read from F's outside stays in blocks from its first letter; only these
+//     pairs are detached (step 2); they join Gamma as new blocks, and the next F is the corner
+//     between blocks whose spokes reach the largest connected set of vertices off Gamma. If a round finds no usable linked pair it is
 //     tried again after splitting chords (edges off Gamma joining two Gamma vertices): those of
 //     F's triangles, then those a tree through chord midpoints needs, then all. After every round
 //     the word traced from the rotation at the root is checked to be one cycle in commutator
@@ -37,7 +37,7 @@
 //     that the word is exactly L0 L1 L0^-1 L1^-1 L2 L3 ... Off, the word is whatever step 2 gives.
 //     Known limitation: later rounds' loops run beside earlier ones, and chords between parallel
 //     strands must be split, so the growth compounds with the genus (couplingdown g9: 1.8k ->
-//     3.5k vertices instead of 2.2k without; a generated 1M-face g20: 0.5M -> 0.77M; cheese g133
+//     3.45k vertices instead of 2.2k without; a generated 1M-face g20: 0.5M -> 0.77M; cheese g133
 //     and a generated 5000-face g20 exceed CutOptions::max_normal_form_growth, a typed error).
 //     Measured and rejected before: handle slides on the detached greedy loops (plan_handle_slides,
 //     handle_slides.h): the slides' paths double in length per handle on cheese with every plan
