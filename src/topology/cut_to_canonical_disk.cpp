@@ -889,6 +889,7 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
     const int want = 2 * genus - static_cast<int>(gamma.size());
     // F: the corner between blocks whose spokes reach the most vertices off Gamma (connected by
     // edges off Gamma), so that T does not start in a pocket. O(n + corners * valence(root)).
+    mark();
     if (round > 0 && chord_level == 0) {
       Dsu comp(M.num_vertices());
       for (int h = 0; h < M.num_halfedges(); ++h)
@@ -909,7 +910,6 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
       corners.erase(corners.begin() + static_cast<long>(best));
     }
     // a. chords of Gamma (only when the round found no usable linked pair without: chord_level).
-    mark();
     update_positions();
     if (chord_level == 0 && round > 0) {  // F without a spoke off Gamma: T could not start
       bool live = false;
