@@ -537,7 +537,6 @@ void plan_strands(DetachPlan& P, const std::vector<std::pair<int, int>>& bands) 
       if (owner[l] != leaf_index[l]) internal("leaf not owned by its strand", {l});
     for (int c : children(root, nullptr)) P.crossings += arr_free[c];
   }
-
 }
 
 // Step 2 realized: draws the strands planned in P as pairwise disjoint normal curves around the
@@ -777,24 +776,27 @@ std::vector<std::vector<int>> realize_strands(DetachPlan& P, CutStats& stats) {
   return loops;
 }
 
-// The word of loops whose ends lie in one wedge of the root, in the order `ends` (per end: loop
-// id, and whether it is the loop's last edge; each loop twice), closed through the outside of the
-// wedge and read from the corner there: the boundary walk leaves along an end, comes back at its
-// mate and leaves along the next end clockwise (build_cut's rule). departures[k] is the position
-// letter k leaves from. O(m log m).
-Word wedge_word(const std::vector<Letter>& ends, std::vector<int>* departures) {
+// The boundary word of loops at the root whose ends, in ccw order, are `ends` (per end: loop id,
+// and whether it is the loop's last edge; each loop twice): the boundary walk leaves along an
+// end, comes back at its mate and leaves along the next end clockwise (build_cut's rule),
+// starting with the end at position `start`. departures[k] is the position letter k leaves from.
+// Returns an empty word if the walk closes before it has used every end (more than one boundary
+// cycle). For ends in one wedge, start = m - 1 reads the word from the corner outside the wedge.
+// O(m log m).
+Word trace_word(const std::vector<Letter>& ends, int start, std::vector<int>* departures) {
   const int m = static_cast<int>(ends.size());
   std::vector<int> order(m), mate(m, -1);
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](int a, int b) { return ends[a].loop != ends[b].loop ? ends[a].loop < ends[b].loop : a < b; });
-  for (int k = 0; k + 1 < m; k += 2) {
-    if (ends[order[k]].loop != ends[order[k + 1]].loop) internal("wedge word: a loop without two ends");
+  for (int k = 0; k < m; k += 2) {
+    if (k + 1 == m || ends[order[k]].loop != ends[order[k + 1]].loop) internal("boundary word: a loop without two ends");
     mate[order[k]] = order[k + 1], mate[order[k + 1]] = order[k];
   }
   Word w;
   departures->clear();
-  int leave = m - 1;
+  int leave = start;
   for (int k = 0; k < m; ++k) {  // m steps
+    if (k > 0 && leave == start) return {};
     w.push_back(ends[leave]);
     departures->push_back(leave);
     leave = (mate[leave] + m - 1) % m;
@@ -802,9 +804,9 @@ Word wedge_word(const std::vector<Letter>& ends, std::vector<int>* departures) {
   return w;
 }
 
-// True if w is p q p^-1 q^-1 blocks from letter 0 on (any ids and orientations).
+// True if w is non-empty and p q p^-1 q^-1 blocks from letter 0 on (any ids and orientations).
 bool blocks_from_start(const Word& w) {
-  if (w.size() % 4 != 0) return false;
+  if (w.empty() || w.size() % 4 != 0) return false;
   for (std::size_t k = 0; k < w.size(); k += 4) {
     const Letter &p = w[k], &q = w[k + 1], &pi = w[k + 2], &qi = w[k + 3];
     if (p.loop == q.loop || pi.loop != p.loop || qi.loop != q.loop || pi.inverse == p.inverse || qi.inverse == q.inverse)
@@ -1144,7 +1146,7 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
       std::sort(e.begin(), e.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
       std::vector<Letter> ends;
       for (const auto& x : e) ends.push_back(x.second);
-      return wedge_word(ends, &departures);
+      return trace_word(ends, static_cast<int>(ends.size()) - 1, &departures);
     };
     for (const Pair& p : pairs) {
       if (used[p.i] || used[p.j]) continue;
@@ -1224,27 +1226,31 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
         if (at_end[M.target(h)].loop >= 0) rot.push_back(at_end[M.target(h)]);
         h = M.next_around_origin(h);
       } while (h != h0);
-      const int m = static_cast<int>(rot.size());
-      std::vector<int> mate(m, -1);
-      for (int i = 0; i < m; ++i)
-        for (int j = 0; j < m; ++j)
-          if (j != i && rot[j].loop == rot[i].loop) mate[i] = j;
-      // The boundary walk leaves along an end, comes back at its mate and leaves along the next end
-      // clockwise (build_cut's rule). m steps.
-      Word w;
-      int leave = 0;
-      for (int k = 0; k < m; ++k) {
-        w.push_back(rot[leave]);
-        leave = (mate[leave] + m - 1) % m;
-        if (leave == 0 && k + 1 < m) internal("normal form: the loops so far bound more than one boundary");
-      }
-      if (m != static_cast<int>(2 * gamma.size()) || commutator_rotation(w) < 0)
+      std::vector<int> departures_all;
+      const Word w = trace_word(rot, 0, &departures_all);
+      if (w.empty()) internal("normal form: the loops so far bound more than one boundary");
+      if (rot.size() != 2 * gamma.size() || commutator_rotation(w) < 0)
         internal("normal form: after round " + std::to_string(round) + " the word is not in blocks: " + to_string(w));
     }
     if (M.num_vertices() > vertex_limit) return false;
   }
   res.loops = std::move(gamma);
   return true;
+}
+
+// Root candidates: the vertex of maximum valence (lowest id among ties), then vertices i * V / k
+// for i = 1..k-1 (without repeats). O(V).
+std::vector<int> root_candidates(const TriMesh& mesh, long k) {
+  const int nv = mesh.num_vertices();
+  int first = 0, best_valence = -1;
+  for (int v = 0; v < nv; ++v)
+    if (mesh.valence(v) > best_valence) best_valence = mesh.valence(v), first = v;
+  std::vector<int> roots{first};
+  for (long i = 1; i < k; ++i) {
+    const int v = static_cast<int>(i * nv / k);
+    if (std::find(roots.begin(), roots.end(), v) == roots.end()) roots.push_back(v);
+  }
+  return roots;
 }
 
 }  // namespace
@@ -1271,36 +1277,30 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
   if (options.root < -1 || options.root >= nv0)
     throw Error(ErrorKind::InvalidArgument, "root vertex " + std::to_string(options.root) + " out of range [0, " +
                                                 std::to_string(nv0) + ")", {options.root});
-  // Root and metric: the given root with 3D edge lengths, or among K deterministic root candidates,
-  // each with 3D lengths and with hop counts as the basis metric, the pair whose detaching crosses
-  // the fewest edges (predicted by plan_detach, without building anything; the first wins ties).
-  // Candidates: the vertex of maximum valence (lowest id among ties), then vertices i * V / K.
-  // K = clamp(1e6 / F, 1, 24) bounds the extra cost to one basis computation on a 1M-face mesh.
   const std::vector<Vec3d> unit = unit_scaled(positions);  // edge lengths finite at any magnitude
+  res.genus = genus;
+  res.stats.genus = genus;
+  res.stats.vertices_before = nv0;
+  res.stats.faces_before = mesh.num_faces();
+  RefinedSurface& rs = res.surface;
   if (options.normal_form) {
-    // Root and metric: the given root with 3D lengths, or among K deterministic candidates (as
-    // below, K = clamp(2e5 / F, 1, 12)) with 3D lengths and (K > 1) hop counts, the pair whose rounds
-    // end with the fewest vertices; a candidate stops once it has more than the best so far.
+    // Root and metric: the given root with 3D lengths, or among K deterministic candidates
+    // (root_candidates, K = clamp(2e5 / F, 1, 12)) with 3D lengths and (K > 1) hop counts, the
+    // pair whose rounds end with the fewest vertices; a candidate stops once it has more than the
+    // best so far.
     const long limit = nv0 + static_cast<long>(options.max_normal_form_growth * nv0);
     std::vector<std::pair<int, bool>> candidates;
     if (options.root >= 0) {
       candidates.push_back({options.root, false});
     } else {
-      int first = 0, best_valence = -1;
-      for (int v = 0; v < nv0; ++v)
-        if (mesh.valence(v) > best_valence) best_valence = mesh.valence(v), first = v;
       const long k = std::clamp(200000L / std::max(1, mesh.num_faces()), 1L, 12L);
-      std::vector<int> roots{first};
-      for (long i = 1; i < k; ++i) {
-        const int v = static_cast<int>(i * nv0 / k);
-        if (std::find(roots.begin(), roots.end(), v) == roots.end()) roots.push_back(v);
-      }
       // Hop counts only where several roots are tried (a large mesh gets one candidate).
-      for (int c : roots)
+      for (int c : root_candidates(mesh, k))
         for (bool hops : {false, true})
           if (!hops || k > 1) candidates.push_back({c, hops});
     }
     bool found = false;
+    int tried = 0;
     for (auto [c, hops] : candidates) {
       CutResult trial;
       trial.root = c;
@@ -1308,86 +1308,64 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
       trial.surface.mesh = mesh;
       trial.surface.num_input_vertices = nv0;
       trial.surface.input_positions = positions;
-      const long bound = found ? res.surface.mesh.num_vertices() - 1 : limit;
+      const long bound = found ? rs.mesh.num_vertices() - 1 : limit;
+      ++tried;
       if (canonical_rounds(trial, unit, hops, bound)) {
-        trial.stats.roots_tried = res.stats.roots_tried;
-        res = std::move(trial);
+        res.root = trial.root;
+        res.loops = std::move(trial.loops);
+        rs = std::move(trial.surface);
+        res.stats = trial.stats;
         found = true;
       }
-      ++res.stats.roots_tried;
     }
     if (!found)
       throw Error(ErrorKind::Unsupported,
                   "normal form: the canonical loops would grow the mesh past " + std::to_string(limit) +
                       " vertices (CutOptions::max_normal_form_growth x " + std::to_string(nv0) +
                       " input vertices); run without the normal form");
-    const int root = res.root;
-    RefinedSurface& rs = res.surface;
     res.stats.genus = genus;
     res.stats.vertices_before = nv0;
     res.stats.faces_before = mesh.num_faces();
+    res.stats.roots_tried = tried;
     res.stats.seconds_detach = seconds_since(t_start);
-    const auto t_cut = Clock::now();
-    build_cut(res, -1);
-    relabel_blocks(res, word_of(res));
-    res.stats.precondition_splits += precondition_pass(res);
-    build_cut(res, find_he(rs.mesh, root, res.loops[0][1]));
-    if (!is_canonical_word(word_of(res))) internal("cut word is not canonical: " + to_string(word_of(res)));
-    res.stats.seconds_cut = seconds_since(t_cut);
-    res.stats.vertices_after = rs.mesh.num_vertices();
-    res.stats.faces_after = rs.mesh.num_faces();
-    res.stats.seconds_total = seconds_since(t_start);
-    return res;
-  }
-  DetachPlan P;
-  if (options.root >= 0) {
-    P = plan_detach(mesh, unit, options.root, genus, false);
   } else {
-    int first = 0, best_valence = -1;
-    for (int v = 0; v < nv0; ++v) {
-      const int val = mesh.valence(v);
-      if (val > best_valence) best_valence = val, first = v;
-    }
-    const long k = std::clamp(1000000L / std::max(1, mesh.num_faces()), 1L, 24L);
-    std::vector<int> candidates{first};
-    for (long i = 1; i < k; ++i) {
-      const int v = static_cast<int>(i * nv0 / k);
-      if (std::find(candidates.begin(), candidates.end(), v) == candidates.end()) candidates.push_back(v);
-    }
-    for (int c : candidates) {
-      for (bool hops : {false, true}) {
-        DetachPlan q = plan_detach(mesh, unit, c, genus, hops);
-        ++res.stats.roots_tried;
-        if (P.root < 0 || q.crossings < P.crossings) P = std::move(q);
+    // Root and metric: the given root with 3D edge lengths, or among K deterministic root
+    // candidates (root_candidates, K = clamp(1e6 / F, 1, 24): the extra cost is bounded by one
+    // basis computation on a 1M-face mesh), each with 3D lengths and with hop counts as the basis
+    // metric, the pair whose detaching crosses the fewest edges (predicted by plan_detach, without
+    // building anything; the first wins ties).
+    DetachPlan P;
+    if (options.root >= 0) {
+      P = plan_detach(mesh, unit, options.root, genus, false);
+    } else {
+      const long k = std::clamp(1000000L / std::max(1, mesh.num_faces()), 1L, 24L);
+      for (int c : root_candidates(mesh, k)) {
+        for (bool hops : {false, true}) {
+          DetachPlan q = plan_detach(mesh, unit, c, genus, hops);
+          ++res.stats.roots_tried;
+          if (P.root < 0 || q.crossings < P.crossings) P = std::move(q);
+        }
       }
     }
+    res.root = P.root;
+    res.stats.band_splits = P.band_splits;
+    res.stats.predicted_crossings = P.crossings;
+    res.stats.seconds_basis = seconds_since(t_start);
+    const auto t_detach = Clock::now();
+    P.rs.input_positions = positions;
+    res.loops = realize_strands(P, res.stats);
+    rs = std::move(P.rs);
+    res.stats.seconds_detach = seconds_since(t_detach);
   }
-  const int root = P.root;
-
-  res.root = root;
-  res.genus = genus;
-  res.stats.genus = genus;
-  res.stats.vertices_before = nv0;
-  res.stats.faces_before = mesh.num_faces();
-  RefinedSurface& rs = res.surface;
-
-  res.stats.band_splits = P.band_splits;
-  res.stats.predicted_crossings = P.crossings;
-  res.stats.seconds_basis = seconds_since(t_start);
-  const auto t_detach = Clock::now();
-
-  P.rs.input_positions = positions;
-  res.loops = realize_strands(P, res.stats);
-  rs = std::move(P.rs);
-
-
-  res.stats.seconds_detach = seconds_since(t_detach);
   const auto t_cut = Clock::now();
 
-  // ---- 4. the cut ----
+  // ---- 4. the cut (with the normal form: loops renumbered so that the word is L0 L1 L0^-1 ...) ----
   build_cut(res, -1);
+  if (options.normal_form) relabel_blocks(res, word_of(res));
   res.stats.precondition_splits += precondition_pass(res);
-  build_cut(res, find_he(rs.mesh, root, res.loops[0][1]));
+  build_cut(res, find_he(rs.mesh, res.root, res.loops[0][1]));
+  if (options.normal_form && !is_canonical_word(word_of(res)))
+    internal("cut word is not canonical: " + to_string(word_of(res)));
   res.stats.seconds_cut = seconds_since(t_cut);
   res.stats.vertices_after = rs.mesh.num_vertices();
   res.stats.faces_after = rs.mesh.num_faces();
