@@ -8,6 +8,7 @@
 #include <numeric>
 #include <queue>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include "igm/core/error.h"
@@ -815,202 +816,160 @@ bool blocks_from_start(const Word& w) {
   return true;
 }
 
-// Step 3 by rounds: the canonical system built handle by handle, with no slides. Gamma is the
-// union of the loops already final, in commutator blocks; the corners between blocks are the
-// sectors at the root where a new block keeps the word in blocks (all of the rotation in round 0).
-// One round:
-//  a. F: the corner whose spokes reach the largest connected set of vertices off Gamma;
-//  b. greedy basis of the surface cut along Gamma, with its boundary contracted to the root (genus
-//     g - |Gamma|/2): Dijkstra tree T (metric: `hops` or 3D lengths) from the root that leaves it
-//     only through F and never enters Gamma; dual maximum spanning tree on the edges off T and off
-//     Gamma, every other edge at a Gamma vertex or at a vertex T misses forced in first. The
-//     leftover edges whose ends T reaches close loops that run in the cut surface and leave the
-//     root through F;
-//  c. their ends are ordered along F by the counter-clockwise tour of T; two loops whose ends
-//     interleave (a linked pair) cross once at the root, so once detached they form a handle whose
-//     ends are consecutive in F. Linked pairs are taken greedily (by right end, then length) as
-//     long as the word of the pairs taken, read from F's outside, stays in blocks from its first
-//     letter (pairs side by side, or nested where that keeps the blocks), and only these pairs
-//     are detached (step 2 on T). If there is
-//     none, the round is tried again after splitting chords of Gamma (edges off Gamma joining two
-//     Gamma vertices; their midpoints are off Gamma): those of F's triangles, then those a tree
-//     through chord midpoints needs, then all (after which T reaches everything, the forced edges
-//     close no dual cycle, and a linked pair exists since the intersection form is nondegenerate);
-//  d. the new pairs join Gamma; the corners around each new block join the list; the word traced
-//     from the rotation at the root is checked to be one cycle in commutator blocks.
-// Every round adds at least one handle: at most g rounds and 4g attempts, each O(n log n +
-// crossings). Returns false as soon as the mesh has more than vertex_limit vertices.
-// Post (true): res.loops holds the 2g loops, their word in commutator blocks (relabelled by the
-// caller); res.stats has the rounds' counts.
+// Depth-first tour of a tree on M from the root, counter-clockwise after the parent edge (the
+// root: all of its half-edges from root_h0 on): child(h) says whether target(h) is a child of
+// origin(h); visit(h) is called, in tour order, for every other half-edge out of a tree vertex
+// (the parent edges excepted). Each tree vertex once: O(E).
+template <class Child, class Visit>
+void tour_tree(const TriMesh& M, int root_h0, Child&& child, Visit&& visit) {
+  struct It { int h, stop; };
+  std::vector<It> st;
+  auto step = [&](int h) {
+    if (child(h)) st.push_back({M.next_around_origin(M.twin(h)), M.twin(h)});
+    else visit(h);
+  };
+  int h = root_h0;
+  do {  // valence(root) steps, each followed by one subtree
+    step(h);
+    while (!st.empty()) {
+      It& t = st.back();
+      if (t.h == t.stop) {
+        st.pop_back();
+        continue;
+      }
+      const int g = t.h;
+      t.h = M.next_around_origin(g);
+      step(g);  // may push (t is not used after)
+    }
+    h = M.next_around_origin(h);
+  } while (h != root_h0);
+}
+
+// The tree G of the canonical construction: parent, distance from the root along G, membership.
+struct GammaTree {
+  std::vector<int> pg;
+  std::vector<double> dg;
+  std::vector<char> on_g;
+  void grow(int nv) {
+    pg.resize(nv, -1);
+    dg.resize(nv, INFINITY);
+    on_g.resize(nv, 0);
+  }
+};
+
+// The tour of G (with the bands `taken`) on M: rot = the taken ends in tour order (Letter{band,
+// end at v}), gap_of[h] = the number of ends before the half-edge h out of G that is neither a tree
+// edge nor a band (-1 for the others), band_of[h] = the taken band on h's edge (-1: none). O(E).
+void gamma_tour(const TriMesh& M, const GammaTree& K, const std::vector<std::pair<int, int>>& taken, int root,
+                int root_h0, std::vector<int>& band_of, std::vector<int>& gap_of, std::vector<Letter>& rot) {
+  const int nh = M.num_halfedges();
+  band_of.assign(nh, -1);
+  for (std::size_t i = 0; i < taken.size(); ++i) {
+    const int h = find_he(M, taken[i].first, taken[i].second);
+    band_of[h] = band_of[M.twin(h)] = static_cast<int>(i);
+  }
+  gap_of.assign(nh, -1);
+  rot.clear();
+  tour_tree(
+      M, root_h0,
+      [&](int h) {
+        const int b = M.target(h);
+        return band_of[h] < 0 && K.on_g[b] && b != root && K.pg[b] == M.origin(h);
+      },
+      [&](int h) {
+        const int i = band_of[h];
+        if (i >= 0) rot.push_back(Letter{i, M.origin(h) != taken[i].first});
+        else gap_of[h] = static_cast<int>(rot.size());
+      });
+}
+
+// Step 3: the canonical system built handle by handle on one growing tree, with no slides. Gamma
+// = a tree G from the root (parent pg, distance dg along G) and the bands taken so far; once
+// detached along G (step 2, at the end) the loops root~u, uv, v~root leave the root in the order
+// of G's counter-clockwise tour, and that order traces a word in commutator blocks (checked every
+// round). A gap is the stretch of the tour between two consecutive taken ends (it becomes a
+// corner of the polygon); a gap between blocks can take new blocks. One round:
+//  a. the tour of G: each half-edge out of a vertex of G that is neither a tree edge nor a taken
+//     band gets the gap it lies in; the word of the taken ends and its gaps between blocks (round 0:
+//     the whole rotation of the root);
+//  b. the gap t between blocks whose free half-edges reach the largest connected set of vertices
+//     off Gamma;
+//  c. greedy basis of the surface cut along Gamma: Dijkstra forest T from the free half-edges of
+//     gap t (a vertex x of G starts at dg[x]; metric `hops` or 3D lengths) over the vertices off
+//     Gamma; dual maximum spanning tree on the edges off T and off Gamma, every edge at a Gamma
+//     vertex (but the sources) or at a vertex T misses forced in first;
+//  d. the leftover edges' ends in the tour of G + T (they lie inside gap t); linked pairs (ends
+//     X Y X' Y') taken greedily by right end as long as their word read from the gap stays in
+//     blocks from its first letter; the taken bands and their paths in T join G.
+// Chords (edges off Gamma joining two Gamma vertices) wall T off where branches of G run side by
+// side. A round with no usable pair is searched again (c, d) on a copy of the surface with every
+// chord split at its midpoint; then only the chords the taken paths cross are split on the
+// surface, with every chord of the faces at them, in the copy's order (so that those faces are
+// triangulated as in the copy and the paths exist). If that finds nothing either, gap t is given
+// up for this round. Every round adds a block: at most g rounds, at most g + 1 gaps per round.
+// Then step 2 detaches all 2g loops once, along G. Returns false as soon as the mesh would have
+// more than vertex_limit vertices. Post (true): res.loops holds the 2g loops, their word in
+// commutator blocks (relabelled by the caller); res.stats has the counts. Cost O(g^2 n log n +
+// crossings) in the worst case, O(g n log n + crossings) when no gap is given up.
 bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops, long vertex_limit) {
   const int root = res.root, genus = res.genus;
   RefinedSurface& rs = res.surface;
-  auto& M = rs.mesh;
-  std::vector<std::vector<int>> gamma;
-  int f_start = -1, f_end = -1;  // F: ccw from the edge root->f_start to the edge root->f_end
-  std::vector<std::pair<int, int>> corners;  // the other corners between blocks, as (f_start, f_end)
   std::vector<Vec3d> pos(unit.begin(), unit.begin() + rs.num_input_vertices);
-  auto len = [&](int a, int b) { return hops ? 1.0 : length(pos[a], pos[b]); };
-  std::vector<char> on_g, is_g;
-  auto mark = [&] {  // O(n)
-    on_g.assign(M.num_vertices(), 0);
-    is_g.assign(M.num_halfedges(), 0);
-    on_g[root] = 1;
-    for (const auto& L : gamma)
-      for (std::size_t j = 0; j < L.size(); ++j) {
-        on_g[L[j]] = 1;
-        const int h = find_he(M, L[j], L[(j + 1) % L.size()]);
-        is_g[h] = is_g[M.twin(h)] = 1;
-      }
+  auto extend = [&](const RefinedSurface& S, std::vector<Vec3d>& p) {
+    while (static_cast<int>(p.size()) < S.mesh.num_vertices())
+      p.push_back(evaluate(S.constructed[p.size() - S.num_input_vertices], unit));
   };
-  // The root's half-edges strictly inside F, ccw (all of them in round 0). O(valence(root)).
-  auto free_wedge = [&] {
-    std::vector<int> wedge;
-    const int h_first = f_start >= 0 ? find_he(M, root, f_start) : M.vertex_halfedge(root);
-    const int h_stop = f_start >= 0 ? find_he(M, root, f_end) : h_first;
-    int h = f_start >= 0 ? M.next_around_origin(h_first) : h_first;
-    for (int guard = 0; !(f_start >= 0 && h == h_stop); ++guard) {  // <= valence(root) steps
-      if (guard > M.valence(root)) internal("normal form: the free wedge does not close");
-      wedge.push_back(h);
-      h = M.next_around_origin(h);
-      if (f_start < 0 && h == h_first) break;
-    }
-    return wedge;
+  GammaTree G;
+  G.grow(rs.mesh.num_vertices());
+  G.on_g[root] = 1;
+  G.dg[root] = 0;
+  std::vector<std::pair<int, int>> taken;  // the bands taken, (u, v): the loop root~u, uv, v~root
+  int root_start = -1;  // after round 0: a child of the root in G (its edge is never split)
+  auto root_h0 = [&](const TriMesh& M) { return root_start >= 0 ? find_he(M, root, root_start) : M.vertex_halfedge(root); };
+  auto is_g = [&](const TriMesh& M, const GammaTree& K, const std::vector<int>& band_of, int h) {
+    const int a = M.origin(h), b = M.target(h);
+    return band_of[h] >= 0 ||
+           (K.on_g[a] && K.on_g[b] && ((b != root && K.pg[b] == a) || (a != root && K.pg[a] == b)));
   };
-  auto update_positions = [&] {
-    while (static_cast<int>(pos.size()) < M.num_vertices())
-      pos.push_back(evaluate(rs.constructed[pos.size() - rs.num_input_vertices], unit));
+  // The found pairs of a search: bands and the new vertices of G with their parents and distances.
+  struct Found {
+    std::vector<std::pair<int, int>> bands;
+    std::vector<std::tuple<int, int, double>> verts;  // (vertex, parent, distance), parents first
   };
-  // The chords a round splits: 0 none, 1 those of the root's triangles in F, 2 those a tree through
-  // chord midpoints needs, 3 all. A round that finds no usable linked pair is tried again with the
-  // next level (a round with no spoke off Gamma in F starts at level 1).
-  int chord_level = 0;
-  for (int round = 0, attempts = 0; static_cast<int>(gamma.size()) < 2 * genus; ++round, ++attempts) {
-    if (attempts >= 4 * genus) internal("normal form: more than 4g attempts");
-    if (round >= genus) internal("normal form: round " + std::to_string(round) + " with g = " + std::to_string(genus));
-    const int want = 2 * genus - static_cast<int>(gamma.size());
-    // F: the corner between blocks whose spokes reach the most vertices off Gamma (connected by
-    // edges off Gamma), so that T does not start in a pocket. O(n + corners * valence(root)).
-    mark();
-    if (round > 0 && chord_level == 0) {
-      Dsu comp(M.num_vertices());
-      for (int h = 0; h < M.num_halfedges(); ++h)
-        if (!on_g[M.origin(h)] && !on_g[M.target(h)]) comp.unite(M.origin(h), M.target(h));
-      std::vector<int> size(M.num_vertices(), 0);
-      for (int v = 0; v < M.num_vertices(); ++v)
-        if (!on_g[v]) ++size[comp.find(v)];
-      std::size_t best = 0;
-      int best_score = -1;
-      for (std::size_t k = 0; k < corners.size(); ++k) {
-        f_start = corners[k].first, f_end = corners[k].second;
-        int score = 0;
-        for (int h : free_wedge())
-          if (!on_g[M.target(h)]) score = std::max(score, size[comp.find(M.target(h))]);
-        if (score > best_score) best_score = score, best = k;
-      }
-      f_start = corners[best].first, f_end = corners[best].second;
-      corners.erase(corners.begin() + static_cast<long>(best));
-    }
-    // a. chords of Gamma (only when the round found no usable linked pair without: chord_level).
-    update_positions();
-    if (chord_level == 0 && round > 0) {  // F without a spoke off Gamma: T could not start
-      bool live = false;
-      for (int h : free_wedge()) live = live || !on_g[M.target(h)];
-      if (!live) chord_level = 1;
-    }
-    if (chord_level > 0) {
-      auto is_chord = [&](int h) { return !is_g[h] && on_g[M.origin(h)] && on_g[M.target(h)]; };
-      std::vector<std::pair<int, int>> chords;
-      if (chord_level == 3) {
-        for (int h = 0; h < M.num_halfedges(); ++h)
-          if (h < M.twin(h) && is_chord(h)) chords.push_back({M.origin(h), M.target(h)});
-      } else if (chord_level == 1) {
-        // The chords of the triangles at the root in F: a spoke, or the edge opposite the root.
-        std::vector<int> faces_h = free_wedge();
-        if (f_start >= 0) faces_h.push_back(find_he(M, root, f_start));
-        for (int h : faces_h)
-          for (int g : {h, TriMesh::next(h)})
-            if (is_chord(g)) chords.push_back({M.origin(g), M.target(g)});
-        std::sort(chords.begin(), chords.end());
-        chords.erase(std::unique(chords.begin(), chords.end()), chords.end());
-      } else {
-        // Dijkstra from F over the vertices off Gamma and the midpoints of chords (node V + e for
-        // the canonical half-edge e); two nodes are adjacent if they lie in one face. The chords
-        // whose midpoint is the parent of another node are the ones split. O(E log E).
-        const int nv1 = M.num_vertices();
-        auto canon = [&](int h) { return std::min(h, M.twin(h)); };
-        auto at = [&](int n) {
-          if (n < nv1) return pos[n];
-          const Vec3d &a = pos[M.origin(n - nv1)], &b = pos[M.target(n - nv1)];
-          return Vec3d{(a.x + b.x) / 2, (a.y + b.y) / 2, (a.z + b.z) / 2};
-        };
-        constexpr double kMidpointPenalty = 1e9;  // unit-scaled lengths: a path is < 4 V <= 1e9
-        std::vector<double> d(nv1 + M.num_halfedges(), INFINITY);
-        std::vector<int> par(d.size(), -1);
-        std::vector<char> used(d.size(), 0);
-        using Item = std::pair<double, int>;
-        std::priority_queue<Item, std::vector<Item>, std::greater<Item>> pq;
-        auto relax = [&](int from, int n) {
-          // A midpoint costs more than any path of vertices: chords are crossed only where needed.
-          const double nd = (from < 0 ? 0.0 : d[from]) + (hops ? 1.0 : length(from < 0 ? pos[root] : at(from), at(n))) +
-                            (n >= nv1 ? kMidpointPenalty : 0.0);
-          if (nd < d[n]) d[n] = nd, par[n] = from, pq.push({nd, n});
-        };
-        const std::vector<int> wedge0 = free_wedge();
-        std::vector<int> faces_h(wedge0);  // half-edges whose left face lies in F
-        if (f_start >= 0) faces_h.push_back(find_he(M, root, f_start));
-        for (int h : wedge0) {
-          if (!on_g[M.target(h)]) relax(-1, M.target(h));
-          else if (is_chord(h)) relax(-1, nv1 + canon(h));
-        }
-        for (int h : faces_h)
-          if (is_chord(TriMesh::next(h))) relax(-1, nv1 + canon(TriMesh::next(h)));
-        while (!pq.empty()) {  // each node settles once
-          auto [dd, n] = pq.top();
-          pq.pop();
-          if (dd > d[n]) continue;
-          if (n < nv1) {
-            const int h0 = M.vertex_halfedge(n);
-            int h = h0;
-            do {
-              if (!on_g[M.target(h)]) relax(n, M.target(h));
-              if (is_chord(TriMesh::next(h))) relax(n, nv1 + canon(TriMesh::next(h)));
-              h = M.next_around_origin(h);
-            } while (h != h0);
-          } else {
-            const int e = n - nv1;
-            for (int h : {e, M.twin(e)}) {
-              const int c = M.target(TriMesh::next(h));
-              if (!on_g[c]) relax(n, c);
-              for (int g : {TriMesh::next(h), TriMesh::prev(h)})
-                if (is_chord(g)) relax(n, nv1 + canon(g));
-            }
-          }
-        }
-        for (std::size_t n = 0; n < d.size(); ++n)
-          if (par[n] >= nv1) used[par[n]] = 1;
-        for (int e = 0; e < M.num_halfedges(); ++e)
-          if (used[nv1 + e]) chords.push_back({M.origin(e), M.target(e)});
-      }
-      for (auto [a, b] : chords) rs.split_edge(find_he(M, a, b), make_rational(1, 2));
-      res.stats.round_chord_splits += static_cast<int>(chords.size());
-      if (!chords.empty()) mark();
-    }
-    update_positions();
+  // Steps c-d on S (the surface or a copy) with G's marks K (sized for S) and positions P, from the
+  // gaps `gaps` at once (each vertex of T belongs to the gap its tree hangs from; an edge between two
+  // gaps' parts is forced into the cotree; pairs are taken within one gap). Vertices >= first_mid
+  // (chord midpoints of a copy) cost kMidpointCost more to enter or leave. False if no usable linked
+  // pair. O(E log E + pairs * taken log taken).
+  auto search = [&](const RefinedSurface& S, const GammaTree& K, const std::vector<Vec3d>& P,
+                    const std::vector<int>& gaps, int round, int first_mid, Found& out) {
+    const TriMesh& M = S.mesh;
+    constexpr double kMidpointCost = 1000.0;  // unit-scaled lengths: crossing a chord is a last resort
     const int nv = M.num_vertices(), nh = M.num_halfedges();
-    // b. the wedge F at the root (ccw), the tree T, the cotree.
-    std::vector<int> wedge = free_wedge();
-    std::vector<char> spoke(nh, 0);
-    for (int h : wedge) spoke[h] = spoke[M.twin(h)] = 1;
+    auto len = [&](int a, int b) {
+      return (hops ? 1.0 : length(P[a], P[b])) + (a >= first_mid ? kMidpointCost : 0.0) + (b >= first_mid ? kMidpointCost : 0.0);
+    };
+    const int want = 2 * genus - static_cast<int>(taken.size());
+    std::vector<int> band_of, gap_of;
+    std::vector<Letter> rot;
+    gamma_tour(M, K, taken, root, root_h0(M), band_of, gap_of, rot);
+    const int m = static_cast<int>(rot.size());
+    std::vector<int> label_of_gap(m + 1, -1);  // gap number -> index in gaps (m: the outer gap's end)
+    for (std::size_t k = 0; k < gaps.size(); ++k) {
+      label_of_gap[gaps[k]] = static_cast<int>(k);
+      if (gaps[k] == 0) label_of_gap[m] = static_cast<int>(k);
+    }
+    auto gap_label = [&](int h) { return gap_of[h] >= 0 ? label_of_gap[gap_of[h]] : -1; };
+    // c. the forest T from the gaps, the cotree.
     std::vector<double> dist(nv, INFINITY);
-    std::vector<int> parent(nv, -1);
+    std::vector<int> par(nv, -1), label(nv, -1);
     {
       using Item = std::pair<double, int>;
       std::priority_queue<Item, std::vector<Item>, std::greater<Item>> pq;
-      dist[root] = 0;
-      for (int h : wedge) {
-        const int w = M.target(h);
-        if (!on_g[w] && len(root, w) < dist[w]) dist[w] = len(root, w), parent[w] = root, pq.push({dist[w], w});
+      for (int h = 0; h < nh; ++h) {
+        const int x = M.origin(h), y = M.target(h);
+        if (gap_label(h) < 0 || K.on_g[y]) continue;
+        if (K.dg[x] + len(x, y) < dist[y]) dist[y] = K.dg[x] + len(x, y), par[y] = x, label[y] = gap_label(h), pq.push({dist[y], y});
       }
       // Each vertex settles once, each half-edge is relaxed once: O(E log E).
       while (!pq.empty()) {
@@ -1021,23 +980,27 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
         int h = h0;
         do {
           const int w = M.target(h);
-          if (!on_g[w] && d + len(v, w) < dist[w]) dist[w] = d + len(v, w), parent[w] = v, pq.push({dist[w], w});
+          if (!K.on_g[w] && d + len(v, w) < dist[w]) dist[w] = d + len(v, w), par[w] = v, label[w] = label[v], pq.push({dist[w], w});
           h = M.next_around_origin(h);
         } while (h != h0);
       }
     }
-    auto tree_edge = [&](int a, int b) { return (b != root && parent[b] == a) || (a != root && parent[a] == b); };
+    auto t_edge = [&](int a, int b) { return (!K.on_g[b] && par[b] == a) || (!K.on_g[a] && par[a] == b); };
+    auto dd = [&](int v) { return K.on_g[v] ? K.dg[v] : dist[v]; };
+    // The gap an edge's loop would leave from at its end h (origin(h)): -1 if none.
+    auto end_label = [&](int h) { return K.on_g[M.origin(h)] ? gap_label(h) : label[M.origin(h)]; };
     std::vector<std::pair<int, int>> bands;
     std::vector<double> band_len;
     std::vector<char> band_ok;
     {
       std::vector<std::pair<double, int>> cand;
       for (int h = 0; h < nh; ++h) {
-        if (h > M.twin(h) || is_g[h]) continue;
+        if (h > M.twin(h) || is_g(M, K, band_of, h)) continue;
         const int a = M.origin(h), b = M.target(h);
-        if (tree_edge(a, b)) continue;
-        const bool forced = (!spoke[h] && (on_g[a] || on_g[b])) || !(dist[a] < INFINITY) || !(dist[b] < INFINITY);
-        cand.push_back({forced ? INFINITY : dist[a] + dist[b] + len(a, b), h});
+        if (t_edge(a, b)) continue;
+        const int la = end_label(h), lb = end_label(M.twin(h));
+        const bool forced = (K.on_g[a] && K.on_g[b]) || la < 0 || la != lb || !(dd(a) < INFINITY) || !(dd(b) < INFINITY);
+        cand.push_back({forced ? INFINITY : dd(a) + dd(b) + len(a, b), h});
       }
       std::sort(cand.begin(), cand.end(), [](const auto& x, const auto& y) {
         return x.first != y.first ? x.first > y.first : x.second < y.second;
@@ -1051,191 +1014,292 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
         }
       // A vertex off Gamma that T does not reach (cut off by chords) adds one edge.
       int dead = 0;
-      for (int v = 0; v < nv; ++v) dead += !on_g[v] && !(dist[v] < INFINITY);
+      for (int v = 0; v < nv; ++v) dead += !K.on_g[v] && !(dist[v] < INFINITY);
       if (static_cast<int>(bands.size()) != want + dead)
         internal("normal form: round " + std::to_string(round) + " left " + std::to_string(bands.size()) +
                  " edges, expected " + std::to_string(want) + " + " + std::to_string(dead));
     }
-    // c. band ends in tour order along F, then the linked pairs.
-    // Round 0: the tour starts at a tree edge of the root (never split by the band splits).
-    if (f_start < 0) {
-      std::size_t k = 0;
-      while (k < wedge.size() && parent[M.target(wedge[k])] != root) ++k;
-      if (k == wedge.size()) internal("normal form: no tree edge at the root");
-      std::rotate(wedge.begin(), wedge.begin() + static_cast<long>(k), wedge.end());
-    }
-    const int tour_start = f_start >= 0 ? f_start : M.target(wedge[0]);
+    // d. the leftover edges' ends in the tour of G + T, per gap (read from the gap: in the outer
+    // gap, the part after the last taken end comes first), then the linked pairs per gap.
     const int nb = static_cast<int>(bands.size());
     std::vector<std::array<int, 2>> end_pos(nb, {-1, -1});
+    std::vector<int> band_gap(nb, -1);
     {
-      std::vector<int> band_of(nh, -1);
-      for (int i = 0; i < nb; ++i) {
-        const int h = find_he(M, bands[i].first, bands[i].second);
-        band_of[h] = band_of[M.twin(h)] = i;
-      }
-      int counter = 0;
-      // Depth-first tour, ccw after the parent edge (the root: along F); band ends are numbered as
-      // met. A stack of (vertex, next half-edge, its parent half-edge); each vertex once: O(E).
-      struct It { int x, h, stop; };
-      std::vector<It> st;
-      {
-        // The root: its wedge half-edges in order.
-        std::size_t wi = 0;
-        while (wi < wedge.size() || !st.empty()) {
-          if (st.empty()) {
-            const int h = wedge[wi++];
-            const int i = band_of[h];
-            if (i >= 0) end_pos[i][M.origin(h) == bands[i].first ? 0 : 1] = counter++;
-            else if (parent[M.target(h)] == root) {
-              const int c = M.target(h), hp = find_he(M, c, root);
-              st.push_back({c, M.next_around_origin(hp), hp});
-            }
-            continue;
-          }
-          It& t = st.back();
-          if (t.h == t.stop) {
-            st.pop_back();
-            continue;
-          }
-          const int h = t.h;
-          t.h = M.next_around_origin(h);
-          const int i = band_of[h];
-          if (i >= 0) {
-            end_pos[i][M.origin(h) == bands[i].first ? 0 : 1] = counter++;
-          } else {
-            const int c = M.target(h);
-            if (c != root && parent[c] == t.x) {
-              const int hp = find_he(M, c, t.x);
-              st.push_back({c, M.next_around_origin(hp), hp});
-            }
-          }
+      std::vector<int> cand_of(nh, -1);
+      for (int i = 0; i < nb; ++i)
+        if (band_ok[i]) {
+          const int h = find_he(M, bands[i].first, bands[i].second);
+          cand_of[h] = cand_of[M.twin(h)] = i;
+          band_gap[i] = end_label(h);
         }
-      }
+      // The tour descends only into T's vertices above a leftover edge's end (climbs stop at
+      // marked vertices: O(n) in all).
+      std::vector<char> above(nv, 0);
+      for (int i = 0; i < nb; ++i)
+        if (band_ok[i])
+          for (int x : {bands[i].first, bands[i].second})
+            for (; !K.on_g[x] && !above[x]; x = par[x]) above[x] = 1;
+      std::vector<std::pair<std::pair<int, long long>, std::pair<int, int>>> met;  // ((gap, key), (band, end))
+      int old = 0;
+      long long counter = 0;
+      tour_tree(
+          M, root_h0(M),
+          [&](int h) {
+            const int a = M.origin(h), b = M.target(h);
+            if (band_of[h] >= 0 || cand_of[h] >= 0) return false;
+            return K.on_g[b] ? (K.on_g[a] && b != root && K.pg[b] == a) : par[b] == a && above[b];
+          },
+          [&](int h) {
+            if (band_of[h] >= 0) {
+              ++old;
+            } else if (cand_of[h] >= 0) {
+              const int i = cand_of[h], t = gaps[band_gap[i]];
+              if (!(old == t || (t == 0 && old == m))) internal("normal form: a new loop end outside its gap");
+              const long long key = (t == 0 && m > 0 && old == 0 ? (1LL << 40) : 0) + counter++;
+              met.push_back({{band_gap[i], key}, {i, M.origin(h) == bands[i].first ? 0 : 1}});
+            }
+          });
+      std::sort(met.begin(), met.end());
+      for (std::size_t k = 0; k < met.size(); ++k)
+        end_pos[met[k].second.first][met[k].second.second] = static_cast<int>(k);  // gaps apart
     }
-    struct Pair { int lo, hi, i, j; double cost; };
+    struct Pair { int gap, lo, hi, i, j; double cost; };
     std::vector<Pair> pairs;
     for (int i = 0; i < nb; ++i) {
       if (!band_ok[i] || end_pos[i][0] < 0 || end_pos[i][1] < 0) continue;
       const int li = std::min(end_pos[i][0], end_pos[i][1]), hi = std::max(end_pos[i][0], end_pos[i][1]);
       for (int j = 0; j < nb; ++j) {
-        if (j == i || !band_ok[j] || end_pos[j][0] < 0 || end_pos[j][1] < 0) continue;
+        if (j == i || !band_ok[j] || band_gap[j] != band_gap[i] || end_pos[j][0] < 0 || end_pos[j][1] < 0) continue;
         const int lj = std::min(end_pos[j][0], end_pos[j][1]), hj = std::max(end_pos[j][0], end_pos[j][1]);
-        if (li < lj && lj < hi && hi < hj) pairs.push_back({li, hj, i, j, band_len[i] + band_len[j]});
+        if (li < lj && lj < hi && hi < hj) pairs.push_back({band_gap[i], li, hj, i, j, band_len[i] + band_len[j]});
       }
     }
-    if (pairs.empty()) {
-      if (chord_level == 3) internal("normal form: round " + std::to_string(round) + " found no linked pair of loops");
-      ++chord_level;  // once more, with room
-      --round;
-      continue;
-    }
-    chord_level = 0;
-    // Cheapest first, a pair is taken if the word of the pairs taken so far, read from F's outside,
-    // stays in blocks from its first letter (so that inserted at F it keeps the whole word in
-    // blocks): side by side, or nested where a block may hold another. O(pairs * taken log taken).
+    if (pairs.empty()) return false;
+    // Per gap, a pair is taken if the word of the pairs taken there so far, read from the gap's
+    // start, stays in blocks from its first letter (so that inserted at the gap it keeps the whole
+    // word in blocks): side by side, or nested where a block may hold another. Blocks inserted at
+    // different gaps between blocks keep the word in blocks. O(pairs * taken log taken).
     std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
+      if (a.gap != b.gap) return a.gap < b.gap;
       return a.hi != b.hi ? a.hi < b.hi : a.cost != b.cost ? a.cost < b.cost : a.lo > b.lo;
     });
-    std::vector<int> taken;  // band ids, pairs in order
+    std::vector<int> now;  // band ids of the current gap, pairs in order
     std::vector<char> used(nb, 0);
-    std::vector<int> departures;
-    auto word_of_taken = [&](const std::vector<int>& ids) {
+    std::vector<int> departures, chosen;
+    auto word_of_now = [&] {
       std::vector<std::pair<int, Letter>> e;
-      for (int i : ids)
+      for (int i : now)
         for (int t = 0; t < 2; ++t) e.push_back({end_pos[i][t], Letter{i, t == 1}});
       std::sort(e.begin(), e.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
       std::vector<Letter> ends;
       for (const auto& x : e) ends.push_back(x.second);
       return trace_word(ends, static_cast<int>(ends.size()) - 1, &departures);
     };
-    for (const Pair& p : pairs) {
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      const Pair& p = pairs[k];
+      if (k > 0 && p.gap != pairs[k - 1].gap) chosen.insert(chosen.end(), now.begin(), now.end()), now.clear();
       if (used[p.i] || used[p.j]) continue;
-      taken.push_back(p.i);
-      taken.push_back(p.j);
-      if (blocks_from_start(word_of_taken(taken))) {
-        used[p.i] = used[p.j] = 1;
-      } else {
-        taken.resize(taken.size() - 2);
-      }
+      now.push_back(p.i);
+      now.push_back(p.j);
+      if (blocks_from_start(word_of_now())) used[p.i] = used[p.j] = 1;
+      else now.resize(now.size() - 2);
     }
-    std::vector<std::pair<int, int>> chosen;
-    for (int i : taken) chosen.push_back(bands[i]);
-    word_of_taken(taken);  // departures of the final set, for its corners below
-    // d. detach the chosen pairs along T; they join Gamma.
-    DetachPlan P;
-    P.root = root;
-    P.root_start = tour_start;
-    P.parent = std::move(parent);
-    P.rs = std::move(rs);
-    plan_strands(P, chosen);
-    std::vector<std::vector<int>> fresh = realize_strands(P, res.stats);
-    rs = std::move(P.rs);
-    res.stats.band_splits += P.band_splits;
-    ++res.stats.normal_form_rounds;
-    // The new ends at the root in tour order (the order the strands leave the root in, ccw): the
-    // first and the last of them bound the new F.
-    const int nleaves = static_cast<int>(2 * chosen.size());
-    std::vector<int> end_vertex(nleaves, -1);
-    for (std::size_t i = 0; i < fresh.size(); ++i) {
-      end_vertex[P.leaf_index[P.leaf_a[i]]] = fresh[i][1];
-      end_vertex[P.leaf_index[P.leaf_b[i]]] = fresh[i].back();
-    }
-    for (auto& L : fresh) gamma.push_back(std::move(L));
-    // Check: walking ccw through F (round 0: from the last new end round to it), the root's edges
-    // meet the new ends in tour order. O(valence(root)).
-    {
-      std::vector<int> rank(M.num_vertices(), -1);
-      for (int k = 0; k < nleaves; ++k) rank[end_vertex[k]] = k;
-      const int h_last = find_he(M, root, end_vertex.back());
-      const int h_begin = f_start >= 0 ? find_he(M, root, f_start) : h_last;
-      const int h_stop = f_start >= 0 ? find_he(M, root, f_end) : h_last;
-      int next = 0;
-      for (int h = M.next_around_origin(h_begin), guard = 0; h != h_stop; h = M.next_around_origin(h), ++guard) {
-        if (guard > M.valence(root)) internal("normal form: the free wedge does not close");
-        if (rank[M.target(h)] >= 0 && rank[M.target(h)] != next++)
-          internal("normal form: new loop ends out of tour order at the root");
+    chosen.insert(chosen.end(), now.begin(), now.end());
+    // The taken bands' paths in T, parents first (each vertex of T once: O(n)).
+    std::vector<char> seen(nv, 0);
+    for (int i : chosen) {
+      for (int x : {bands[i].first, bands[i].second}) {
+        std::vector<int> chain;
+        for (; !K.on_g[x] && !seen[x]; x = par[x]) seen[x] = 1, chain.push_back(x);  // T leads to G
+        for (auto it = chain.rbegin(); it != chain.rend(); ++it) out.verts.push_back({*it, par[*it], dist[*it]});
       }
-      if (next != (f_start >= 0 ? nleaves : nleaves - 1)) internal("normal form: new loop ends outside the free wedge");
+      out.bands.push_back(bands[i]);
     }
-    // The corners between blocks that this round makes (F's own is used up): around each new block.
-    {
-      const int t = nleaves / 4;
-      const int a0 = f_start >= 0 ? f_start : end_vertex.back(), b1 = f_start >= 0 ? f_end : end_vertex.front();
-      corners.push_back({a0, end_vertex.front()});
-      // Between two new blocks: the corner before letter 4p of the wedge word, i.e. the sector
-      // from the end that letter leaves along to the next end ccw (tour positions = leaf indices).
-      for (int p = 1; p < t; ++p) {
-        const int d = departures[4 * p];
-        if (d + 1 >= nleaves) internal("normal form: a block corner outside the wedge");
-        corners.push_back({end_vertex[d], end_vertex[d + 1]});
-      }
-      if (f_start >= 0) corners.push_back({end_vertex.back(), b1});
-      else corners.front().second = b1;  // round 0: the outer corner, from the last end to the first
-    }
-    // Check: the loops so far, read around the root, trace one boundary word in commutator blocks.
-    {
-      std::vector<Letter> at_end(M.num_vertices(), Letter{});
-      for (std::size_t i = 0; i < gamma.size(); ++i) {
-        at_end[gamma[i][1]] = {static_cast<int>(i), false};
-        at_end[gamma[i].back()] = {static_cast<int>(i), true};
-      }
-      std::vector<Letter> rot;  // loop ends ccw around the root
-      const int h0 = M.vertex_halfedge(root);
-      int h = h0;
-      do {  // valence(root) steps
-        if (at_end[M.target(h)].loop >= 0) rot.push_back(at_end[M.target(h)]);
-        h = M.next_around_origin(h);
-      } while (h != h0);
-      std::vector<int> departures_all;
-      const Word w = trace_word(rot, 0, &departures_all);
+    return true;
+  };
+
+  int round = 0;
+  for (; static_cast<int>(taken.size()) < 2 * genus; ++round) {
+    if (round >= genus) internal("normal form: round " + std::to_string(round) + " with g = " + std::to_string(genus));
+    const TriMesh& M = rs.mesh;
+    extend(rs, pos);
+    G.grow(M.num_vertices());
+    const int nv = M.num_vertices(), nh = M.num_halfedges();
+    // a. the tour of G; its gaps between blocks, with a check that the word is in blocks.
+    std::vector<int> band_of, gap_of;
+    std::vector<Letter> rot;
+    gamma_tour(M, G, taken, root, root_h0(M), band_of, gap_of, rot);
+    const int m = static_cast<int>(rot.size());
+    std::vector<int> legal{0};
+    if (m > 0) {
+      std::vector<int> dep;
+      const Word w = trace_word(rot, 0, &dep);
       if (w.empty()) internal("normal form: the loops so far bound more than one boundary");
-      if (rot.size() != 2 * gamma.size() || commutator_rotation(w) < 0)
+      const int s = commutator_rotation(w);
+      if (m != 2 * static_cast<int>(taken.size()) || s < 0)
         internal("normal form: after round " + std::to_string(round) + " the word is not in blocks: " + to_string(w));
+      legal.clear();
+      for (int p = 0; p < m / 4; ++p) legal.push_back((dep[(s + 4 * p) % m] + 1) % m);  // 0: the outer gap
     }
-    if (M.num_vertices() > vertex_limit) return false;
+    // b. the gaps by the size of the largest connected set of vertices off Gamma their free
+    // half-edges reach (then by their number of such half-edges). O(n + E).
+    {
+      Dsu comp(nv);
+      for (int h = 0; h < nh; ++h)
+        if (!G.on_g[M.origin(h)] && !G.on_g[M.target(h)]) comp.unite(M.origin(h), M.target(h));
+      std::vector<int> size(nv, 0);
+      for (int v = 0; v < nv; ++v)
+        if (!G.on_g[v]) ++size[comp.find(v)];
+      std::vector<int> score(m + 1, 0), spokes(m + 1, 0);  // by gap number (m: the outer gap's end)
+      for (int h = 0; h < nh; ++h)
+        if (gap_of[h] >= 0 && !G.on_g[M.target(h)]) {
+          const int t = gap_of[h] == m ? 0 : gap_of[h];
+          score[t] = std::max(score[t], size[comp.find(M.target(h))]);
+          ++spokes[t];
+        }
+      std::stable_sort(legal.begin(), legal.end(), [&](int a, int b) {
+        return score[a] != score[b] ? score[a] > score[b] : spokes[a] > spokes[b];
+      });
+    }
+    // c-d from the best k gaps, k = all, half, a quarter, ..., 1 (more gaps: shorter paths, but a
+    // handle whose loops reach two gaps is not usable); first on the surface, then on a copy with
+    // every chord split. At most 2 (log2 g + 2) searches.
+    Found found;
+    bool ok = false;
+    auto try_prefixes = [&](const RefinedSurface& S, const GammaTree& K, const std::vector<Vec3d>& P, int first_mid) {
+      for (std::size_t k = legal.size();; k = (k + 1) / 2) {
+        found = Found{};
+        if (search(S, K, P, std::vector<int>(legal.begin(), legal.begin() + static_cast<long>(k)), round, first_mid, found))
+          return true;
+        if (k == 1) return false;
+      }
+    };
+    ok = try_prefixes(rs, G, pos, INT32_MAX);
+    if (!ok) {
+      std::vector<std::pair<int, int>> chords;  // sorted: the copy's split order
+      for (int h = 0; h < nh; ++h)
+        if (h < M.twin(h) && G.on_g[M.origin(h)] && G.on_g[M.target(h)] && !is_g(M, G, band_of, h))
+          chords.push_back({std::min(M.origin(h), M.target(h)), std::max(M.origin(h), M.target(h))});
+      std::sort(chords.begin(), chords.end());
+      if (chords.empty()) internal("normal form: round " + std::to_string(round) + " found no linked pair of loops");
+      RefinedSurface copy = rs;
+      std::vector<int> mid(chords.size());
+      for (std::size_t k = 0; k < chords.size(); ++k)
+        mid[k] = copy.split_edge(find_he(copy.mesh, chords[k].first, chords[k].second), make_rational(1, 2));
+      GammaTree K = G;
+      K.grow(copy.mesh.num_vertices());
+      std::vector<Vec3d> pos_copy = pos;
+      extend(copy, pos_copy);
+      ok = try_prefixes(copy, K, pos_copy, nv);
+      if (!ok) internal("normal form: round " + std::to_string(round) + " found no linked pair of loops");
+      // The chords the found paths and bands cross (midpoints are the copy's vertices >= nv), and
+      // every chord of the faces at them; split on the surface in the copy's order.
+      std::vector<char> need(chords.size(), 0);
+      auto chord_index = [&](int a, int b) {
+        const std::pair<int, int> key{std::min(a, b), std::max(a, b)};
+        const auto it = std::lower_bound(chords.begin(), chords.end(), key);
+        return it != chords.end() && *it == key ? static_cast<int>(it - chords.begin()) : -1;
+      };
+      std::vector<int> index_of_mid(copy.mesh.num_vertices() - nv, -1);
+      for (std::size_t k = 0; k < chords.size(); ++k) index_of_mid[mid[k] - nv] = static_cast<int>(k);
+      // A path edge at a midpoint lies in one face of the surface at the midpoint's chord (the face
+      // opposite its other end, or the face two chords share); its chord is split, and if that
+      // face has another chord, all of its chords are, so that it is triangulated as in the copy.
+      auto faces_of = [&](int v) {  // the two half-edges of v's chord (v a midpoint)
+        const int k = index_of_mid[v - nv];
+        const int h = find_he(M, chords[k].first, chords[k].second);
+        return std::array<int, 2>{h, M.twin(h)};
+      };
+      auto close_face = [&](int f) {
+        int count = 0;
+        for (int g : {f, TriMesh::next(f), TriMesh::prev(f)}) count += chord_index(M.origin(g), M.target(g)) >= 0;
+        if (count >= 2)
+          for (int g : {f, TriMesh::next(f), TriMesh::prev(f)}) {
+            const int c = chord_index(M.origin(g), M.target(g));
+            if (c >= 0) need[c] = 1;
+          }
+      };
+      auto path_edge = [&](int p, int q) {
+        if (p < nv && q < nv) return;
+        if (p < nv) std::swap(p, q);  // p is a midpoint
+        const auto hp = faces_of(p);
+        need[index_of_mid[p - nv]] = 1;
+        for (int h : hp) {
+          bool in_face = false;
+          if (q < nv) {
+            in_face = M.target(TriMesh::next(h)) == q;
+          } else {
+            const int kq = index_of_mid[q - nv];
+            for (int g : {TriMesh::next(h), TriMesh::prev(h)})
+              in_face = in_face || chord_index(M.origin(g), M.target(g)) == kq;
+          }
+          if (in_face) close_face(h);
+        }
+        if (q >= nv) need[index_of_mid[q - nv]] = 1;
+      };
+      for (const auto& [v, p, d] : found.verts) path_edge(v, p);
+      for (const auto& [u, v] : found.bands) path_edge(u, v);
+      std::vector<int> to_surface(copy.mesh.num_vertices(), -1);
+      std::iota(to_surface.begin(), to_surface.begin() + nv, 0);
+      for (std::size_t k = 0; k < chords.size(); ++k)
+        if (need[k]) {
+          to_surface[mid[k]] = rs.split_edge(find_he(rs.mesh, chords[k].first, chords[k].second), make_rational(1, 2));
+          ++res.stats.round_chord_splits;
+        }
+      auto map = [&](int v) {
+        if (v < 0) return v;
+        if (to_surface[v] < 0) internal("normal form: a found path uses a chord midpoint that was not split");
+        return to_surface[v];
+      };
+      for (auto& [v, p, d] : found.verts) v = map(v), p = map(p);
+      for (auto& [u, v] : found.bands) u = map(u), v = map(v);
+      // The paths' edges exist on the surface (their faces are triangulated as in the copy).
+      for (const auto& [v, p, d] : found.verts)
+        if (rs.mesh.find_halfedge(p, v) < 0) internal("normal form: a found path edge is missing after the splits", {v});
+      for (const auto& [u, v] : found.bands)
+        if (rs.mesh.find_halfedge(u, v) < 0) internal("normal form: a found band is missing after the splits", {u});
+      if (rs.mesh.num_vertices() > vertex_limit) return false;
+    }
+    // The taken bands and their paths in T join G.
+    G.grow(rs.mesh.num_vertices());
+    for (const auto& [v, p, d] : found.verts) G.on_g[v] = 1, G.pg[v] = p, G.dg[v] = d;
+    for (const auto& b : found.bands) taken.push_back(b);
+    if (root_start < 0) {  // the first child of the root in G, ccw from its stored half-edge
+      const int h0 = rs.mesh.vertex_halfedge(root);
+      int h = h0;
+      while (!(G.on_g[rs.mesh.target(h)] && G.pg[rs.mesh.target(h)] == root)) {
+        h = rs.mesh.next_around_origin(h);
+        if (h == h0) internal("normal form: G has no edge at the root");
+      }
+      root_start = rs.mesh.target(h);
+    }
+    ++res.stats.normal_form_rounds;
   }
-  res.loops = std::move(gamma);
-  return true;
+  // The last round's word, checked like the others.
+  {
+    G.grow(rs.mesh.num_vertices());
+    std::vector<int> band_of, gap_of, dep;
+    std::vector<Letter> rot;
+    gamma_tour(rs.mesh, G, taken, root, root_h0(rs.mesh), band_of, gap_of, rot);
+    const Word w = trace_word(rot, 0, &dep);
+    if (w.empty() || commutator_rotation(w) < 0) internal("normal form: the final word is not in blocks: " + to_string(w));
+  }
+  // Step 2 once: all 2g loops detached along G.
+  DetachPlan P;
+  P.root = root;
+  P.root_start = root_start;
+  P.parent = G.pg;
+  P.rs = std::move(rs);
+  plan_strands(P, taken);
+  res.stats.band_splits += P.band_splits;
+  res.stats.predicted_crossings = P.crossings;
+  if (P.rs.mesh.num_vertices() + P.crossings > vertex_limit) {  // every crossing is a new vertex
+    rs = std::move(P.rs);
+    return false;
+  }
+  res.loops = realize_strands(P, res.stats);
+  rs = std::move(P.rs);
+  return rs.mesh.num_vertices() <= vertex_limit;
 }
 
 // Root candidates: the vertex of maximum valence (lowest id among ties), then vertices i * V / k

@@ -33,9 +33,9 @@ struct PipelineOptions {
   /// Bring the gluing word to the normal form a1 b1 a1^-1 b1^-1 ... (topology step 3, in rounds).
   /// Validity does not need it: every polygon side is a whole edge of one layout quad mapped onto
   /// a unit-square edge, so any pairing of sides glues by R^k x + t with integer t (the certifier
-  /// checks it). Off by default: later rounds' loops run beside earlier ones and grow the mesh
-  /// (couplingdown g9: 3.5k instead of 2.2k refined vertices; a 1M-face g20 mesh 0.5M -> 0.77M
-  /// vertices in ~28 s; cheese g133 exceeds the topology stage's growth bound, a typed error).
+  /// checks it). Off by default: its loops are longer and grow the mesh more (couplingdown g9:
+  /// 2.37k instead of 2.19k refined vertices; a 1M-face g20 mesh 0.53M instead of 0.51M vertices,
+  /// in ~22 s instead of ~3 s; cheese g133 exceeds the topology stage's growth bound, a typed error).
   bool normal_form = false;
   /// Genus 0 only: the four cone vertices (input vertex ids) in path order A, B, C, D; empty: the
   /// deterministic default (topology/sphere_cut.h). Bad lists give igm::Error(InvalidArgument).

@@ -20,28 +20,36 @@
 //     programming over T, O(sum of strand lengths)). Each face is then re-triangulated along the
 //     curves. Growth: one vertex per crossing (plus a split where a curve would run along an edge,
 //     and a face vertex where a fan would be flat). Cost O(n + total crossings).
-//  3. normal form (CutOptions::normal_form), built handle by handle in rounds instead of steps 1-2
-//     (no handle slides). Gamma = the loops already final, in commutator blocks; F = one corner
-//     of the root between two blocks (the whole rotation in round 0). A round: the greedy basis of
-//     the surface cut along Gamma (step 1 with a tree that leaves the root only through F and
-//     never enters Gamma, every other edge at Gamma forced into the cotree first); the loops'
-//     ends in tour order along F; linked pairs (ends X Y X' Y'), taken greedily by right end as
-//     long as their word read from F's outside stays in blocks from its first letter; only these
-//     pairs are detached (step 2); they join Gamma as new blocks, and the next F is the corner
-//     between blocks whose spokes reach the largest connected set of vertices off Gamma. If a round finds no usable linked pair it is
-//     tried again after splitting chords (edges off Gamma joining two Gamma vertices): those of
-//     F's triangles, then those a tree through chord midpoints needs, then all. After every round
-//     the word traced from the rotation at the root is checked to be one cycle in commutator
-//     blocks. At most g rounds (each adds a block), at most 4g attempts. The root and metric are
-//     chosen among candidates by the final vertex count. Loops are renumbered and reoriented so
-//     that the word is exactly L0 L1 L0^-1 L1^-1 L2 L3 ... Off, the word is whatever step 2 gives.
-//     Known limitation: later rounds' loops run beside earlier ones, and chords between parallel
-//     strands must be split, so the growth compounds with the genus (couplingdown g9: 1.8k ->
-//     3.45k vertices instead of 2.2k without; a generated 1M-face g20: 0.5M -> 0.77M; cheese g133
-//     and a generated 5000-face g20 exceed CutOptions::max_normal_form_growth, a typed error).
+//  3. normal form (CutOptions::normal_form), built handle by handle in rounds on one growing tree G
+//     from the root instead of steps 1-2 (no handle slides, no refinement between rounds): Gamma =
+//     G and the bands taken so far, not yet detached. Detached along G (step 2, once at the end),
+//     the loops leave the root in the order of G's counter-clockwise tour; a gap (the stretch of
+//     the tour between two consecutive taken ends, a corner of the final polygon) between blocks
+//     can take new blocks. A round: the gaps between blocks of the word so far (the whole rotation
+//     in round 0); a Dijkstra forest T from their free half-edges over the vertices off Gamma (a
+//     vertex x of G starts at its distance along G), each vertex of T labelled by its gap; the dual
+//     maximum spanning tree with every edge at Gamma or between two gaps' parts forced in first;
+//     the leftover edges' ends in the tour of G + T; per gap, linked pairs (ends X Y X' Y') taken
+//     greedily as long as their word read from the gap stays in blocks; the taken bands and their
+//     paths in T join G. If no gap finds a pair, the search is repeated from the best half of the
+//     gaps (by the region they reach), a quarter, ..., one; then, since chords (edges off Gamma
+//     joining two Gamma vertices) wall T off where branches of G run side by side, the same on a
+//     copy of the surface with every chord split at its midpoint (a midpoint costs 1000 unit
+//     lengths), after which only the chords the taken paths cross are split on the surface (with
+//     the other chords of a face where two meet, in the copy's order, so that the paths exist).
+//     With no chord a linked pair exists (the intersection form is nondegenerate). After every
+//     round the word traced from G's tour is checked to be one cycle in commutator blocks. At
+//     most g rounds, at most 2 (log2 g + 2) searches per round. The root and metric are chosen
+//     among candidates by the final vertex count. Loops are renumbered and reoriented so that the
+//     word is exactly L0 L1 L0^-1 L1^-1 L2 L3 ... Off, the word is whatever step 2 gives.
+//     Known limitation: on a coarse mesh of high genus the late rounds' paths must run along
+//     earlier loops through chords, and the splits compound (cheese g133 on 8.6k vertices and a
+//     generated g50 on 10k faces exceed CutOptions::max_normal_form_growth, a typed error; a
+//     generated g20 on 5k faces does not).
 //     Measured and rejected before: handle slides on the detached greedy loops (plan_handle_slides,
-//     handle_slides.h): the slides' paths double in length per handle on cheese with every plan
-//     variant tried (couplingdown 3.6k, 1M-face g20 1.05M vertices).
+//     handle_slides.h): the slides' paths double in length per handle on cheese; rounds that
+//     detached their loops before the next round (stop 13): every later round had to squeeze
+//     between parallel strands (couplingdown 3.45k vertices instead of 2.37k now).
 //  4. embedding pre-conditions (embed/tutte.h): every interior disk edge joining two vertices of
 //     one polygon side (a root copy lies on its two sides) is split at its midpoint; then no
 //     triangle has three vertices on one side. O(n).
@@ -124,8 +132,8 @@ struct CutResult {
 /// normal form would exceed CutOptions::max_normal_form_growth, igm::Error(Internal) if an
 /// invariant breaks (a round whose word is not in blocks included). Cost without the normal form
 /// O(K n log n + crossings) for K root candidates (2K plans, K = clamp(1e6 / F, 1, 24); one plan if
-/// the root is given); with it O(K' g n log n) for K' = clamp(2e5 / F, 1, 12) roots (x2 metrics
-/// if K' > 1; 1 if the root is given), n the refined size.
+/// the root is given); with it O(K' g log g n log n + crossings) for K' = clamp(2e5 / F, 1, 12)
+/// roots (x2 metrics if K' > 1; 1 if the root is given), n the refined size.
 CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& positions,
                                 const CutOptions& options = {});
 
