@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <limits>
 #include <numeric>
 #include <queue>
 #include <string>
@@ -1119,6 +1120,7 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
   };
 
   int round = 0;
+  std::size_t last_k = std::numeric_limits<int>::max();  // the gaps the last round's search used
   for (; static_cast<int>(taken.size()) < 2 * genus; ++round) {
     if (round >= genus) internal("normal form: round " + std::to_string(round) + " with g = " + std::to_string(genus));
     const TriMesh& M = rs.mesh;
@@ -1161,16 +1163,18 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
         return score[a] != score[b] ? score[a] > score[b] : spokes[a] > spokes[b];
       });
     }
-    // c-d from the best k gaps, k = all, half, a quarter, ..., 1 (more gaps: shorter paths, but a
+    // c-d from the best k gaps, k = twice the last round's, then half, a quarter, ..., 1 (more gaps: shorter paths, but a
     // handle whose loops reach two gaps is not usable); first on the surface, then on a copy with
     // every chord split. At most 2 (log2 g + 2) searches.
     Found found;
     bool ok = false;
     auto try_prefixes = [&](const RefinedSurface& S, const GammaTree& K, const std::vector<Vec3d>& P, int first_mid) {
-      for (std::size_t k = legal.size();; k = (k + 1) / 2) {
+      for (std::size_t k = std::min(legal.size(), 2 * last_k);; k = (k + 1) / 2) {
         found = Found{};
-        if (search(S, K, P, std::vector<int>(legal.begin(), legal.begin() + static_cast<long>(k)), round, first_mid, found))
+        if (search(S, K, P, std::vector<int>(legal.begin(), legal.begin() + static_cast<long>(k)), round, first_mid, found)) {
+          last_k = k;
           return true;
+        }
         if (k == 1) return false;
       }
     };
