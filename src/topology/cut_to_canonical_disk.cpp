@@ -1163,9 +1163,9 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
         return score[a] != score[b] ? score[a] > score[b] : spokes[a] > spokes[b];
       });
     }
-    // c-d from the best k gaps, k = twice the last round's, then half, a quarter, ..., 1 (more gaps: shorter paths, but a
-    // handle whose loops reach two gaps is not usable); first on the surface, then on a copy with
-    // every chord split. At most 2 (log2 g + 2) searches.
+    // c-d from the best k gaps, k = twice the last round's (all in round 0), then half, a quarter,
+    // ..., 1 (more gaps: shorter paths, but a handle whose loops reach two gaps is not usable);
+    // first on the surface, then on a copy with every chord split. At most 2 (log2 g + 2) searches.
     Found found;
     bool ok = false;
     auto try_prefixes = [&](const RefinedSurface& S, const GammaTree& K, const std::vector<Vec3d>& P, int first_mid) {
