@@ -78,6 +78,30 @@ TEST_CASE("random closed meshes of genus up to 12 with random roots, refinements
   CHECK(certified == n);
 }
 
+TEST_CASE("random closed meshes with the normal form certify or stop at its growth bound") {
+  // Count: 40 meshes (IGM_RANDOM_SCALE scales it), genus 1..12, 16..2000 faces log-uniform, random
+  // roots. Any other error, an invalid certificate or a crash fails; coarse meshes of high genus
+  // may end at CutOptions::max_normal_form_growth (counted).
+  const std::uint64_t seed = base_seed() + 7;
+  std::mt19937_64 rng(seed);
+  const int n = scaled(40);
+  int certified = 0, bounded = 0;
+  for (int i = 0; i < n; ++i) {
+    const RandomMeshSpec s = draw(rng, 1, 12, 2000);
+    const int root = static_cast<int>(rng() % 1000000);
+    CAPTURE(seed);
+    CAPTURE(i);
+    INFO(igm_test::describe(s) << ", root " << root);
+    const Outcome r = run_pipeline(igm_test::random_closed_mesh(s), s.genus, root, false, 3, true);
+    certified += r.certified;
+    bounded += r.growth_bound;
+  }
+  MESSAGE("seed " << seed << ": " << certified << " of " << n << " certified with the normal form, " << bounded
+                  << " at its growth bound");
+  CHECK(certified + bounded == n);
+  CHECK(certified > 0);
+}
+
 TEST_CASE("every hostile geometry on every genus up to 12: topology does not depend on coordinates") {
   // Count: 8 geometries x 12 genera = 96 small meshes (~30 faces per genus), random roots; the
   // written files are certified too (positions at 1e300 or 1e-300 must still be written and read).
