@@ -2,7 +2,7 @@
 // Usage: igm_bench_topology [shared_dir] [--normal-form-all] [--only NAME|g3|g20]
 // Growth is broken down by source: crossings, Steiner, band, chord and pre-condition splits, and
 // the normal form's rounds and chord splits. By default the normal form is measured for genus <= 10
-// only (cheese exceeds the growth bound, the 1M-face g20 takes ~14 s); --normal-form-all measures
+// only (cheese exceeds the growth bound, the 1M-face g20 takes ~9 s); --normal-form-all measures
 // it everywhere; --only runs one mesh, with and without it.
 #include <chrono>
 #include <cstdio>

@@ -1163,13 +1163,15 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
         return score[a] != score[b] ? score[a] > score[b] : spokes[a] > spokes[b];
       });
     }
-    // c-d from the best k gaps, k = twice the last round's (all in round 0), then half, a quarter,
-    // ..., 1 (more gaps: shorter paths, but a handle whose loops reach two gaps is not usable);
-    // first on the surface, then on a copy with every chord split. At most 2 (log2 g + 2) searches.
+    // c-d from the best k gaps, k = min(twice the last round's, a quarter of the loops still to
+    // find), then half, a quarter, ..., 1 (more gaps: shorter paths, but a handle whose loops reach
+    // two gaps is not usable; few handles left are seldom inside one gap's part): first on the
+    // surface, then on a copy with every chord split. At most 2 (log2 g + 2) searches.
     Found found;
     bool ok = false;
     auto try_prefixes = [&](const RefinedSurface& S, const GammaTree& K, const std::vector<Vec3d>& P, int first_mid) {
-      for (std::size_t k = std::min(legal.size(), 2 * last_k);; k = (k + 1) / 2) {
+      const std::size_t quarter = std::max<std::size_t>(1, (2 * genus - taken.size()) / 4);
+      for (std::size_t k = std::min({legal.size(), 2 * last_k, quarter});; k = (k + 1) / 2) {
         found = Found{};
         if (search(S, K, P, std::vector<int>(legal.begin(), legal.begin() + static_cast<long>(k)), round, first_mid, found)) {
           last_k = k;

@@ -31,8 +31,9 @@
 //     maximum spanning tree with every edge at Gamma or between two gaps' parts forced in first;
 //     the leftover edges' ends in the tour of G + T; per gap, linked pairs (ends X Y X' Y') taken
 //     greedily as long as their word read from the gap stays in blocks; the taken bands and their
-//     paths in T join G. The search starts from the best 2k gaps (by the region they reach; k the
-//     number the last round's search used, all in round 0); if no gap finds a pair it is repeated
+//     paths in T join G. The search starts from the best k gaps (by the region they reach; k =
+//     min(twice the number the last round's search used, a quarter of the loops still to find),
+//     at least 1); if no gap finds a pair it is repeated
 //     from the best half of those, a quarter, ..., one; then, since chords (edges off Gamma
 //     joining two Gamma vertices) wall T off where branches of G run side by side, the same on a
 //     copy of the surface with every chord split at its midpoint (a midpoint costs 1000 unit
