@@ -33,8 +33,8 @@
 //     greedily as long as their word read from the gap stays in blocks; the taken bands and their
 //     paths in T join G. The search starts from the best k gaps (by the region they reach; k =
 //     min(twice the number the last round's search used, a quarter of the loops still to find),
-//     at least 1); if no gap finds a pair it is repeated
-//     from the best half of those, a quarter, ..., one; then, since chords (edges off Gamma
+//     at least 1); if no gap finds a pair it is repeated from the best half of those, a quarter,
+//     ..., one; then, since chords (edges off Gamma
 //     joining two Gamma vertices) wall T off where branches of G run side by side, the same on a
 //     copy of the surface with every chord split at its midpoint (a midpoint costs 1000 unit
 //     lengths), after which only the chords the taken paths cross are split on the surface (with
