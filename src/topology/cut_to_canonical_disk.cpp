@@ -1119,6 +1119,22 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
     return true;
   };
 
+  // The gap numbers between blocks of the word of the taken ends in tour order `rot` (0: the outer
+  // gap; all of the rotation if nothing is taken yet), after checking that the word is one cycle
+  // in commutator blocks (Internal otherwise). O(m log m).
+  auto gaps_between_blocks = [&](const std::vector<Letter>& rot, int round) {
+    const int m = static_cast<int>(rot.size());
+    if (m == 0) return std::vector<int>{0};
+    std::vector<int> dep, legal;
+    const Word w = trace_word(rot, 0, &dep);
+    if (w.empty()) internal("normal form: the loops so far bound more than one boundary");
+    const int s = commutator_rotation(w);
+    if (m != 2 * static_cast<int>(taken.size()) || s < 0)
+      internal("normal form: after round " + std::to_string(round) + " the word is not in blocks: " + to_string(w));
+    for (int p = 0; p < m / 4; ++p) legal.push_back((dep[(s + 4 * p) % m] + 1) % m);
+    return legal;
+  };
+
   int round = 0;
   std::size_t last_k = std::numeric_limits<int>::max();  // the gaps the last round's search used
   for (; static_cast<int>(taken.size()) < 2 * genus; ++round) {
@@ -1132,17 +1148,7 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
     std::vector<Letter> rot;
     gamma_tour(M, G, taken, root, root_h0(M), band_of, gap_of, rot);
     const int m = static_cast<int>(rot.size());
-    std::vector<int> legal{0};
-    if (m > 0) {
-      std::vector<int> dep;
-      const Word w = trace_word(rot, 0, &dep);
-      if (w.empty()) internal("normal form: the loops so far bound more than one boundary");
-      const int s = commutator_rotation(w);
-      if (m != 2 * static_cast<int>(taken.size()) || s < 0)
-        internal("normal form: after round " + std::to_string(round) + " the word is not in blocks: " + to_string(w));
-      legal.clear();
-      for (int p = 0; p < m / 4; ++p) legal.push_back((dep[(s + 4 * p) % m] + 1) % m);  // 0: the outer gap
-    }
+    std::vector<int> legal = gaps_between_blocks(rot, round);
     // b. the gaps by the size of the largest connected set of vertices off Gamma their free
     // half-edges reach (then by their number of such half-edges). O(n + E).
     {
@@ -1284,11 +1290,10 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
   // The last round's word, checked like the others.
   {
     G.grow(rs.mesh.num_vertices());
-    std::vector<int> band_of, gap_of, dep;
+    std::vector<int> band_of, gap_of;
     std::vector<Letter> rot;
     gamma_tour(rs.mesh, G, taken, root, root_h0(rs.mesh), band_of, gap_of, rot);
-    const Word w = trace_word(rot, 0, &dep);
-    if (w.empty() || commutator_rotation(w) < 0) internal("normal form: the final word is not in blocks: " + to_string(w));
+    gaps_between_blocks(rot, round);
   }
   // Step 2 once: all 2g loops detached along G.
   DetachPlan P;
