@@ -1,9 +1,10 @@
 // Topology stage measurements: time and mesh growth of cut_to_canonical_disk.
-// Usage: igm_bench_topology [shared_dir] [--normal-form-all] [--only NAME|g3|g20]
+// Usage: igm_bench_topology [shared_dir] [--normal-form-all] [--crosses|--rounds] [--only NAME|g3|g20]
 // Growth is broken down by source: crossings, Steiner, band, chord and pre-condition splits, and
-// the normal form's rounds and chord splits. By default the normal form is measured for genus <= 10
-// only (cheese exceeds the growth bound, the 1M-face g20 takes ~9 s); --normal-form-all measures
-// it everywhere; --only runs one mesh, with and without it.
+// the normal form's rounds (marked "(crosses)" where the crosses construction won) and chord
+// splits. By default the normal form is measured for genus <= 10 only (cheese takes ~30 s and
+// grows to ~600k vertices, the 1M-face g20 ~9 s); --normal-form-all measures it everywhere; --only
+// runs one mesh, with and without it; --crosses / --rounds use that construction alone.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -51,17 +52,20 @@ Input generated(int genus, long faces) {
   return {TriMesh::from_triangles(static_cast<int>(s.positions.size()), t), s.positions};
 }
 
+CutOptions::Construction construction = CutOptions::Construction::Best;  // --crosses / --rounds
+
 void run(const std::string& name, const Input& in, bool normal_form) {
   CutOptions o;
   o.normal_form = normal_form;
+  o.construction = construction;
   try {
     CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
     const auto& s = r.stats;
     std::printf("%-24s g=%-4d F=%-8d nf=%d  V %8d -> %8d (+%6.1f%%) | crossings %6d steiner %5d band %4d chord %5d"
-                " precond %6d | rounds %3d chords %6d | roots %2d | %7.3f s (basis %.3f, detach %.3f, cut %.3f)\n",
+                " precond %6d | rounds %3d%s chords %6d | roots %2d | %7.3f s (basis %.3f, detach %.3f, cut %.3f)\n",
                 name.c_str(), s.genus, s.faces_before, normal_form ? 1 : 0, s.vertices_before, s.vertices_after,
                 100.0 * (s.vertices_after - s.vertices_before) / s.vertices_before, s.crossings, s.steiner_vertices,
-                s.band_splits, s.chord_splits, s.precondition_splits, s.normal_form_rounds, s.round_chord_splits, s.roots_tried, s.seconds_total,
+                s.band_splits, s.chord_splits, s.precondition_splits, s.normal_form_rounds, s.crosses ? " (crosses)" : "", s.round_chord_splits, s.roots_tried, s.seconds_total,
                 s.seconds_basis, s.seconds_detach, s.seconds_cut);
   } catch (const Error& e) {
     std::printf("%-24s nf=%d error: %s\n", name.c_str(), normal_form ? 1 : 0, e.what());
@@ -76,6 +80,8 @@ int main(int argc, char** argv) {
   std::string only;  // --only NAME: that shared mesh alone, with the normal form too
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--normal-form-all") == 0) all = true;
+    else if (std::strcmp(argv[i], "--crosses") == 0) construction = CutOptions::Construction::Crosses;
+    else if (std::strcmp(argv[i], "--rounds") == 0) construction = CutOptions::Construction::Rounds;
     else if (std::strcmp(argv[i], "--only") == 0 && i + 1 < argc) only = argv[++i];
     else shared = argv[i];
   }

@@ -4,12 +4,15 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <numeric>
 #include <queue>
 #include <string>
 #include <tuple>
+#include <unordered_map>
+#include <unordered_set>
 #include <utility>
 
 #include "igm/core/error.h"
@@ -884,6 +887,150 @@ void gamma_tour(const TriMesh& M, const GammaTree& K, const std::vector<std::pai
       });
 }
 
+// Appends to p the (unit-scaled, double) positions of S's vertices from p.size() on. O(new vertices).
+void extend_positions(const RefinedSurface& S, const std::vector<Vec3d>& unit, std::vector<Vec3d>& p) {
+  while (static_cast<int>(p.size()) < S.mesh.num_vertices())
+    p.push_back(evaluate(S.constructed[p.size() - S.num_input_vertices], unit));
+}
+
+// The first child of the root in G, counter-clockwise from the root's stored half-edge (G's tour
+// starts at its edge). O(valence).
+int first_child_of_root(const TriMesh& M, const GammaTree& G, int root) {
+  const int h0 = M.vertex_halfedge(root);
+  int h = h0;
+  while (!(G.on_g[M.target(h)] && G.pg[M.target(h)] == root)) {
+    h = M.next_around_origin(h);
+    if (h == h0) internal("normal form: G has no edge at the root");
+  }
+  return M.target(h);
+}
+
+// The end of both normal-form constructions: checks that the word traced from the tour of G
+// (from the root's edge to root_start) with the bands `taken` is one cycle in commutator blocks
+// (Internal otherwise), then step 2 once: all loops detached along G. False if the mesh would
+// have more than vertex_limit vertices. O(n + crossings).
+bool detach_along_tree(CutResult& res, const GammaTree& G, int root_start, const std::vector<std::pair<int, int>>& taken,
+                       long vertex_limit) {
+  RefinedSurface& rs = res.surface;
+  {
+    std::vector<int> band_of, gap_of, dep;
+    std::vector<Letter> rot;
+    gamma_tour(rs.mesh, G, taken, res.root, find_he(rs.mesh, res.root, root_start), band_of, gap_of, rot);
+    const Word w = trace_word(rot, 0, &dep);
+    if (w.empty() || rot.size() != 2 * taken.size() || static_cast<int>(taken.size()) != 2 * res.genus ||
+        commutator_rotation(w) < 0)
+      internal("normal form: the final word is not in blocks: " + to_string(w));
+  }
+  DetachPlan P;
+  P.root = res.root;
+  P.root_start = root_start;
+  P.parent = G.pg;
+  P.rs = std::move(rs);
+  plan_strands(P, taken);
+  res.stats.band_splits += P.band_splits;
+  res.stats.predicted_crossings = P.crossings;
+  if (P.rs.mesh.num_vertices() + P.crossings > vertex_limit) {  // every crossing is a new vertex
+    rs = std::move(P.rs);
+    return false;
+  }
+  res.loops = realize_strands(P, res.stats);
+  rs = std::move(P.rs);
+  return rs.mesh.num_vertices() <= vertex_limit;
+}
+
+// Dijkstra from the entries already in pq (their dist set): each vertex is settled once (stale
+// entries are skipped) and relax(v, w, d) is called for every half-edge v->w of a settled v at
+// distance d; relax updates dist[w] and pushes w itself. O(E log E).
+using MinQueue = std::priority_queue<std::pair<double, int>, std::vector<std::pair<double, int>>,
+                                     std::greater<std::pair<double, int>>>;
+template <class Relax>
+void settle_all(const TriMesh& M, const std::vector<double>& dist, MinQueue& pq, Relax&& relax) {
+  while (!pq.empty()) {  // each vertex is pushed at most once per half-edge into it
+    auto [d, v] = pq.top();
+    pq.pop();
+    if (d > dist[v]) continue;
+    const int h0 = M.vertex_halfedge(v);
+    int h = h0;
+    do {
+      relax(v, M.target(h), d);
+      h = M.next_around_origin(h);
+    } while (h != h0);
+  }
+}
+
+// A copy of M with every chord (sorted vertex pairs of M) split at its midpoint: combinatorics
+// and double positions only, to guide a search. mid[k] is chord k's midpoint (ids from
+// M.num_vertices() on, in chord order). O(n + chords).
+TriMesh split_copy(const TriMesh& M, const std::vector<Vec3d>& pos, const std::vector<std::pair<int, int>>& chords,
+                   std::vector<int>& mid, std::vector<Vec3d>& pos_copy) {
+  TriMesh copy = M;
+  pos_copy = pos;
+  mid.resize(chords.size());
+  for (std::size_t k = 0; k < chords.size(); ++k) {
+    const auto [a, b] = chords[k];
+    mid[k] = copy.split_edge(find_he(copy, a, b));
+    pos_copy.push_back({(pos[a].x + pos[b].x) / 2, (pos[a].y + pos[b].y) / 2, (pos[a].z + pos[b].z) / 2});
+  }
+  return copy;
+}
+
+// After a search on split_copy(rs.mesh, ..., chords, mid, ...) (copy_nv vertices): splits on rs,
+// in the copy's order, the chords that the copy's edges `used` cross, and every chord of a face
+// where a used edge meets two, so that those faces are triangulated as in the copy and the used
+// edges exist on rs. Returns the map from the copy's vertices to rs's (-1: a midpoint not split);
+// `splits` counts the splits. O(chords + used).
+std::vector<int> split_like_copy(RefinedSurface& rs, const std::vector<std::pair<int, int>>& chords,
+                                 const std::vector<int>& mid, int copy_nv,
+                                 const std::vector<std::pair<int, int>>& used, int& splits) {
+  const TriMesh& M = rs.mesh;
+  const int nv = M.num_vertices();
+  std::vector<char> need(chords.size(), 0);
+  auto chord_index = [&](int a, int b) {
+    const std::pair<int, int> k{std::min(a, b), std::max(a, b)};
+    const auto it = std::lower_bound(chords.begin(), chords.end(), k);
+    return it != chords.end() && *it == k ? static_cast<int>(it - chords.begin()) : -1;
+  };
+  std::vector<int> index_of_mid(copy_nv - nv, -1);
+  for (std::size_t k = 0; k < chords.size(); ++k) index_of_mid[mid[k] - nv] = static_cast<int>(k);
+  auto close_face = [&](int f) {
+    int count = 0;
+    for (int g : {f, TriMesh::next(f), TriMesh::prev(f)}) count += chord_index(M.origin(g), M.target(g)) >= 0;
+    if (count >= 2)
+      for (int g : {f, TriMesh::next(f), TriMesh::prev(f)}) {
+        const int c = chord_index(M.origin(g), M.target(g));
+        if (c >= 0) need[c] = 1;
+      }
+  };
+  // An edge at a midpoint lies in one face of rs at the midpoint's chord (the face opposite its
+  // other end, or the face two chords share).
+  for (auto [p, q] : used) {
+    if (p < nv && q < nv) continue;
+    if (p < nv) std::swap(p, q);  // p is a midpoint
+    const int k = index_of_mid[p - nv];
+    need[k] = 1;
+    const int h = find_he(M, chords[k].first, chords[k].second);
+    for (int g : {h, M.twin(h)}) {
+      bool in_face = false;
+      if (q < nv) {
+        in_face = M.target(TriMesh::next(g)) == q;
+      } else {
+        const int kq = index_of_mid[q - nv];
+        for (int e : {TriMesh::next(g), TriMesh::prev(g)}) in_face = in_face || chord_index(M.origin(e), M.target(e)) == kq;
+      }
+      if (in_face) close_face(g);
+    }
+    if (q >= nv) need[index_of_mid[q - nv]] = 1;
+  }
+  std::vector<int> to_surface(copy_nv, -1);
+  std::iota(to_surface.begin(), to_surface.begin() + nv, 0);
+  for (std::size_t k = 0; k < chords.size(); ++k)
+    if (need[k]) {
+      to_surface[mid[k]] = rs.split_edge(find_he(rs.mesh, chords[k].first, chords[k].second), make_rational(1, 2));
+      ++splits;
+    }
+  return to_surface;
+}
+
 // Step 3: the canonical system built handle by handle on one growing tree, with no slides. Gamma
 // = a tree G from the root (parent pg, distance dg along G) and the bands taken so far; once
 // detached along G (step 2, at the end) the loops root~u, uv, v~root leave the root in the order
@@ -916,10 +1063,7 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
   const int root = res.root, genus = res.genus;
   RefinedSurface& rs = res.surface;
   std::vector<Vec3d> pos(unit.begin(), unit.begin() + rs.num_input_vertices);
-  auto extend = [&](const RefinedSurface& S, std::vector<Vec3d>& p) {
-    while (static_cast<int>(p.size()) < S.mesh.num_vertices())
-      p.push_back(evaluate(S.constructed[p.size() - S.num_input_vertices], unit));
-  };
+  auto extend = [&](const RefinedSurface& S, std::vector<Vec3d>& p) { extend_positions(S, unit, p); };
   GammaTree G;
   G.grow(rs.mesh.num_vertices());
   G.on_g[root] = 1;
@@ -942,9 +1086,8 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
   // gaps' parts is forced into the cotree; pairs are taken within one gap). Vertices >= first_mid
   // (chord midpoints of a copy) cost kMidpointCost more to enter or leave. False if no usable linked
   // pair. O(E log E + pairs * taken log taken).
-  auto search = [&](const RefinedSurface& S, const GammaTree& K, const std::vector<Vec3d>& P,
+  auto search = [&](const TriMesh& M, const GammaTree& K, const std::vector<Vec3d>& P,
                     const std::vector<int>& gaps, int round, int first_mid, Found& out) {
-    const TriMesh& M = S.mesh;
     constexpr double kMidpointCost = 1000.0;  // unit-scaled lengths: crossing a chord is a last resort
     const int nv = M.num_vertices(), nh = M.num_halfedges();
     auto len = [&](int a, int b) {
@@ -965,26 +1108,15 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
     std::vector<double> dist(nv, INFINITY);
     std::vector<int> par(nv, -1), label(nv, -1);
     {
-      using Item = std::pair<double, int>;
-      std::priority_queue<Item, std::vector<Item>, std::greater<Item>> pq;
+      MinQueue pq;
       for (int h = 0; h < nh; ++h) {
         const int x = M.origin(h), y = M.target(h);
         if (gap_label(h) < 0 || K.on_g[y]) continue;
         if (K.dg[x] + len(x, y) < dist[y]) dist[y] = K.dg[x] + len(x, y), par[y] = x, label[y] = gap_label(h), pq.push({dist[y], y});
       }
-      // Each vertex settles once, each half-edge is relaxed once: O(E log E).
-      while (!pq.empty()) {
-        auto [d, v] = pq.top();
-        pq.pop();
-        if (d > dist[v]) continue;
-        const int h0 = M.vertex_halfedge(v);
-        int h = h0;
-        do {
-          const int w = M.target(h);
-          if (!K.on_g[w] && d + len(v, w) < dist[w]) dist[w] = d + len(v, w), par[w] = v, label[w] = label[v], pq.push({dist[w], w});
-          h = M.next_around_origin(h);
-        } while (h != h0);
-      }
+      settle_all(M, dist, pq, [&](int v, int w, double d) {
+        if (!K.on_g[w] && d + len(v, w) < dist[w]) dist[w] = d + len(v, w), par[w] = v, label[w] = label[v], pq.push({dist[w], w});
+      });
     }
     auto t_edge = [&](int a, int b) { return (!K.on_g[b] && par[b] == a) || (!K.on_g[a] && par[a] == b); };
     auto dd = [&](int v) { return K.on_g[v] ? K.dg[v] : dist[v]; };
@@ -1175,7 +1307,7 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
     // surface, then on a copy with every chord split. At most 2 (log2 g + 2) searches.
     Found found;
     bool ok = false;
-    auto try_prefixes = [&](const RefinedSurface& S, const GammaTree& K, const std::vector<Vec3d>& P, int first_mid) {
+    auto try_prefixes = [&](const TriMesh& S, const GammaTree& K, const std::vector<Vec3d>& P, int first_mid) {
       const std::size_t quarter = std::max<std::size_t>(1, (2 * genus - taken.size()) / 4);
       for (std::size_t k = std::min({legal.size(), 2 * last_k, quarter});; k = (k + 1) / 2) {
         found = Found{};
@@ -1186,7 +1318,7 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
         if (k == 1) return false;
       }
     };
-    ok = try_prefixes(rs, G, pos, INT32_MAX);
+    ok = try_prefixes(rs.mesh, G, pos, INT32_MAX);
     if (!ok) {
       std::vector<std::pair<int, int>> chords;  // sorted: the copy's split order
       for (int h = 0; h < nh; ++h)
@@ -1194,70 +1326,19 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
           chords.push_back({std::min(M.origin(h), M.target(h)), std::max(M.origin(h), M.target(h))});
       std::sort(chords.begin(), chords.end());
       if (chords.empty()) internal("normal form: round " + std::to_string(round) + " found no linked pair of loops");
-      RefinedSurface copy = rs;
-      std::vector<int> mid(chords.size());
-      for (std::size_t k = 0; k < chords.size(); ++k)
-        mid[k] = copy.split_edge(find_he(copy.mesh, chords[k].first, chords[k].second), make_rational(1, 2));
+      std::vector<int> mid;
+      std::vector<Vec3d> pos_copy;
+      const TriMesh copy = split_copy(M, pos, chords, mid, pos_copy);
       GammaTree K = G;
-      K.grow(copy.mesh.num_vertices());
-      std::vector<Vec3d> pos_copy = pos;
-      extend(copy, pos_copy);
+      K.grow(copy.num_vertices());
       ok = try_prefixes(copy, K, pos_copy, nv);
       if (!ok) internal("normal form: round " + std::to_string(round) + " found no linked pair of loops");
-      // The chords the found paths and bands cross (midpoints are the copy's vertices >= nv), and
-      // every chord of the faces at them; split on the surface in the copy's order.
-      std::vector<char> need(chords.size(), 0);
-      auto chord_index = [&](int a, int b) {
-        const std::pair<int, int> key{std::min(a, b), std::max(a, b)};
-        const auto it = std::lower_bound(chords.begin(), chords.end(), key);
-        return it != chords.end() && *it == key ? static_cast<int>(it - chords.begin()) : -1;
-      };
-      std::vector<int> index_of_mid(copy.mesh.num_vertices() - nv, -1);
-      for (std::size_t k = 0; k < chords.size(); ++k) index_of_mid[mid[k] - nv] = static_cast<int>(k);
-      // A path edge at a midpoint lies in one face of the surface at the midpoint's chord (the face
-      // opposite its other end, or the face two chords share); its chord is split, and if that
-      // face has another chord, all of its chords are, so that it is triangulated as in the copy.
-      auto faces_of = [&](int v) {  // the two half-edges of v's chord (v a midpoint)
-        const int k = index_of_mid[v - nv];
-        const int h = find_he(M, chords[k].first, chords[k].second);
-        return std::array<int, 2>{h, M.twin(h)};
-      };
-      auto close_face = [&](int f) {
-        int count = 0;
-        for (int g : {f, TriMesh::next(f), TriMesh::prev(f)}) count += chord_index(M.origin(g), M.target(g)) >= 0;
-        if (count >= 2)
-          for (int g : {f, TriMesh::next(f), TriMesh::prev(f)}) {
-            const int c = chord_index(M.origin(g), M.target(g));
-            if (c >= 0) need[c] = 1;
-          }
-      };
-      auto path_edge = [&](int p, int q) {
-        if (p < nv && q < nv) return;
-        if (p < nv) std::swap(p, q);  // p is a midpoint
-        const auto hp = faces_of(p);
-        need[index_of_mid[p - nv]] = 1;
-        for (int h : hp) {
-          bool in_face = false;
-          if (q < nv) {
-            in_face = M.target(TriMesh::next(h)) == q;
-          } else {
-            const int kq = index_of_mid[q - nv];
-            for (int g : {TriMesh::next(h), TriMesh::prev(h)})
-              in_face = in_face || chord_index(M.origin(g), M.target(g)) == kq;
-          }
-          if (in_face) close_face(h);
-        }
-        if (q >= nv) need[index_of_mid[q - nv]] = 1;
-      };
-      for (const auto& [v, p, d] : found.verts) path_edge(v, p);
-      for (const auto& [u, v] : found.bands) path_edge(u, v);
-      std::vector<int> to_surface(copy.mesh.num_vertices(), -1);
-      std::iota(to_surface.begin(), to_surface.begin() + nv, 0);
-      for (std::size_t k = 0; k < chords.size(); ++k)
-        if (need[k]) {
-          to_surface[mid[k]] = rs.split_edge(find_he(rs.mesh, chords[k].first, chords[k].second), make_rational(1, 2));
-          ++res.stats.round_chord_splits;
-        }
+      // The chords the found paths and bands cross (midpoints are the copy's vertices >= nv).
+      std::vector<std::pair<int, int>> used;
+      for (const auto& [v, p, d] : found.verts) used.push_back({v, p});
+      for (const auto& b : found.bands) used.push_back(b);
+      const std::vector<int> to_surface =
+          split_like_copy(rs, chords, mid, copy.num_vertices(), used, res.stats.round_chord_splits);
       auto map = [&](int v) {
         if (v < 0) return v;
         if (to_surface[v] < 0) internal("normal form: a found path uses a chord midpoint that was not split");
@@ -1276,41 +1357,388 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
     G.grow(rs.mesh.num_vertices());
     for (const auto& [v, p, d] : found.verts) G.on_g[v] = 1, G.pg[v] = p, G.dg[v] = d;
     for (const auto& b : found.bands) taken.push_back(b);
-    if (root_start < 0) {  // the first child of the root in G, ccw from its stored half-edge
-      const int h0 = rs.mesh.vertex_halfedge(root);
-      int h = h0;
-      while (!(G.on_g[rs.mesh.target(h)] && G.pg[rs.mesh.target(h)] == root)) {
-        h = rs.mesh.next_around_origin(h);
-        if (h == h0) internal("normal form: G has no edge at the root");
-      }
-      root_start = rs.mesh.target(h);
-    }
+    if (root_start < 0) root_start = first_child_of_root(rs.mesh, G, root);
     ++res.stats.normal_form_rounds;
   }
-  // The last round's word, checked like the others.
-  {
+  // The last round's word, checked like the others, and step 2 once: all 2g loops detached along G.
+  G.grow(rs.mesh.num_vertices());
+  return detach_along_tree(res, G, root_start, taken, vertex_limit);
+}
+
+// Step 3 (crosses): g disjoint crosses first, then one tree from the root to them. A cross is two
+// loops a, b that share one tree path and cross once there (a linked pair of a tree–cotree basis
+// of the surface cut along the earlier crosses, its stem to the seed dropped): the union of their
+// two tree paths, with the two bands. Disjoint crosses are independent (each pair meets once, the
+// pairs not at all), and cut along all of them the surface is a sphere with g holes, connected; a
+// tree P from the root over the vertices off the crosses, meeting each cross at one vertex c,
+// then leaves the four ends of every cross next to each other in P's tour, where any cyclic
+// rotation of X Y X' Y' reads a commutator block. Detached along G = P + the crosses (step 2
+// once), the word is in blocks wherever P meets a cross, so nothing constrains where it does.
+// One round: seeds spread over the vertices off the crosses (farthest first, from the crosses and
+// the root); a Dijkstra forest from them over those vertices; the dual maximum spanning tree
+// with every edge at a cross, at the root, or between two seeds' parts forced in first; the
+// leftover edges' ends in each seed's tour; linked pairs by length, taken while their paths are
+// disjoint from the pairs taken before. Chords (edges off the crosses joining two of their
+// vertices or the root) can wall the forest off; a round that finds nothing from k seeds is
+// searched from k/2, ..., 1, then on a copy with every chord split (a midpoint costs 1000 unit
+// lengths), after which only the chords the found crosses use are split on the surface. P is
+// found the same way (on a copy if a cross is walled off). At most g rounds; every round takes a
+// cross. Returns false as soon as the mesh has more than vertex_limit vertices.
+bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops, long vertex_limit) {
+  const int root = res.root, genus = res.genus;
+  RefinedSurface& rs = res.surface;
+  std::vector<Vec3d> pos(unit.begin(), unit.begin() + rs.num_input_vertices);
+  auto extend = [&](const RefinedSurface& S, std::vector<Vec3d>& p) { extend_positions(S, unit, p); };
+  constexpr double kMidpointCost = 1000.0;  // unit-scaled lengths: crossing a chord is a last resort
+  struct Cross {
+    std::vector<std::pair<int, int>> edges;  // tree edges (x, parent of x in the seed's forest)
+    std::array<std::pair<int, int>, 2> bands;
+  };
+  std::vector<Cross> crosses;
+  std::vector<int> cross_of(rs.mesh.num_vertices(), -1);
+  std::unordered_set<long long> cross_edges;
+  auto key = [](int a, int b) { return (static_cast<long long>(std::min(a, b)) << 32) | std::max(a, b); };
+  auto lenf = [&](const std::vector<Vec3d>& P, int first_mid) {
+    return [&P, first_mid, hops](int a, int b) {
+      return (hops ? 1.0 : length(P[a], P[b])) + (a >= first_mid ? kMidpointCost : 0.0) +
+             (b >= first_mid ? kMidpointCost : 0.0);
+    };
+  };
+  // One round's search on M (the surface or a copy; cof = cross_of sized for M) from `seeds`.
+  // Appends the crosses found (vertex ids of M). O(E log E + L^2 log L + the paths), L leftovers.
+  auto search = [&](const TriMesh& M, const std::vector<int>& cof, const std::vector<Vec3d>& P,
+                    const std::vector<int>& seeds, int first_mid, int round, std::vector<Cross>& out) {
+    const int nv = M.num_vertices(), nh = M.num_halfedges();
+    const auto len = lenf(P, first_mid);
+    auto blocked = [&](int v) { return v == root || cof[v] != -1; };
+    std::vector<double> dist(nv, INFINITY);
+    std::vector<int> par(nv, -1), label(nv, -1), depth(nv, 0);
+    {
+      MinQueue pq;
+      for (std::size_t k = 0; k < seeds.size(); ++k) dist[seeds[k]] = 0, label[seeds[k]] = static_cast<int>(k), pq.push({0.0, seeds[k]});
+      settle_all(M, dist, pq, [&](int v, int w, double d) {
+        if (!blocked(w) && d + len(v, w) < dist[w])
+          dist[w] = d + len(v, w), par[w] = v, label[w] = label[v], depth[w] = depth[v] + 1, pq.push({dist[w], w});
+      });
+    }
+    std::vector<std::pair<int, int>> bands;
+    std::vector<double> band_len;
+    {
+      std::vector<std::pair<double, int>> cand, weighted;  // forced ones first, in half-edge order
+      long outside = 0;
+      for (int v = 0; v < nv; ++v) outside += blocked(v) || !(dist[v] < INFINITY);
+      for (int h = 0; h < nh; ++h) {
+        if (h > M.twin(h)) continue;
+        const int a = M.origin(h), b = M.target(h);
+        const bool reached = !blocked(a) && !blocked(b) && dist[a] < INFINITY && dist[b] < INFINITY;
+        if (reached && (par[b] == a || par[a] == b)) continue;
+        if (!reached || label[a] != label[b]) cand.push_back({INFINITY, h});
+        else weighted.push_back({dist[a] + dist[b] + len(a, b), h});
+      }
+      std::sort(weighted.begin(), weighted.end(), [](const auto& x, const auto& y) {
+        return x.first != y.first ? x.first > y.first : x.second < y.second;
+      });
+      cand.insert(cand.end(), weighted.begin(), weighted.end());
+      Dsu dsu(M.num_faces());
+      long left = 0;
+      for (const auto& [w, h] : cand)
+        if (!dsu.unite(TriMesh::face(h), TriMesh::face(M.twin(h)))) {
+          ++left;
+          if (w < INFINITY) bands.push_back({M.origin(h), M.target(h)}), band_len.push_back(w);
+        }
+      // E - (reached - seeds) - (F - 1) leftovers, with E = V + F - 2 + 2g.
+      if (left != 2L * genus + outside + static_cast<long>(seeds.size()) - 1)
+        internal("normal form: cross round " + std::to_string(round) + " left " + std::to_string(left) + " edges");
+    }
+    const int nb = static_cast<int>(bands.size());
+    if (nb < 2) return false;
+    // The leftover ends in the tours of the seeds' trees (descending only above an end: O(n)).
+    std::vector<std::array<long, 2>> end_pos(nb, {-1, -1});
+    {
+      std::vector<int> cand_of(nh, -1);
+      std::vector<char> above(nv, 0);
+      for (int i = 0; i < nb; ++i) {
+        const int h = find_he(M, bands[i].first, bands[i].second);
+        cand_of[h] = cand_of[M.twin(h)] = i;
+        for (int x : {bands[i].first, bands[i].second})
+          for (; x >= 0 && !above[x]; x = par[x]) above[x] = 1;
+      }
+      long counter = 0;
+      for (int s : seeds) {
+        if (!above[s]) continue;
+        tour_tree(
+            M, M.vertex_halfedge(s),
+            [&](int h) {
+              const int b = M.target(h);
+              return cand_of[h] < 0 && !blocked(b) && par[b] == M.origin(h) && above[b];
+            },
+            [&](int h) {
+              const int i = cand_of[h];
+              if (i >= 0) end_pos[i][M.origin(h) == bands[i].first ? 0 : 1] = counter++;
+            });
+      }
+    }
+    // Each leftover's loop without its stem: the tree path between its ends, and its length.
+    std::vector<std::vector<int>> path(nb);
+    std::vector<double> cost(nb);
+    for (int i = 0; i < nb; ++i) {
+      int x = bands[i].first, y = bands[i].second;
+      std::vector<int> up, down;
+      while (x != y) {  // climbs at most depth(x) + depth(y) steps
+        if (depth[x] >= depth[y]) up.push_back(x), x = par[x];
+        else down.push_back(y), y = par[y];
+      }
+      up.push_back(x);
+      cost[i] = dist[bands[i].first] + dist[bands[i].second] - 2 * dist[x] + len(bands[i].first, bands[i].second);
+      path[i] = std::move(up);
+      path[i].insert(path[i].end(), down.rbegin(), down.rend());
+    }
+    struct Pair { double cost; int i, j; };
+    std::vector<Pair> pairs;
+    for (int i = 0; i < nb; ++i) {
+      const long li = std::min(end_pos[i][0], end_pos[i][1]), hi = std::max(end_pos[i][0], end_pos[i][1]);
+      if (li < 0) continue;
+      for (int j = 0; j < nb; ++j) {
+        if (j == i || label[bands[j].first] != label[bands[i].first]) continue;
+        const long lj = std::min(end_pos[j][0], end_pos[j][1]), hj = std::max(end_pos[j][0], end_pos[j][1]);
+        if (lj >= 0 && li < lj && lj < hi && hi < hj) pairs.push_back({cost[i] + cost[j], i, j});
+      }
+    }
+    std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
+      return a.cost != b.cost ? a.cost < b.cost : a.i != b.i ? a.i < b.i : a.j < b.j;
+    });
+    std::vector<char> mark(nv, 0);
+    const std::size_t before = out.size();
+    for (const Pair& p : pairs) {
+      if (static_cast<int>(crosses.size() + out.size()) >= genus) break;
+      bool free = true;
+      for (int k : {p.i, p.j})
+        for (int x : path[k]) free = free && !mark[x];
+      if (!free) continue;
+      Cross c;
+      int top = path[p.i][0];
+      std::vector<int> verts;
+      for (int k : {p.i, p.j})
+        for (int x : path[k])
+          if (!mark[x]) mark[x] = 2, verts.push_back(x);
+      for (int x : verts)
+        if (depth[x] < depth[top]) top = x;
+      for (int x : verts) {  // the union is one subtree below top (linked paths meet)
+        if (x == top) continue;
+        if (par[x] < 0 || mark[par[x]] != 2) internal("normal form: a linked pair whose paths do not meet", {x});
+        c.edges.push_back({x, par[x]});
+      }
+      for (int x : verts) mark[x] = 1;
+      c.bands = {bands[p.i], bands[p.j]};
+      out.push_back(std::move(c));
+    }
+    return out.size() > before;
+  };
+
+  // The chords of M (edges joining two vertices of `is_wall` that are no cross's edge), sorted.
+  auto chords_of = [&](const TriMesh& M, auto&& is_wall) {
+    std::vector<std::pair<int, int>> chords;
+    for (int h = 0; h < M.num_halfedges(); ++h) {
+      const int a = M.origin(h), b = M.target(h);
+      if (h < M.twin(h) && is_wall(a) && is_wall(b) && !cross_edges.count(key(a, b)))
+        chords.push_back({std::min(a, b), std::max(a, b)});
+    }
+    std::sort(chords.begin(), chords.end());
+    return chords;
+  };
+  auto map_ids = [&](const std::vector<int>& to_surface, int& v) {
+    if (to_surface[v] < 0) internal("normal form: a found path uses a chord midpoint that was not split");
+    v = to_surface[v];
+  };
+
+  // Seeds on M (the surface or a copy, cof = cross_of sized for it): up to k vertices off the
+  // crosses and the root, each the farthest (ties: lowest id) from those and the seeds before it.
+  // At most k + 1 Dijkstra passes, each stopping where it gains nothing; O(k (n + E log E)).
+  auto pick_seeds = [&](const TriMesh& M, const std::vector<int>& cof, const std::vector<Vec3d>& P, int first_mid,
+                        std::size_t k) {
+    const int nv = M.num_vertices();
+    const auto len = lenf(P, first_mid);
+    std::vector<double> d(nv, INFINITY);
+    std::vector<char> source(nv, 0);
+    MinQueue pq;
+    auto free_v = [&](int v) { return v != root && cof[v] == -1; };
+    auto run = [&] {
+      settle_all(M, d, pq, [&](int v, int w, double dv) {
+        if (free_v(w) && dv + len(v, w) < d[w]) d[w] = dv + len(v, w), pq.push({d[w], w});
+      });
+    };
+    for (int v = 0; v < nv; ++v)
+      if (!free_v(v)) d[v] = 0, source[v] = 1, pq.push({0.0, v});
+    run();
+    std::vector<int> seeds;
+    while (seeds.size() < k) {
+      int best = -1;
+      for (int v = 0; v < nv; ++v)
+        if (!source[v] && (best < 0 || d[v] > d[best])) best = v;
+      if (best < 0) break;
+      seeds.push_back(best);
+      d[best] = 0, source[best] = 1;
+      pq.push({0.0, best});
+      run();
+    }
+    return seeds;
+  };
+
+  // G (built by hang_crosses once all crosses are found): the root, the paths P from it to the
+  // crosses (cross_of = -2) and every cross's tree hung from the vertex c where its path meets it
+  // (the first vertex of the cross a Dijkstra from the root over the free vertices reaches; on a
+  // copy with every chord split if a cross is walled off). O(E log E + chords).
+  GammaTree G;
+  G.grow(rs.mesh.num_vertices());
+  G.on_g[root] = 1;
+  G.dg[root] = 0;
+  cross_of[root] = -2;
+  std::vector<std::pair<int, int>> taken;
+  auto hang_crosses = [&] {
+    const std::size_t n_new = crosses.size();
+    std::vector<int> hang(n_new, -1), hang_from(n_new, -1), parent;
+    auto run = [&](const TriMesh& M, const std::vector<int>& cof, const std::vector<Vec3d>& P, int first_mid) {
+      const int nv = M.num_vertices();
+      const auto len = lenf(P, first_mid);
+      std::vector<double> dist(nv, INFINITY);
+      parent.assign(nv, -1);
+      std::fill(hang.begin(), hang.end(), -1);
+      std::size_t hung = 0;
+      MinQueue pq;
+      dist[root] = 0;
+      pq.push({0.0, root});
+      settle_all(M, dist, pq, [&](int v, int w, double d) {
+        if (cof[w] >= 0) {
+          if (hang[cof[w]] < 0) hang[cof[w]] = w, hang_from[cof[w]] = v, ++hung;
+        } else if (cof[w] == -1 && d + len(v, w) < dist[w]) {
+          dist[w] = d + len(v, w), parent[w] = v, pq.push({dist[w], w});
+        }
+      });
+      return std::make_pair(hung == n_new, dist);
+    };
+    auto [ok, dist] = run(rs.mesh, cross_of, pos, INT32_MAX);
+    const int nv = rs.mesh.num_vertices();
+    if (!ok) {
+      const auto chords = chords_of(rs.mesh, [&](int v) { return cross_of[v] != -1; });
+      std::vector<int> mid;
+      std::vector<Vec3d> pos_copy;
+      const TriMesh copy = split_copy(rs.mesh, pos, chords, mid, pos_copy);
+      std::vector<int> cof = cross_of;
+      cof.resize(copy.num_vertices(), -1);
+      auto [ok2, dist2] = run(copy, cof, pos_copy, nv);
+      if (!ok2) internal("normal form: a cross is not reachable from the root");
+      std::vector<std::pair<int, int>> used, all;
+      std::vector<char> seen(copy.num_vertices(), 0);
+      for (std::size_t i = 0; i < n_new; ++i)
+        for (int x = hang_from[i]; cof[x] == -1 && !seen[x]; x = parent[x]) seen[x] = 1, used.push_back({x, parent[x]});
+      all = used;
+      for (std::size_t i = 0; i < n_new; ++i) all.push_back({hang_from[i], hang[i]});
+      const std::vector<int> to_surface =
+          split_like_copy(rs, chords, mid, copy.num_vertices(), all, res.stats.round_chord_splits);
+      std::vector<int> p2(rs.mesh.num_vertices(), -1);
+      std::vector<double> d2(rs.mesh.num_vertices(), INFINITY);
+      for (auto [x, y] : used) {
+        const int cx = x;
+        map_ids(to_surface, x), map_ids(to_surface, y);
+        p2[x] = y, d2[x] = dist2[cx];
+      }
+      for (std::size_t i = 0; i < n_new; ++i) map_ids(to_surface, hang_from[i]);
+      parent = std::move(p2);
+      dist = std::move(d2);
+    }
     G.grow(rs.mesh.num_vertices());
-    std::vector<int> band_of, gap_of;
-    std::vector<Letter> rot;
-    gamma_tour(rs.mesh, G, taken, root, root_h0(rs.mesh), band_of, gap_of, rot);
-    gaps_between_blocks(rot, round);
+    cross_of.resize(rs.mesh.num_vertices(), -1);
+    for (std::size_t i = 0; i < n_new; ++i) {
+      for (int x = hang_from[i]; cross_of[x] == -1; x = parent[x]) {
+        if (rs.mesh.find_halfedge(x, parent[x]) < 0) internal("normal form: a path edge to a cross is missing", {x});
+        G.on_g[x] = 1, G.pg[x] = parent[x], G.dg[x] = dist[x], cross_of[x] = -2;
+        cross_edges.insert(key(x, parent[x]));
+      }
+      const int c = hang[i];
+      if (rs.mesh.find_halfedge(c, hang_from[i]) < 0) internal("normal form: an edge to a cross is missing", {c});
+      cross_edges.insert(key(c, hang_from[i]));
+      std::unordered_map<int, std::vector<int>> adj;
+      for (auto [x, y] : crosses[i].edges) adj[x].push_back(y), adj[y].push_back(x);
+      G.on_g[c] = 1, G.pg[c] = hang_from[i];
+      std::vector<int> stack{c};
+      while (!stack.empty()) {  // each vertex of the cross once
+        const int x = stack.back();
+        stack.pop_back();
+        for (int y : adj[x])
+          if (!G.on_g[y]) G.on_g[y] = 1, G.pg[y] = x, stack.push_back(y);
+      }
+      taken.push_back(crosses[i].bands[0]);
+      taken.push_back(crosses[i].bands[1]);
+    }
+    return rs.mesh.num_vertices() <= vertex_limit;
+  };
+
+  int round = 0;
+  std::size_t last_k = std::numeric_limits<int>::max();
+  while (static_cast<int>(crosses.size()) < genus) {
+    if (round >= genus) internal("normal form: cross round " + std::to_string(round) + " with g = " + std::to_string(genus));
+    extend(rs, pos);
+    const int nv = rs.mesh.num_vertices();
+    cross_of.resize(nv, -1);
+    const std::size_t remaining = genus - crosses.size();
+    const std::size_t want_seeds = std::min(2 * last_k, std::max<std::size_t>(1, remaining / 4));
+    std::vector<Cross> found;
+    auto try_prefixes = [&](const TriMesh& M, const std::vector<int>& cof, const std::vector<Vec3d>& P, int first_mid) {
+      const std::vector<int> seeds = pick_seeds(M, cof, P, first_mid, want_seeds);
+      if (seeds.empty()) return false;  // every vertex is on a cross or the root
+      for (std::size_t k = seeds.size();; k = (k + 1) / 2) {
+        found.clear();
+        if (search(M, cof, P, std::vector<int>(seeds.begin(), seeds.begin() + static_cast<long>(k)), first_mid, round, found)) {
+          last_k = k;
+          return true;
+        }
+        if (k == 1) return false;
+      }
+    };
+    if (!try_prefixes(rs.mesh, cross_of, pos, INT32_MAX)) {
+      const auto chords = chords_of(rs.mesh, [&](int v) { return v == root || cross_of[v] != -1; });
+      if (chords.empty()) internal("normal form: cross round " + std::to_string(round) + " found no linked pair");
+      std::vector<int> mid;
+      std::vector<Vec3d> pos_copy;
+      const TriMesh copy = split_copy(rs.mesh, pos, chords, mid, pos_copy);
+      std::vector<int> cof = cross_of;
+      cof.resize(copy.num_vertices(), -1);
+      if (!try_prefixes(copy, cof, pos_copy, nv))
+        internal("normal form: cross round " + std::to_string(round) + " found no linked pair");
+      std::vector<std::pair<int, int>> used;
+      for (const Cross& c : found) {
+        used.insert(used.end(), c.edges.begin(), c.edges.end());
+        used.insert(used.end(), c.bands.begin(), c.bands.end());
+      }
+      const std::vector<int> to_surface =
+          split_like_copy(rs, chords, mid, copy.num_vertices(), used, res.stats.round_chord_splits);
+      for (Cross& c : found) {
+        for (auto& [x, y] : c.edges) map_ids(to_surface, x), map_ids(to_surface, y);
+        for (auto& [x, y] : c.bands) map_ids(to_surface, x), map_ids(to_surface, y);
+      }
+      if (rs.mesh.num_vertices() > vertex_limit) return false;
+    }
+    cross_of.resize(rs.mesh.num_vertices(), -1);
+    for (Cross& c : found) {
+      const int id = static_cast<int>(crosses.size());
+      for (const auto& e : c.edges) {
+        if (rs.mesh.find_halfedge(e.first, e.second) < 0) internal("normal form: a cross edge is missing after the splits", {e.first});
+        cross_of[e.first] = cross_of[e.second] = id;
+        cross_edges.insert(key(e.first, e.second));
+      }
+      for (const auto& e : c.bands) {
+        if (rs.mesh.find_halfedge(e.first, e.second) < 0) internal("normal form: a band is missing after the splits", {e.first});
+        cross_edges.insert(key(e.first, e.second));
+      }
+      crosses.push_back(std::move(c));
+    }
+    ++round;
+    ++res.stats.normal_form_rounds;
   }
-  // Step 2 once: all 2g loops detached along G.
-  DetachPlan P;
-  P.root = root;
-  P.root_start = root_start;
-  P.parent = G.pg;
-  P.rs = std::move(rs);
-  plan_strands(P, taken);
-  res.stats.band_splits += P.band_splits;
-  res.stats.predicted_crossings = P.crossings;
-  if (P.rs.mesh.num_vertices() + P.crossings > vertex_limit) {  // every crossing is a new vertex
-    rs = std::move(P.rs);
-    return false;
-  }
-  res.loops = realize_strands(P, res.stats);
-  rs = std::move(P.rs);
-  return rs.mesh.num_vertices() <= vertex_limit;
+
+  extend(rs, pos);
+  if (!hang_crosses()) return false;
+  return detach_along_tree(res, G, first_child_of_root(rs.mesh, G, root), taken, vertex_limit);
 }
 
 // Root candidates: the vertex of maximum valence (lowest id among ties), then vertices i * V / k
@@ -1361,9 +1789,11 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
   if (options.normal_form) {
     // Root and metric: the given root with 3D lengths, or among K deterministic candidates
     // (root_candidates, K = clamp(2e5 / F, 1, 12)) with 3D lengths and (K > 1) hop counts, the
-    // pair whose rounds end with the fewest vertices; a candidate stops once it has more than the
-    // best so far.
+    // pair whose construction ends with the fewest vertices; a candidate stops once it has more
+    // than the best so far. Per candidate (Best): the rounds, bounded by max_rounds_growth; if
+    // they pass it, the crosses. After two candidates whose rounds passed it, only the crosses.
     const long limit = nv0 + static_cast<long>(options.max_normal_form_growth * nv0);
+    const long rounds_limit = std::min(limit, nv0 + static_cast<long>(options.max_rounds_growth * nv0));
     std::vector<std::pair<int, bool>> candidates;
     if (options.root >= 0) {
       candidates.push_back({options.root, false});
@@ -1374,25 +1804,46 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
         for (bool hops : {false, true})
           if (!hops || k > 1) candidates.push_back({c, hops});
     }
+    using C = CutOptions::Construction;
     bool found = false;
-    int tried = 0;
-    for (auto [c, hops] : candidates) {
+    int tried = 0, rounds_passed = 0;
+    auto attempt = [&](int c, bool hops, bool crosses, long bound) {
       CutResult trial;
       trial.root = c;
       trial.genus = genus;
       trial.surface.mesh = mesh;
       trial.surface.num_input_vertices = nv0;
       trial.surface.input_positions = positions;
-      const long bound = found ? rs.mesh.num_vertices() - 1 : limit;
-      ++tried;
-      if (canonical_rounds(trial, unit, hops, bound)) {
+      const bool ok = crosses ? canonical_crosses(trial, unit, hops, bound) : canonical_rounds(trial, unit, hops, bound);
+      if (ok) {
         res.root = trial.root;
         res.loops = std::move(trial.loops);
         rs = std::move(trial.surface);
         res.stats = trial.stats;
+        res.stats.crosses = crosses;
         found = true;
       }
+      return ok;
+    };
+    for (auto [c, hops] : candidates) {
+      ++tried;
+      const long best = found ? rs.mesh.num_vertices() - 1 : limit;
+      bool crosses = options.construction == C::Crosses || (options.construction == C::Best && rounds_passed >= 2);
+      if (!crosses) {
+        // Failed with the rounds' own bound binding (not only the best so far): they passed it.
+        if (!attempt(c, hops, false, std::min(best, rounds_limit)) && rounds_limit <= best &&
+            options.construction == C::Best) {
+          ++rounds_passed;
+          crosses = true;
+        }
+      }
+      if (crosses) attempt(c, hops, true, found ? rs.mesh.num_vertices() - 1 : limit);
     }
+    if (!found && options.construction == C::Rounds)
+      throw Error(ErrorKind::Unsupported,
+                  "normal form: the rounds would grow the mesh past " + std::to_string(rounds_limit) +
+                      " vertices (CutOptions::max_rounds_growth x " + std::to_string(nv0) +
+                      " input vertices); use the crosses construction, or run without the normal form");
     if (!found)
       throw Error(ErrorKind::Unsupported,
                   "normal form: the canonical loops would grow the mesh past " + std::to_string(limit) +

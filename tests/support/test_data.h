@@ -16,6 +16,12 @@ inline std::optional<std::filesystem::path> data_dir() {
   return std::nullopt;
 }
 
+#ifdef IGM_SANITIZED
+inline constexpr bool kSanitized = true;  // built with -DIGM_SANITIZE=ON (tests/CMakeLists.txt)
+#else
+inline constexpr bool kSanitized = false;
+#endif
+
 }  // namespace igm_test
 
 // Use at the top of a TEST_CASE: binds `dir` or skips the case with a message.

@@ -20,8 +20,12 @@
 //     programming over T, O(sum of strand lengths)). Each face is then re-triangulated along the
 //     curves. Growth: one vertex per crossing (plus a split where a curve would run along an edge,
 //     and a face vertex where a fan would be flat). Cost O(n + total crossings).
-//  3. normal form (CutOptions::normal_form), built handle by handle in rounds on one growing tree G
-//     from the root instead of steps 1-2 (no handle slides, no refinement between rounds): Gamma =
+//  3. normal form (CutOptions::normal_form), instead of steps 1-2, by one of two constructions
+//     (CutOptions::construction; Best: the rounds, and for a root whose rounds pass
+//     CutOptions::max_rounds_growth the crosses; after two such roots only the crosses). Both end
+//     with a tree G from the root and 2g bands, detached once by step 2; the word traced from G's
+//     tour is checked to be one cycle in commutator blocks.
+//     a. rounds, handle by handle on one growing tree G from the root (no handle slides): Gamma =
 //     G and the bands taken so far, not yet detached. Detached along G (step 2, once at the end),
 //     the loops leave the root in the order of G's counter-clockwise tour; a gap (the stretch of
 //     the tour between two consecutive taken ends, a corner of the final polygon) between blocks
@@ -34,24 +38,38 @@
 //     paths in T join G. The search starts from the best k gaps (by the region they reach; k =
 //     min(twice the number the last round's search used, a quarter of the loops still to find),
 //     at least 1); if no gap finds a pair it is repeated from the best half of those, a quarter,
-//     ..., one; then, since chords (edges off Gamma
-//     joining two Gamma vertices) wall T off where branches of G run side by side, the same on a
-//     copy of the surface with every chord split at its midpoint (a midpoint costs 1000 unit
-//     lengths), after which only the chords the taken paths cross are split on the surface (with
-//     the other chords of a face where two meet, in the copy's order, so that the paths exist).
-//     With no chord a linked pair exists (the intersection form is nondegenerate). After every
-//     round the word traced from G's tour is checked to be one cycle in commutator blocks. At
-//     most g rounds, at most 2 (log2 g + 2) searches per round. The root and metric are chosen
-//     among candidates by the final vertex count. Loops are renumbered and reoriented so that the
-//     word is exactly L0 L1 L0^-1 L1^-1 L2 L3 ... Off, the word is whatever step 2 gives.
-//     Known limitation: on a coarse mesh of high genus the late rounds' paths must run along
-//     earlier loops through chords, and the splits compound (cheese g133 on 8.6k vertices and a
-//     generated g50 on 10k faces exceed CutOptions::max_normal_form_growth, a typed error; a
-//     generated g20 on 5k faces does not).
+//     ..., one; then, since chords (edges off Gamma joining two Gamma vertices) wall T off where
+//     branches of G run side by side, the same on a copy of the surface with every chord split at
+//     its midpoint (a midpoint costs 1000 unit lengths), after which only the chords the taken
+//     paths cross are split on the surface (with the other chords of a face where two meet, in the
+//     copy's order, so that the paths exist). With no chord a linked pair exists (the
+//     intersection form is nondegenerate). At most g rounds, at most 2 (log2 g + 2) searches per
+//     round. On a coarse mesh of high genus the late rounds' paths must run along earlier loops
+//     through chords and the splits compound (cheese g133 passes 4x its vertices).
+//     b. crosses: first g disjoint crosses, then one tree from the root to them. A cross is a
+//     linked pair of loops of a tree-cotree basis of the surface cut along the crosses before it
+//     (Dijkstra forest from seeds off the crosses, spread farthest-first; dual maximum spanning tree
+//     with the edges at a cross, at the root or between two seeds' parts forced in; pairs by
+//     length), without its stem to the seed: the union of the two loops' tree paths (they share a
+//     path, where the loops cross once) and the two bands. Disjoint crosses are independent and,
+//     cut along all of them, the surface is a sphere with g holes, connected; a Dijkstra tree P
+//     from the root over the vertices off the crosses, hanging every cross from the first of its
+//     vertices it reaches, leaves each cross's four ends next to each other in G's tour (G = P +
+//     the crosses' trees), where any rotation of X Y X' Y' reads a commutator block: nothing
+//     constrains where P meets a cross. Chords (edges off the crosses joining two of their
+//     vertices or the root) are handled as in (a): fewer seeds, then a copy with every chord split.
+//     At most g rounds (each takes at least one cross, as many disjoint ones as it finds). Its
+//     loops are longer than the rounds' on small meshes (eight 409 vertices instead of 323) but it
+//     does not compound: cheese g133 gets 600k vertices, 67x (its paths from the root wind between
+//     the crosses; measured against 2.5M for the prototype).
 //     Measured and rejected before: handle slides on the detached greedy loops (plan_handle_slides,
 //     handle_slides.h): the slides' paths double in length per handle on cheese; rounds that
 //     detached their loops before the next round (stop 13): every later round had to squeeze
-//     between parallel strands (couplingdown 3.45k vertices instead of 2.37k now).
+//     between parallel strands (couplingdown 3.45k vertices instead of 2.37k now); in (b), hanging
+//     each round's crosses from G at once (the later crosses then compound like the rounds).
+//     The root and metric are chosen among candidates by the final vertex count. Loops are
+//     renumbered and reoriented so that the word is exactly L0 L1 L0^-1 L1^-1 L2 L3 ... Off, the
+//     word is whatever step 2 gives.
 //  4. embedding pre-conditions (embed/tutte.h): every interior disk edge joining two vertices of
 //     one polygon side (a root copy lies on its two sides) is split at its midpoint; then no
 //     triangle has three vertices on one side. O(n).
@@ -78,10 +96,18 @@ struct CutOptions {
   /// detached greedy loops give (still 4g sides, paired). The pipeline runs with it off by default
   /// (PipelineOptions::normal_form, step 3's growth); here it is on by default.
   bool normal_form = true;
-  /// Bound on the vertices the normal form's rounds may add, as a multiple of the input's vertex
-  /// count; exceeding it is igm::Error(Unsupported) (later rounds' loops run beside earlier ones,
-  /// and on high genus their length compounds: cheese g133 would grow past millions of vertices).
-  double max_normal_form_growth = 4.0;
+  /// Which construction of step 3 builds the normal form: Best (rounds, and crosses for a root
+  /// where the rounds pass max_rounds_growth; the fewest vertices win), or one of the two alone.
+  enum class Construction { Best, Rounds, Crosses };
+  Construction construction = Construction::Best;
+  /// Bound on the vertices the normal form may add, as a multiple of the input's vertex count;
+  /// exceeding it with every root is igm::Error(Unsupported). Cheese (g133 on 8.6k vertices) needs
+  /// 67x: its crosses' loops are long for a mesh that coarse.
+  double max_normal_form_growth = 100.0;
+  /// The rounds construction is abandoned for a root once it passes this multiple (its later loops
+  /// compound on coarse meshes of high genus); with Best, after two roots that did so it is not
+  /// tried again, and the crosses construction runs instead.
+  double max_rounds_growth = 4.0;
 };
 
 struct CutStats {
@@ -97,6 +123,7 @@ struct CutStats {
   int roots_tried = 0;          // (root, metric) candidates whose detaching was planned (root = -1)
   int normal_form_rounds = 0;   // rounds of the canonical construction (normal form, <= g)
   int round_chord_splits = 0;   // edges between two loop vertices split before a round (normal form)
+  bool crosses = false;         // the normal form came from the crosses construction
   double seconds_basis = 0, seconds_detach = 0, seconds_cut = 0, seconds_total = 0;
 };
 
