@@ -1507,14 +1507,22 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
     std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
       return a.cost != b.cost ? a.cost < b.cost : a.i != b.i ? a.i < b.i : a.j < b.j;
     });
-    std::vector<char> mark(nv, 0);
+    std::vector<char> mark(nv, 0), blocked_band(nb, 0);  // a band whose path meets a taken cross
+    std::vector<std::size_t> free_at(nb, SIZE_MAX);       // out.size() when its path was last found free
     const std::size_t before = out.size();
+    // A band's path is scanned again only after a cross was taken, and never once blocked:
+    // O(pairs + nb * path length * crosses taken) after the sort.
+    auto path_free = [&](int k) {
+      if (blocked_band[k]) return false;
+      if (free_at[k] == out.size()) return true;
+      for (int x : path[k])
+        if (mark[x]) return !(blocked_band[k] = 1);
+      free_at[k] = out.size();
+      return true;
+    };
     for (const Pair& p : pairs) {
       if (static_cast<int>(crosses.size() + out.size()) >= genus) break;
-      bool free = true;
-      for (int k : {p.i, p.j})
-        for (int x : path[k]) free = free && !mark[x];
-      if (!free) continue;
+      if (!path_free(p.i) || !path_free(p.j)) continue;
       Cross c;
       int top = path[p.i][0];
       std::vector<int> verts;
