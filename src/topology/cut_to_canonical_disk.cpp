@@ -1382,8 +1382,12 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
 // vertices or the root) can wall the forest off; a round that finds nothing from k seeds is
 // searched from k/2, ..., 1, then on a copy with every chord split (a midpoint costs 1000 unit
 // lengths), after which only the chords the found crosses use are split on the surface. P is
-// found the same way (on a copy if a cross is walled off). At most g rounds; every round takes a
-// cross. Returns false as soon as the mesh has more than vertex_limit vertices.
+// found the same way (on a copy if a cross is walled off). A round starts from k = min(twice the
+// seeds the last round used, a quarter of the crosses still to find) seeds, at least 1. At most g
+// rounds (each takes a cross), at most log2 k + 1 searches on the surface and as many on a copy
+// per round. Returns false as soon as the mesh has more than vertex_limit vertices. Post (true):
+// as canonical_rounds. Cost O(g log g (E log E + L^2 log L) + crossings), L <= 2g + k the
+// leftover edges of a search.
 bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops, long vertex_limit) {
   const int root = res.root, genus = res.genus;
   RefinedSurface& rs = res.surface;
@@ -1593,18 +1597,18 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
   };
 
   // G (built by hang_crosses once all crosses are found): the root, the paths P from it to the
-  // crosses (cross_of = -2) and every cross's tree hung from the vertex c where its path meets it
-  // (the first vertex of the cross a Dijkstra from the root over the free vertices reaches; on a
-  // copy with every chord split if a cross is walled off). O(E log E + chords).
+  // crosses and every cross's tree hung from the vertex c where its path meets it (the first
+  // vertex of the cross a Dijkstra from the root over the free vertices reaches; on a copy with
+  // every chord split if a cross is walled off). Only G's parents and membership are used (step
+  // 2 and the word check). O(E log E + chords).
   GammaTree G;
   G.grow(rs.mesh.num_vertices());
   G.on_g[root] = 1;
-  G.dg[root] = 0;
-  cross_of[root] = -2;
+  cross_of[root] = -2;  // off the crosses and the seeds
   std::vector<std::pair<int, int>> taken;
   auto hang_crosses = [&] {
-    const std::size_t n_new = crosses.size();
-    std::vector<int> hang(n_new, -1), hang_from(n_new, -1), parent;
+    const std::size_t n = crosses.size();
+    std::vector<int> hang(n, -1), hang_from(n, -1), parent;
     auto run = [&](const TriMesh& M, const std::vector<int>& cof, const std::vector<Vec3d>& P, int first_mid) {
       const int nv = M.num_vertices();
       const auto len = lenf(P, first_mid);
@@ -1622,49 +1626,38 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
           dist[w] = d + len(v, w), parent[w] = v, pq.push({dist[w], w});
         }
       });
-      return std::make_pair(hung == n_new, dist);
+      return hung == n;
     };
-    auto [ok, dist] = run(rs.mesh, cross_of, pos, INT32_MAX);
     const int nv = rs.mesh.num_vertices();
-    if (!ok) {
+    if (!run(rs.mesh, cross_of, pos, INT32_MAX)) {
       const auto chords = chords_of(rs.mesh, [&](int v) { return cross_of[v] != -1; });
       std::vector<int> mid;
       std::vector<Vec3d> pos_copy;
       const TriMesh copy = split_copy(rs.mesh, pos, chords, mid, pos_copy);
       std::vector<int> cof = cross_of;
       cof.resize(copy.num_vertices(), -1);
-      auto [ok2, dist2] = run(copy, cof, pos_copy, nv);
-      if (!ok2) internal("normal form: a cross is not reachable from the root");
+      if (!run(copy, cof, pos_copy, nv)) internal("normal form: a cross is not reachable from the root");
       std::vector<std::pair<int, int>> used, all;
       std::vector<char> seen(copy.num_vertices(), 0);
-      for (std::size_t i = 0; i < n_new; ++i)
+      for (std::size_t i = 0; i < n; ++i)
         for (int x = hang_from[i]; cof[x] == -1 && !seen[x]; x = parent[x]) seen[x] = 1, used.push_back({x, parent[x]});
       all = used;
-      for (std::size_t i = 0; i < n_new; ++i) all.push_back({hang_from[i], hang[i]});
+      for (std::size_t i = 0; i < n; ++i) all.push_back({hang_from[i], hang[i]});
       const std::vector<int> to_surface =
           split_like_copy(rs, chords, mid, copy.num_vertices(), all, res.stats.round_chord_splits);
       std::vector<int> p2(rs.mesh.num_vertices(), -1);
-      std::vector<double> d2(rs.mesh.num_vertices(), INFINITY);
-      for (auto [x, y] : used) {
-        const int cx = x;
-        map_ids(to_surface, x), map_ids(to_surface, y);
-        p2[x] = y, d2[x] = dist2[cx];
-      }
-      for (std::size_t i = 0; i < n_new; ++i) map_ids(to_surface, hang_from[i]);
+      for (auto [x, y] : used) map_ids(to_surface, x), map_ids(to_surface, y), p2[x] = y;
+      for (std::size_t i = 0; i < n; ++i) map_ids(to_surface, hang_from[i]);
       parent = std::move(p2);
-      dist = std::move(d2);
     }
     G.grow(rs.mesh.num_vertices());
-    cross_of.resize(rs.mesh.num_vertices(), -1);
-    for (std::size_t i = 0; i < n_new; ++i) {
-      for (int x = hang_from[i]; cross_of[x] == -1; x = parent[x]) {
+    for (std::size_t i = 0; i < n; ++i) {
+      for (int x = hang_from[i]; !G.on_g[x]; x = parent[x]) {  // up to the root or a path before
         if (rs.mesh.find_halfedge(x, parent[x]) < 0) internal("normal form: a path edge to a cross is missing", {x});
-        G.on_g[x] = 1, G.pg[x] = parent[x], G.dg[x] = dist[x], cross_of[x] = -2;
-        cross_edges.insert(key(x, parent[x]));
+        G.on_g[x] = 1, G.pg[x] = parent[x];
       }
       const int c = hang[i];
       if (rs.mesh.find_halfedge(c, hang_from[i]) < 0) internal("normal form: an edge to a cross is missing", {c});
-      cross_edges.insert(key(c, hang_from[i]));
       std::unordered_map<int, std::vector<int>> adj;
       for (auto [x, y] : crosses[i].edges) adj[x].push_back(y), adj[y].push_back(x);
       G.on_g[c] = 1, G.pg[c] = hang_from[i];

@@ -121,8 +121,8 @@ struct CutStats {
   int precondition_splits = 0;  // edge splits of step 4
   long long predicted_crossings = 0;  // the detaching plan's count for the chosen root (step 2)
   int roots_tried = 0;          // (root, metric) candidates whose detaching was planned (root = -1)
-  int normal_form_rounds = 0;   // rounds of the canonical construction (normal form, <= g)
-  int round_chord_splits = 0;   // edges between two loop vertices split before a round (normal form)
+  int normal_form_rounds = 0;   // rounds of the normal form's construction (<= g)
+  int round_chord_splits = 0;   // chords split so that a round's (or the crosses' tree's) paths exist
   bool crosses = false;         // the normal form came from the crosses construction
   double seconds_basis = 0, seconds_detach = 0, seconds_cut = 0, seconds_total = 0;
 };
