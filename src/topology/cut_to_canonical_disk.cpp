@@ -6,10 +6,13 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <limits>
 #include <numeric>
 #include <queue>
 #include <string>
+#include <system_error>
+#include <thread>
 #include <tuple>
 #include <unordered_map>
 #include <unordered_set>
@@ -284,6 +287,10 @@ struct DetachPlan {
 };
 
 void plan_strands(DetachPlan& P, const std::vector<std::pair<int, int>>& bands);
+
+// The vertex count a plan's realization will have: one new vertex per crossing (chord splits and
+// face vertices, usually none, come on top).
+long planned_vertices(const DetachPlan& P) { return P.rs.mesh.num_vertices() + P.crossings; }
 
 DetachPlan plan_detach(const TriMesh& mesh, const std::vector<Vec3d>& positions, int root, int genus, bool hops) {
   auto edge_length = [&](int a, int b) { return hops ? 1.0 : length(positions[a], positions[b]); };
@@ -907,10 +914,12 @@ int first_child_of_root(const TriMesh& M, const GammaTree& G, int root) {
 
 // The end of both normal-form constructions: checks that the word traced from the tour of G
 // (from the root's edge to root_start) with the bands `taken` is one cycle in commutator blocks
-// (Internal otherwise), then step 2 once: all loops detached along G. False if the mesh would
-// have more than vertex_limit vertices. O(n + crossings).
-bool detach_along_tree(CutResult& res, const GammaTree& G, int root_start, const std::vector<std::pair<int, int>>& taken,
-                       long vertex_limit) {
+// (Internal otherwise), then plans step 2 once (all loops detached along G) without drawing it:
+// the caller realizes only the candidate it keeps (realize_strands). True: res.surface has moved
+// into `plan` and planned_vertices(plan) <= vertex_limit; false: the plan would pass
+// vertex_limit (res.surface kept). O(n + total strand length).
+bool plan_along_tree(CutResult& res, const GammaTree& G, int root_start, const std::vector<std::pair<int, int>>& taken,
+                     long vertex_limit, DetachPlan& plan) {
   RefinedSurface& rs = res.surface;
   {
     std::vector<int> band_of, gap_of, dep;
@@ -921,28 +930,32 @@ bool detach_along_tree(CutResult& res, const GammaTree& G, int root_start, const
         commutator_rotation(w) < 0)
       internal("normal form: the final word is not in blocks: " + to_string(w));
   }
-  DetachPlan P;
-  P.root = res.root;
-  P.root_start = root_start;
-  P.parent = G.pg;
-  P.rs = std::move(rs);
-  plan_strands(P, taken);
-  res.stats.band_splits += P.band_splits;
-  res.stats.predicted_crossings = P.crossings;
-  if (P.rs.mesh.num_vertices() + P.crossings > vertex_limit) {  // every crossing is a new vertex
-    rs = std::move(P.rs);
+  plan = DetachPlan{};
+  plan.root = res.root;
+  plan.root_start = root_start;
+  plan.parent = G.pg;
+  plan.rs = std::move(rs);
+  plan_strands(plan, taken);
+  res.stats.band_splits += plan.band_splits;
+  res.stats.predicted_crossings = plan.crossings;
+  if (planned_vertices(plan) > vertex_limit) {
+    rs = std::move(plan.rs);
     return false;
   }
-  res.loops = realize_strands(P, res.stats);
-  rs = std::move(P.rs);
-  return rs.mesh.num_vertices() <= vertex_limit;
+  return true;
 }
 
 // Dijkstra from the entries already in pq (their dist set): each vertex is settled once (stale
 // entries are skipped) and relax(v, w, d) is called for every half-edge v->w of a settled v at
 // distance d; relax updates dist[w] and pushes w itself. O(E log E).
-using MinQueue = std::priority_queue<std::pair<double, int>, std::vector<std::pair<double, int>>,
-                                     std::greater<std::pair<double, int>>>;
+// The min-heap order of (distance, vertex) entries: smaller distance first, then smaller vertex
+// (std::greater's order, without the three-way comparison of std::pair).
+struct LaterEntry {
+  bool operator()(const std::pair<double, int>& a, const std::pair<double, int>& b) const {
+    return a.first > b.first || (a.first == b.first && a.second > b.second);
+  }
+};
+using MinQueue = std::priority_queue<std::pair<double, int>, std::vector<std::pair<double, int>>, LaterEntry>;
 template <class Relax>
 void settle_all(const TriMesh& M, const std::vector<double>& dist, MinQueue& pq, Relax&& relax) {
   while (!pq.empty()) {  // each vertex is pushed at most once per half-edge into it
@@ -1059,7 +1072,7 @@ std::vector<int> split_like_copy(RefinedSurface& rs, const std::vector<std::pair
 // more than vertex_limit vertices. Post (true): res.loops holds the 2g loops, their word in
 // commutator blocks (relabelled by the caller); res.stats has the counts. Cost O(g^2 n log n +
 // crossings) in the worst case, O(g n log n + crossings) when no gap is given up.
-bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops, long vertex_limit) {
+bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops, long vertex_limit, DetachPlan& plan) {
   const int root = res.root, genus = res.genus;
   RefinedSurface& rs = res.surface;
   std::vector<Vec3d> pos(unit.begin(), unit.begin() + rs.num_input_vertices);
@@ -1362,7 +1375,7 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
   }
   // The last round's word, checked like the others, and step 2 once: all 2g loops detached along G.
   G.grow(rs.mesh.num_vertices());
-  return detach_along_tree(res, G, root_start, taken, vertex_limit);
+  return plan_along_tree(res, G, root_start, taken, vertex_limit, plan);
 }
 
 // Step 3 (crosses): g disjoint crosses first, then one tree from the root to them. A cross is two
@@ -1388,7 +1401,7 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
 // per round. Returns false as soon as the mesh has more than vertex_limit vertices. Post (true):
 // as canonical_rounds. Cost O(g log g (E log E + L^2 log L) + crossings), L <= 2g + k the
 // leftover edges of a search.
-bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops, long vertex_limit) {
+bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops, long vertex_limit, DetachPlan& plan) {
   const int root = res.root, genus = res.genus;
   RefinedSurface& rs = res.surface;
   std::vector<Vec3d> pos(unit.begin(), unit.begin() + rs.num_input_vertices);
@@ -1582,11 +1595,27 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
     for (int v = 0; v < nv; ++v)
       if (!free_v(v)) d[v] = 0, source[v] = 1, pq.push({0.0, v});
     run();
+    // The farthest vertex from a max-heap of (distance, -id): distances only decrease, so an
+    // entry whose key is above its vertex's distance is stale and goes back in with the current
+    // one; a current top is the farthest (ties: lowest id). Each pop pushes at most once.
+    std::priority_queue<std::pair<double, int>> far;
+    for (int v = 0; v < nv; ++v)
+      if (!source[v]) far.push({d[v], -v});
     std::vector<int> seeds;
     while (seeds.size() < k) {
       int best = -1;
-      for (int v = 0; v < nv; ++v)
-        if (!source[v] && (best < 0 || d[v] > d[best])) best = v;
+      while (!far.empty()) {
+        const auto [key, mv] = far.top();
+        const int v = -mv;
+        far.pop();
+        if (source[v]) continue;
+        if (key != d[v]) {
+          far.push({d[v], mv});
+          continue;
+        }
+        best = v;
+        break;
+      }
       if (best < 0) break;
       seeds.push_back(best);
       d[best] = 0, source[best] = 1;
@@ -1739,7 +1768,7 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
 
   extend(rs, pos);
   if (!hang_crosses()) return false;
-  return detach_along_tree(res, G, first_child_of_root(rs.mesh, G, root), taken, vertex_limit);
+  return plan_along_tree(res, G, first_child_of_root(rs.mesh, G, root), taken, vertex_limit, plan);
 }
 
 // Root candidates: the vertex of maximum valence (lowest id among ties), then vertices i * V / k
@@ -1790,8 +1819,8 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
   if (options.normal_form) {
     // Root and metric: the given root with 3D lengths, or among K deterministic candidates
     // (root_candidates, K = clamp(2e5 / F, 1, 12)) with 3D lengths and (K > 1) hop counts, the
-    // pair whose construction ends with the fewest vertices; a candidate stops once it has more
-    // than the best so far. Per candidate (Best): the rounds, bounded by max_rounds_growth; if
+    // pair whose planned detaching ends with the fewest vertices (planned_vertices; only that one
+    // is drawn); a candidate stops once it has more than the best so far. Per candidate (Best): the rounds, bounded by max_rounds_growth; if
     // they pass it, the crosses. After two candidates whose rounds passed it, only the crosses.
     const long limit = nv0 + static_cast<long>(options.max_normal_form_growth * nv0);
     const long rounds_limit = std::min(limit, nv0 + static_cast<long>(options.max_rounds_growth * nv0));
@@ -1806,39 +1835,82 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
           if (!hops || k > 1) candidates.push_back({c, hops});
     }
     using C = CutOptions::Construction;
+    // Each candidate is only planned (its detaching counted, not drawn); the kept one is realized
+    // once at the end. Candidates go in chunks of kChunk, in order: the candidates of a chunk are
+    // bounded by the best of the chunks before it and run concurrently (options.parallel), and are
+    // then merged in order (a candidate is kept if it plans strictly fewer vertices), so that the
+    // result does not depend on the threads.
+    constexpr std::size_t kChunk = 2;
+    struct Outcome {
+      bool ok = false, rounds_passed = false, crosses = false;
+      CutStats stats;
+      DetachPlan plan;
+      std::exception_ptr error;
+    };
+    auto run_candidate = [&](int c, bool hops, bool crosses_only, long best, Outcome& out) {
+      try {
+        auto attempt = [&](bool crosses, long bound) {
+          CutResult trial;
+          trial.root = c;
+          trial.genus = genus;
+          trial.surface.mesh = mesh;
+          trial.surface.num_input_vertices = nv0;
+          trial.surface.input_positions = positions;
+          DetachPlan plan;
+          const bool ok = crosses ? canonical_crosses(trial, unit, hops, bound, plan)
+                                  : canonical_rounds(trial, unit, hops, bound, plan);
+          if (ok) out.ok = true, out.crosses = crosses, out.stats = trial.stats, out.plan = std::move(plan);
+          return ok;
+        };
+        bool crosses = crosses_only;
+        // Failed with the rounds' own bound binding (not only the best so far): they passed it.
+        if (!crosses && !attempt(false, std::min(best, rounds_limit)) && rounds_limit <= best &&
+            options.construction == C::Best)
+          out.rounds_passed = crosses = true;
+        if (crosses) attempt(true, best);
+      } catch (...) {
+        out.error = std::current_exception();
+      }
+    };
     bool found = false;
     int tried = 0, rounds_passed = 0;
-    auto attempt = [&](int c, bool hops, bool crosses, long bound) {
-      CutResult trial;
-      trial.root = c;
-      trial.genus = genus;
-      trial.surface.mesh = mesh;
-      trial.surface.num_input_vertices = nv0;
-      trial.surface.input_positions = positions;
-      const bool ok = crosses ? canonical_crosses(trial, unit, hops, bound) : canonical_rounds(trial, unit, hops, bound);
-      if (ok) {
-        res.root = trial.root;
-        res.loops = std::move(trial.loops);
-        rs = std::move(trial.surface);
-        res.stats = trial.stats;
-        res.stats.crosses = crosses;
-        found = true;
-      }
-      return ok;
-    };
-    for (auto [c, hops] : candidates) {
-      ++tried;
-      const long best = found ? rs.mesh.num_vertices() - 1 : limit;
-      bool crosses = options.construction == C::Crosses || (options.construction == C::Best && rounds_passed >= 2);
-      if (!crosses) {
-        // Failed with the rounds' own bound binding (not only the best so far): they passed it.
-        if (!attempt(c, hops, false, std::min(best, rounds_limit)) && rounds_limit <= best &&
-            options.construction == C::Best) {
-          ++rounds_passed;
-          crosses = true;
+    DetachPlan kept;
+    for (std::size_t i = 0; i < candidates.size(); i += kChunk) {
+      const std::size_t n = std::min(kChunk, candidates.size() - i);
+      const long best = found ? planned_vertices(kept) - 1 : limit;
+      const bool crosses_only =
+          options.construction == C::Crosses || (options.construction == C::Best && rounds_passed >= 2);
+      std::vector<Outcome> out(n);
+      std::vector<std::thread> helpers;
+      for (std::size_t j = 1; j < n && options.parallel; ++j) {
+        try {
+          helpers.emplace_back(run_candidate, candidates[i + j].first, candidates[i + j].second, crosses_only, best,
+                               std::ref(out[j]));
+        } catch (const std::system_error&) {
+          break;  // no thread to be had: the rest of the chunk runs here
         }
       }
-      if (crosses) attempt(c, hops, true, found ? rs.mesh.num_vertices() - 1 : limit);
+      run_candidate(candidates[i].first, candidates[i].second, crosses_only, best, out[0]);
+      for (std::size_t j = 1 + helpers.size(); j < n; ++j)
+        run_candidate(candidates[i + j].first, candidates[i + j].second, crosses_only, best, out[j]);
+      for (auto& t : helpers) t.join();
+      for (std::size_t j = 0; j < n; ++j) {
+        ++tried;
+        if (out[j].error) std::rethrow_exception(out[j].error);
+        rounds_passed += out[j].rounds_passed;
+        if (out[j].ok && (!found || planned_vertices(out[j].plan) < planned_vertices(kept))) {
+          res.root = candidates[i + j].first;
+          res.stats = out[j].stats;
+          res.stats.crosses = out[j].crosses;
+          kept = std::move(out[j].plan);
+          found = true;
+        }
+      }
+    }
+    if (found) {
+      res.loops = realize_strands(kept, res.stats);
+      rs = std::move(kept.rs);
+      found = rs.mesh.num_vertices() <= limit;  // chord splits and face vertices come on top of the plan
     }
     if (!found && options.construction == C::Rounds)
       throw Error(ErrorKind::Unsupported,

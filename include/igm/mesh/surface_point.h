@@ -15,6 +15,21 @@ struct SurfacePoint {
   std::array<int, 3> v{-1, -1, -1};  // input vertex ids, the used ones first (ascending), unused = -1
   std::array<Rational, 3> w;         // weights of v, > 0 on used slots (combine() drops zero terms); unused = 0
 
+  SurfacePoint() = default;
+  SurfacePoint(const SurfacePoint&) = default;
+  SurfacePoint& operator=(const SurfacePoint&) = default;
+  /// Moves by swapping the weights (mpq_class's own move constructor is not noexcept, so a growing
+  /// std::vector<SurfacePoint> would copy every point instead). `o` is left valid, its value
+  /// unspecified. GMP aborts, never throws, when it runs out of memory.
+  SurfacePoint(SurfacePoint&& o) noexcept : v(o.v) {
+    for (int i = 0; i < 3; ++i) mpq_swap(w[i].get_mpq_t(), o.w[i].get_mpq_t());
+  }
+  SurfacePoint& operator=(SurfacePoint&& o) noexcept {
+    v = o.v;
+    for (int i = 0; i < 3; ++i) mpq_swap(w[i].get_mpq_t(), o.w[i].get_mpq_t());
+    return *this;
+  }
+
   /// The input vertex `id` itself (weight 1).
   static SurfacePoint vertex(int id);
   /// Number of used slots (1..3).
