@@ -1786,6 +1786,38 @@ std::vector<int> root_candidates(const TriMesh& mesh, long k) {
   return roots;
 }
 
+// Runs a() here and b() on a second thread when `parallel` (and a thread can be had), else after
+// a(); returns once both are done. An exception from a() is rethrown first, then one from b(): the
+// same one whether or not b() ran on a thread.
+template <class A, class B>
+void run_pair(bool parallel, A&& a, B&& b) {
+  std::exception_ptr ea, eb;
+  auto guarded_b = [&] {
+    try {
+      b();
+    } catch (...) {
+      eb = std::current_exception();
+    }
+  };
+  std::thread helper;
+  if (parallel) {
+    try {
+      helper = std::thread(guarded_b);
+    } catch (const std::system_error&) {
+      // no thread to be had: b runs here after a
+    }
+  }
+  try {
+    a();
+  } catch (...) {
+    ea = std::current_exception();
+  }
+  if (helper.joinable()) helper.join();
+  else if (!ea) guarded_b();
+  if (ea) std::rethrow_exception(ea);
+  if (eb) std::rethrow_exception(eb);
+}
+
 }  // namespace
 
 std::string CutResult::word() const { return to_string(word_of(*this)); }
@@ -1836,67 +1868,52 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     }
     using C = CutOptions::Construction;
     // Each candidate is only planned (its detaching counted, not drawn); the kept one is realized
-    // once at the end. Candidates go in chunks of kChunk, in order: the candidates of a chunk are
-    // bounded by the best of the chunks before it and run concurrently (options.parallel), and are
-    // then merged in order (a candidate is kept if it plans strictly fewer vertices), so that the
-    // result does not depend on the threads.
-    constexpr std::size_t kChunk = 2;
+    // once at the end. Candidates go in chunks of two, in order: the two of a chunk are bounded by
+    // the best of the chunks before it and run concurrently (options.parallel), then are merged in
+    // order (a candidate is kept if it plans strictly fewer vertices), so that the result does not
+    // depend on the threads.
     struct Outcome {
       bool ok = false, rounds_passed = false, crosses = false;
       CutStats stats;
       DetachPlan plan;
-      std::exception_ptr error;
     };
     auto run_candidate = [&](int c, bool hops, bool crosses_only, long best, Outcome& out) {
-      try {
-        auto attempt = [&](bool crosses, long bound) {
-          CutResult trial;
-          trial.root = c;
-          trial.genus = genus;
-          trial.surface.mesh = mesh;
-          trial.surface.num_input_vertices = nv0;
-          trial.surface.input_positions = positions;
-          DetachPlan plan;
-          const bool ok = crosses ? canonical_crosses(trial, unit, hops, bound, plan)
-                                  : canonical_rounds(trial, unit, hops, bound, plan);
-          if (ok) out.ok = true, out.crosses = crosses, out.stats = trial.stats, out.plan = std::move(plan);
-          return ok;
-        };
-        bool crosses = crosses_only;
-        // Failed with the rounds' own bound binding (not only the best so far): they passed it.
-        if (!crosses && !attempt(false, std::min(best, rounds_limit)) && rounds_limit <= best &&
-            options.construction == C::Best)
-          out.rounds_passed = crosses = true;
-        if (crosses) attempt(true, best);
-      } catch (...) {
-        out.error = std::current_exception();
-      }
+      auto attempt = [&](bool crosses, long bound) {
+        CutResult trial;
+        trial.root = c;
+        trial.genus = genus;
+        trial.surface.mesh = mesh;
+        trial.surface.num_input_vertices = nv0;
+        trial.surface.input_positions = positions;
+        DetachPlan plan;
+        const bool ok = crosses ? canonical_crosses(trial, unit, hops, bound, plan)
+                                : canonical_rounds(trial, unit, hops, bound, plan);
+        if (ok) out.ok = true, out.crosses = crosses, out.stats = trial.stats, out.plan = std::move(plan);
+        return ok;
+      };
+      bool crosses = crosses_only;
+      // Failed with the rounds' own bound binding (not only the best so far): they passed it.
+      if (!crosses && !attempt(false, std::min(best, rounds_limit)) && rounds_limit <= best &&
+          options.construction == C::Best)
+        out.rounds_passed = crosses = true;
+      if (crosses) attempt(true, best);
     };
     bool found = false;
     int tried = 0, rounds_passed = 0;
     DetachPlan kept;
-    for (std::size_t i = 0; i < candidates.size(); i += kChunk) {
-      const std::size_t n = std::min(kChunk, candidates.size() - i);
+    for (std::size_t i = 0; i < candidates.size(); i += 2) {  // chunks of two
+      const std::size_t n = std::min<std::size_t>(2, candidates.size() - i);
       const long best = found ? planned_vertices(kept) - 1 : limit;
       const bool crosses_only =
           options.construction == C::Crosses || (options.construction == C::Best && rounds_passed >= 2);
-      std::vector<Outcome> out(n);
-      std::vector<std::thread> helpers;
-      for (std::size_t j = 1; j < n && options.parallel; ++j) {
-        try {
-          helpers.emplace_back(run_candidate, candidates[i + j].first, candidates[i + j].second, crosses_only, best,
-                               std::ref(out[j]));
-        } catch (const std::system_error&) {
-          break;  // no thread to be had: the rest of the chunk runs here
-        }
-      }
-      run_candidate(candidates[i].first, candidates[i].second, crosses_only, best, out[0]);
-      for (std::size_t j = 1 + helpers.size(); j < n; ++j)
-        run_candidate(candidates[i + j].first, candidates[i + j].second, crosses_only, best, out[j]);
-      for (auto& t : helpers) t.join();
+      Outcome out[2];
+      auto run = [&](std::size_t j) {
+        return [&, j] { run_candidate(candidates[i + j].first, candidates[i + j].second, crosses_only, best, out[j]); };
+      };
+      if (n == 2) run_pair(options.parallel, run(0), run(1));
+      else run(0)();
       for (std::size_t j = 0; j < n; ++j) {
         ++tried;
-        if (out[j].error) std::rethrow_exception(out[j].error);
         rounds_passed += out[j].rounds_passed;
         if (out[j].ok && (!found || planned_vertices(out[j].plan) < planned_vertices(kept))) {
           res.root = candidates[i + j].first;
@@ -1939,10 +1956,12 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     } else {
       const long k = std::clamp(1000000L / std::max(1, mesh.num_faces()), 1L, 24L);
       for (int c : root_candidates(mesh, k)) {
-        for (bool hops : {false, true}) {
-          DetachPlan q = plan_detach(mesh, unit, c, genus, hops);
+        DetachPlan q[2];  // 3D lengths, hop counts: planned side by side, compared in that order
+        run_pair(options.parallel, [&] { q[0] = plan_detach(mesh, unit, c, genus, false); },
+                 [&] { q[1] = plan_detach(mesh, unit, c, genus, true); });
+        for (DetachPlan& p : q) {
           ++res.stats.roots_tried;
-          if (P.root < 0 || q.crossings < P.crossings) P = std::move(q);
+          if (P.root < 0 || p.crossings < P.crossings) P = std::move(p);
         }
       }
     }

@@ -108,8 +108,8 @@ struct CutOptions {
   /// compound on coarse meshes of high genus); with Best, after two roots that did so it is not
   /// tried again, and the crosses construction runs instead.
   double max_rounds_growth = 4.0;
-  /// With the normal form and several root candidates: evaluate two candidates at a time on two
-  /// threads. The result is the same either way (candidates go in fixed chunks of two).
+  /// Evaluate root candidates two at a time on two threads (root = -1). The result is the same
+  /// either way: candidates go in fixed pairs, merged in order.
   bool parallel = true;
 };
 
