@@ -1,10 +1,12 @@
 // Topology stage measurements: time and mesh growth of cut_to_canonical_disk.
-// Usage: igm_bench_topology [shared_dir] [--normal-form-all] [--crosses|--rounds] [--only NAME|g3|g20]
+// Usage: igm_bench_topology [shared_dir] [--normal-form-all] [--crosses|--rounds] [--serial]
+//                           [--only NAME|g3|g20]
 // Growth is broken down by source: crossings, Steiner, band, chord and pre-condition splits, and
 // the normal form's rounds (marked "(crosses)" where the crosses construction won) and chord
-// splits. By default the normal form is measured for genus <= 10 only (cheese takes ~30 s and
+// splits. By default the normal form is measured for genus <= 10 only (cheese takes ~8 s and
 // grows to ~600k vertices, the 1M-face g20 ~9 s); --normal-form-all measures it everywhere; --only
-// runs one mesh, with and without it; --crosses / --rounds use that construction alone.
+// runs one mesh, with and without it; --crosses / --rounds use that construction alone; --serial
+// evaluates the root candidates on one thread (CutOptions::parallel = false; same results).
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -53,11 +55,13 @@ Input generated(int genus, long faces) {
 }
 
 CutOptions::Construction construction = CutOptions::Construction::Best;  // --crosses / --rounds
+bool parallel = true;                                                      // --serial: one thread
 
 void run(const std::string& name, const Input& in, bool normal_form) {
   CutOptions o;
   o.normal_form = normal_form;
   o.construction = construction;
+  o.parallel = parallel;
   try {
     CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
     const auto& s = r.stats;
@@ -83,6 +87,7 @@ int main(int argc, char** argv) {
     else if (std::strcmp(argv[i], "--crosses") == 0) construction = CutOptions::Construction::Crosses;
     else if (std::strcmp(argv[i], "--rounds") == 0) construction = CutOptions::Construction::Rounds;
     else if (std::strcmp(argv[i], "--only") == 0 && i + 1 < argc) only = argv[++i];
+    else if (std::strcmp(argv[i], "--serial") == 0) parallel = false;
     else shared = argv[i];
   }
   struct Named {

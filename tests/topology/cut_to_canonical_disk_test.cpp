@@ -342,7 +342,7 @@ TEST_CASE("generated meshes of genus 1 to 200 are cut into verified disks") {
     Input in = generated(c.genus, c.faces, c.seed);
     CutOptions o;
     o.normal_form = c.normal_form;
-    if (igm_test::kSanitized && c.genus >= 200) {  // 650k vertices with the normal form: ~30 s in Release
+    if (igm_test::kSanitized && c.genus >= 200) {  // 650k vertices with the normal form: ~6 s in Release
       MESSAGE("genus 200 with the normal form is left to the Release run (sanitizers)");
       o.normal_form = false;
     }
@@ -434,6 +434,16 @@ TEST_CASE("the normal form's root candidates give the same cut on two threads as
     CHECK(verify_cut(in, two) == "");
     // The kept plan is drawn as planned: one new vertex per planned crossing.
     if (two.stats.chord_splits == 0) CHECK(two.stats.crossings == two.stats.predicted_crossings);
+    // Without the normal form: the two metrics of each root are planned side by side.
+    o.normal_form = false;
+    const CutResult raw_two = cut_to_canonical_disk(in.mesh, in.positions, o);
+    o.parallel = false;
+    const CutResult raw_one = cut_to_canonical_disk(in.mesh, in.positions, o);
+    CHECK(raw_one.stats.roots_tried > 2);
+    CHECK(raw_one.root == raw_two.root);
+    CHECK(raw_one.loops == raw_two.loops);
+    CHECK(raw_one.stats.predicted_crossings == raw_two.stats.predicted_crossings);
+    CHECK(verify_cut(in, raw_two, false) == "");
   }
 }
 
@@ -547,7 +557,7 @@ TEST_CASE("shared clean meshes of genus >= 1 are cut into verified disks") {
                  Case{"joint", 2, true}, Case{"helmet", 3, true}, Case{"elephant", 3, true}, Case{"anchor", 4, true},
                  Case{"couplingdown", 9, true}, Case{"cheese", 133, false}, Case{"cheese", 133, true}}) {
     CAPTURE(c.name);
-    if (igm_test::kSanitized && c.genus > 100 && c.normal_form) {  // 600k vertices: ~30 s in Release
+    if (igm_test::kSanitized && c.genus > 100 && c.normal_form) {  // 600k vertices: ~8 s in Release
       MESSAGE("cheese with the normal form is left to the Release run (sanitizers)");
       continue;
     }

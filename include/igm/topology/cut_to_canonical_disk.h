@@ -67,7 +67,11 @@
 //     detached their loops before the next round (stop 13): every later round had to squeeze
 //     between parallel strands (couplingdown 3.45k vertices instead of 2.37k now); in (b), hanging
 //     each round's crosses from G at once (the later crosses then compound like the rounds).
-//     The root and metric are chosen among candidates by the final vertex count. Loops are
+//     The root and metric are chosen among candidates by the planned vertex count (the refined
+//     surface's vertices plus the planned detaching's crossings): each candidate is planned, not
+//     drawn, and only the one kept is realized; candidates go in fixed pairs, side by side on two
+//     threads (CutOptions::parallel), each pair bounded by the best of the pairs before it and
+//     merged in order, so the result does not depend on the threads. Loops are
 //     renumbered and reoriented so that the word is exactly L0 L1 L0^-1 L1^-1 L2 L3 ... Off, the
 //     word is whatever step 2 gives.
 //  4. embedding pre-conditions (embed/tutte.h): every interior disk edge joining two vertices of
@@ -90,7 +94,7 @@ struct CutOptions {
   /// Root vertex (the basis then uses 3D edge lengths); -1 picks, among a few deterministic
   /// candidates (the vertex of maximum valence, then evenly spaced ids) and two metrics (3D
   /// lengths, hop counts), the pair whose detaching crosses the fewest edges (with normal_form:
-  /// whose rounds end with the fewest vertices).
+  /// whose planned construction ends with the fewest vertices).
   int root = -1;
   /// Bring the word into a1 b1 a1^-1 b1^-1 ... (step 3, <= g rounds). Off: the word is whatever the
   /// detached greedy loops give (still 4g sides, paired). The pipeline runs with it off by default
@@ -165,7 +169,8 @@ struct CutResult {
 /// invariant breaks (a round whose word is not in blocks included). Cost without the normal form
 /// O(K n log n + crossings) for K root candidates (2K plans, K = clamp(1e6 / F, 1, 24); one plan if
 /// the root is given); with it O(K' g log g n log n + crossings) for K' = clamp(2e5 / F, 1, 12)
-/// roots (x2 metrics if K' > 1; 1 if the root is given), n the refined size.
+/// roots (x2 metrics if K' > 1; 1 if the root is given), n the refined size; with
+/// CutOptions::parallel the candidates take about half that time on two cores.
 CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& positions,
                                 const CutOptions& options = {});
 
