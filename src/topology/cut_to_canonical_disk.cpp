@@ -894,10 +894,21 @@ void gamma_tour(const TriMesh& M, const GammaTree& K, const std::vector<std::pai
       });
 }
 
-// Appends to p the (unit-scaled, double) positions of S's vertices from p.size() on. O(new vertices).
+// Appends to p the (unit-scaled, double) positions of S's vertices from p.size() on, to guide the
+// searches only (path lengths): each weight rounded to a double, then summed in doubles (not the
+// exact point rounded, as evaluate() gives: a fifth of a crosses candidate's time on cheese).
+// O(new vertices).
 void extend_positions(const RefinedSurface& S, const std::vector<Vec3d>& unit, std::vector<Vec3d>& p) {
-  while (static_cast<int>(p.size()) < S.mesh.num_vertices())
-    p.push_back(evaluate(S.constructed[p.size() - S.num_input_vertices], unit));
+  while (static_cast<int>(p.size()) < S.mesh.num_vertices()) {
+    const SurfacePoint& q = S.constructed[p.size() - S.num_input_vertices];
+    Vec3d r{0, 0, 0};
+    for (int i = 0; i < 3 && q.v[i] >= 0; ++i) {
+      const double w = q.w[i].get_d();
+      const Vec3d& u = unit[q.v[i]];
+      r.x += w * u.x, r.y += w * u.y, r.z += w * u.z;
+    }
+    p.push_back(r);
+  }
 }
 
 // The first child of the root in G, counter-clockwise from the root's stored half-edge (G's tour
@@ -1378,29 +1389,31 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
   return plan_along_tree(res, G, root_start, taken, vertex_limit, plan);
 }
 
-// Step 3 (crosses): g disjoint crosses first, then one tree from the root to them. A cross is two
-// loops a, b that share one tree path and cross once there (a linked pair of a tree–cotree basis
-// of the surface cut along the earlier crosses, its stem to the seed dropped): the union of their
-// two tree paths, with the two bands. Disjoint crosses are independent (each pair meets once, the
-// pairs not at all), and cut along all of them the surface is a sphere with g holes, connected; a
-// tree P from the root over the vertices off the crosses, meeting each cross at one vertex c,
-// then leaves the four ends of every cross next to each other in P's tour, where any cyclic
-// rotation of X Y X' Y' reads a commutator block. Detached along G = P + the crosses (step 2
-// once), the word is in blocks wherever P meets a cross, so nothing constrains where it does.
-// One round: seeds spread over the vertices off the crosses (farthest first, from the crosses and
-// the root); a Dijkstra forest from them over those vertices; the dual maximum spanning tree
-// with every edge at a cross, at the root, or between two seeds' parts forced in first; the
-// leftover edges' ends in each seed's tour; linked pairs by length, taken while their paths are
-// disjoint from the pairs taken before. Chords (edges off the crosses joining two of their
-// vertices or the root) can wall the forest off; a round that finds nothing from k seeds is
-// searched from k/2, ..., 1, then on a copy with every chord split (a midpoint costs 1000 unit
-// lengths), after which only the chords the found crosses use are split on the surface. P is
-// found the same way (on a copy if a cross is walled off). A round starts from k = min(twice the
-// seeds the last round used, a quarter of the crosses still to find) seeds, at least 1. At most g
-// rounds (each takes a cross), at most log2 k + 1 searches on the surface and as many on a copy
-// per round. Returns false as soon as the mesh has more than vertex_limit vertices. Post (true):
-// as canonical_rounds. Cost O(g log g (E log E + L^2 log L) + crossings), L <= 2g + k the
-// leftover edges of a search.
+// Step 3 (crosses): g disjoint crosses, each round's hung at once from a tree P from the root. A
+// cross is two loops a, b that share one tree path and cross once there (a linked pair of a
+// tree–cotree basis of the surface cut along the earlier crosses and P, its stem to the seed
+// dropped): the union of their two tree paths, with the two bands. Disjoint crosses are
+// independent (each pair meets once, the pairs not at all), and cut along all of them the surface
+// is a sphere with g holes, connected; P, a tree from the root over the vertices off the crosses
+// meeting each cross at one vertex c, leaves the four ends of every cross next to each other in
+// G's tour (G = P + the crosses' trees), where any cyclic rotation of X Y X' Y' reads a
+// commutator block. Detached along G (step 2 once), the word is in blocks wherever P meets a
+// cross, so nothing constrains where it does.
+// One round: seeds spread over the vertices off the crosses and P (farthest first, from those and
+// the root); a Dijkstra forest from them over those vertices; the dual maximum spanning tree with
+// every edge at a cross, at P, or between two seeds' parts forced in first; the leftover edges'
+// ends in each seed's tour; linked pairs by length, taken while their paths are disjoint from the
+// pairs taken before; then the round's crosses are hung from P (hang_round), whose new paths are
+// walls for the rounds after. Chords (edges off the crosses and P joining two of their vertices)
+// can wall the forest off; a round that finds nothing from k seeds is searched from k/2, ..., 1,
+// then on a copy with every chord split (a midpoint costs 1000 unit lengths), after which only
+// the chords the found crosses use are split on the surface; P reaches a walled-off cross the same
+// way. A round starts from k = min(twice the seeds the last round used, a quarter of the crosses
+// still to find) seeds, at least 1. At most g rounds (each takes a cross), at most log2 k + 1
+// searches on the surface and as many on a copy per round, and one or two hanging searches.
+// Returns false as soon as the mesh has more than vertex_limit vertices. Post (true): as
+// canonical_rounds. Cost O(g log g (E log E + L^2 log L) + crossings), L <= 2g + k the leftover
+// edges of a search.
 bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops, long vertex_limit, DetachPlan& plan) {
   const int root = res.root, genus = res.genus;
   RefinedSurface& rs = res.surface;
@@ -1625,80 +1638,96 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
     return seeds;
   };
 
-  // G (built by hang_crosses once all crosses are found): the root, the paths P from it to the
-  // crosses and every cross's tree hung from the vertex c where its path meets it (the first
-  // vertex of the cross a Dijkstra from the root over the free vertices reaches; on a copy with
-  // every chord split if a cross is walled off). Only G's parents and membership are used (step
-  // 2 and the word check). O(E log E + chords).
-  GammaTree G;
-  G.grow(rs.mesh.num_vertices());
-  G.on_g[root] = 1;
+  // P: a tree from the root, grown after every round to that round's new crosses, and a wall for
+  // the rounds after it (its vertices are marked -2 in cross_of, like the root; its edges and the
+  // edges to the crosses are in cross_edges, so never split as chords). hang_round hangs crosses
+  // [first, end): a Dijkstra from P's vertices at their depths (pdepth, along P) over the free
+  // vertices; each new cross hangs from the first of its vertices it reaches (hang[i], reached
+  // from hang_from[i]), and the path to it joins P. A cross walled off by chords is reached on a
+  // copy with every chord split, then only the chords its path crosses are split on the surface
+  // (as in a round). Any P vertex can take a cross: P holds no band end, so every wedge at it lies
+  // between blocks of G's tour. Hanging at once keeps P's paths short (cheese: their lengths sum
+  // to ~6k vertices, against ~100k when P is built after the last round, through the maze the
+  // crosses leave); the later rounds pay for the walls with chord splits. O(E log E + chords) per
+  // round.
   cross_of[root] = -2;  // off the crosses and the seeds
-  std::vector<std::pair<int, int>> taken;
-  auto hang_crosses = [&] {
-    const std::size_t n = crosses.size();
-    std::vector<int> hang(n, -1), hang_from(n, -1), parent;
+  std::vector<int> ppar(rs.mesh.num_vertices(), -1), hang, hang_from;
+  std::vector<double> pdepth(rs.mesh.num_vertices(), INFINITY);
+  pdepth[root] = 0;
+  auto hang_round = [&](std::size_t first) {
+    hang.resize(crosses.size(), -1);
+    hang_from.resize(crosses.size(), -1);
+    std::vector<double> dist;
+    std::vector<int> par;
     auto run = [&](const TriMesh& M, const std::vector<int>& cof, const std::vector<Vec3d>& P, int first_mid) {
       const int nv = M.num_vertices();
       const auto len = lenf(P, first_mid);
-      std::vector<double> dist(nv, INFINITY);
-      parent.assign(nv, -1);
-      std::fill(hang.begin(), hang.end(), -1);
-      std::size_t hung = 0;
+      dist.assign(nv, INFINITY);
+      par.assign(nv, -1);
       MinQueue pq;
-      dist[root] = 0;
-      pq.push({0.0, root});
+      for (int v = 0; v < static_cast<int>(pdepth.size()); ++v)
+        if (cof[v] == -2) dist[v] = pdepth[v], pq.push({dist[v], v});
+      std::size_t hung = 0;
       settle_all(M, dist, pq, [&](int v, int w, double d) {
-        if (cof[w] >= 0) {
-          if (hang[cof[w]] < 0) hang[cof[w]] = w, hang_from[cof[w]] = v, ++hung;
-        } else if (cof[w] == -1 && d + len(v, w) < dist[w]) {
-          dist[w] = d + len(v, w), parent[w] = v, pq.push({dist[w], w});
+        const int c = cof[w];
+        if (c >= static_cast<int>(first)) {
+          if (hang[c] < 0) hang[c] = w, hang_from[c] = v, ++hung;
+        } else if (c == -1 && d + len(v, w) < dist[w]) {
+          dist[w] = d + len(v, w), par[w] = v, pq.push({dist[w], w});
         }
       });
-      return hung == n;
+      return hung;
     };
-    const int nv = rs.mesh.num_vertices();
-    if (!run(rs.mesh, cross_of, pos, INT32_MAX)) {
-      const auto chords = chords_of(rs.mesh, [&](int v) { return cross_of[v] != -1; });
-      std::vector<int> mid;
-      std::vector<Vec3d> pos_copy;
-      const TriMesh copy = split_copy(rs.mesh, pos, chords, mid, pos_copy);
-      std::vector<int> cof = cross_of;
-      cof.resize(copy.num_vertices(), -1);
-      if (!run(copy, cof, pos_copy, nv)) internal("normal form: a cross is not reachable from the root");
-      std::vector<std::pair<int, int>> used, all;
-      std::vector<char> seen(copy.num_vertices(), 0);
-      for (std::size_t i = 0; i < n; ++i)
-        for (int x = hang_from[i]; cof[x] == -1 && !seen[x]; x = parent[x]) seen[x] = 1, used.push_back({x, parent[x]});
-      all = used;
-      for (std::size_t i = 0; i < n; ++i) all.push_back({hang_from[i], hang[i]});
-      const std::vector<int> to_surface =
-          split_like_copy(rs, chords, mid, copy.num_vertices(), all, res.stats.round_chord_splits);
-      std::vector<int> p2(rs.mesh.num_vertices(), -1);
-      for (auto [x, y] : used) map_ids(to_surface, x), map_ids(to_surface, y), p2[x] = y;
-      for (std::size_t i = 0; i < n; ++i) map_ids(to_surface, hang_from[i]);
-      parent = std::move(p2);
+    // The path from x (reached) up to P, as (vertex, parent) pairs.
+    auto path_up = [&](int x, const std::vector<int>& cof) {
+      std::vector<std::pair<int, int>> path;
+      for (; cof[x] != -2; x = par[x]) path.push_back({x, par[x]});  // <= nv steps: par is a tree
+      return path;
+    };
+    auto join_p = [&](std::size_t i, const std::vector<std::pair<int, int>>& path) {
+      const auto len = lenf(pos, INT32_MAX);
+      for (auto it = path.rbegin(); it != path.rend(); ++it) {  // from P down: the parent's depth first
+        const auto [x, y] = *it;
+        if (rs.mesh.find_halfedge(x, y) < 0) internal("normal form: a path edge to a cross is missing", {x});
+        cross_of[x] = -2, ppar[x] = y, pdepth[x] = pdepth[y] + len(x, y);
+        cross_edges.insert(key(x, y));
+      }
+      if (rs.mesh.find_halfedge(hang_from[i], hang[i]) < 0) internal("normal form: an edge to a cross is missing", {hang[i]});
+      cross_edges.insert(key(hang_from[i], hang[i]));
+    };
+    const std::size_t want = crosses.size() - first;
+    if (run(rs.mesh, cross_of, pos, INT32_MAX) == want) {
+      for (std::size_t i = first; i < crosses.size(); ++i) join_p(i, path_up(hang_from[i], cross_of));
+      return rs.mesh.num_vertices() <= vertex_limit;
     }
-    G.grow(rs.mesh.num_vertices());
-    for (std::size_t i = 0; i < n; ++i) {
-      for (int x = hang_from[i]; !G.on_g[x]; x = parent[x]) {  // up to the root or a path before
-        if (rs.mesh.find_halfedge(x, parent[x]) < 0) internal("normal form: a path edge to a cross is missing", {x});
-        G.on_g[x] = 1, G.pg[x] = parent[x];
-      }
-      const int c = hang[i];
-      if (rs.mesh.find_halfedge(c, hang_from[i]) < 0) internal("normal form: an edge to a cross is missing", {c});
-      std::unordered_map<int, std::vector<int>> adj;
-      for (auto [x, y] : crosses[i].edges) adj[x].push_back(y), adj[y].push_back(x);
-      G.on_g[c] = 1, G.pg[c] = hang_from[i];
-      std::vector<int> stack{c};
-      while (!stack.empty()) {  // each vertex of the cross once
-        const int x = stack.back();
-        stack.pop_back();
-        for (int y : adj[x])
-          if (!G.on_g[y]) G.on_g[y] = 1, G.pg[y] = x, stack.push_back(y);
-      }
-      taken.push_back(crosses[i].bands[0]);
-      taken.push_back(crosses[i].bands[1]);
+    // Some are walled off: all of this round's on a copy (so that their paths stay disjoint).
+    const int nv = rs.mesh.num_vertices();
+    const auto chords = chords_of(rs.mesh, [&](int v) { return cross_of[v] != -1; });
+    std::vector<int> mid;
+    std::vector<Vec3d> pos_copy;
+    const TriMesh copy = split_copy(rs.mesh, pos, chords, mid, pos_copy);
+    std::vector<int> cof = cross_of;
+    cof.resize(copy.num_vertices(), -1);
+    std::fill(hang.begin() + static_cast<long>(first), hang.end(), -1);
+    if (run(copy, cof, pos_copy, nv) != want) internal("normal form: a cross is not reachable from the tree P");
+    std::vector<std::vector<std::pair<int, int>>> paths;
+    std::vector<std::pair<int, int>> used;
+    for (std::size_t i = first; i < crosses.size(); ++i) {
+      paths.push_back(path_up(hang_from[i], cof));
+      used.insert(used.end(), paths.back().begin(), paths.back().end());
+      used.push_back({hang_from[i], hang[i]});
+    }
+    const std::vector<int> to_surface =
+        split_like_copy(rs, chords, mid, copy.num_vertices(), used, res.stats.round_chord_splits);
+    extend(rs, pos);
+    cross_of.resize(rs.mesh.num_vertices(), -1);
+    ppar.resize(rs.mesh.num_vertices(), -1);
+    pdepth.resize(rs.mesh.num_vertices(), INFINITY);
+    for (std::size_t i = first; i < crosses.size(); ++i) {
+      auto& path = paths[i - first];
+      for (auto& [x, y] : path) map_ids(to_surface, x), map_ids(to_surface, y);
+      map_ids(to_surface, hang_from[i]);
+      join_p(i, path);
     }
     return rs.mesh.num_vertices() <= vertex_limit;
   };
@@ -1762,12 +1791,36 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
       }
       crosses.push_back(std::move(c));
     }
+    extend(rs, pos);
+    ppar.resize(rs.mesh.num_vertices(), -1);
+    pdepth.resize(rs.mesh.num_vertices(), INFINITY);
+    if (!hang_round(crosses.size() - found.size())) return false;
     ++round;
     ++res.stats.normal_form_rounds;
   }
 
-  extend(rs, pos);
-  if (!hang_crosses()) return false;
+  // G: P, and every cross's tree hung from its vertex hang[i] (depth-first over its edges).
+  GammaTree G;
+  G.grow(rs.mesh.num_vertices());
+  G.on_g[root] = 1;
+  for (int v = 0; v < static_cast<int>(ppar.size()); ++v)
+    if (ppar[v] >= 0) G.on_g[v] = 1, G.pg[v] = ppar[v];
+  std::vector<std::pair<int, int>> taken;
+  for (std::size_t i = 0; i < crosses.size(); ++i) {
+    std::unordered_map<int, std::vector<int>> adj;
+    for (auto [x, y] : crosses[i].edges) adj[x].push_back(y), adj[y].push_back(x);
+    const int c = hang[i];
+    G.on_g[c] = 1, G.pg[c] = hang_from[i];
+    std::vector<int> stack{c};
+    while (!stack.empty()) {  // each vertex of the cross once
+      const int x = stack.back();
+      stack.pop_back();
+      for (int y : adj[x])
+        if (!G.on_g[y]) G.on_g[y] = 1, G.pg[y] = x, stack.push_back(y);
+    }
+    taken.push_back(crosses[i].bands[0]);
+    taken.push_back(crosses[i].bands[1]);
+  }
   return plan_along_tree(res, G, first_child_of_root(rs.mesh, G, root), taken, vertex_limit, plan);
 }
 

@@ -46,27 +46,31 @@
 //     intersection form is nondegenerate). At most g rounds, at most 2 (log2 g + 2) searches per
 //     round. On a coarse mesh of high genus the late rounds' paths must run along earlier loops
 //     through chords and the splits compound (cheese g133 passes 4x its vertices).
-//     b. crosses: first g disjoint crosses, then one tree from the root to them. A cross is a
-//     linked pair of loops of a tree-cotree basis of the surface cut along the crosses before it
-//     (Dijkstra forest from seeds off the crosses, spread farthest-first; dual maximum spanning tree
-//     with the edges at a cross, at the root or between two seeds' parts forced in; pairs by
+//     b. crosses: g disjoint crosses, each round's hung at once from one tree P from the root. A
+//     cross is a linked pair of loops of a tree-cotree basis of the surface cut along the crosses
+//     and P so far (Dijkstra forest from seeds off them, spread farthest-first; dual maximum
+//     spanning tree with the edges at a cross, at P or between two seeds' parts forced in; pairs by
 //     length), without its stem to the seed: the union of the two loops' tree paths (they share a
-//     path, where the loops cross once) and the two bands. Disjoint crosses are independent and,
-//     cut along all of them, the surface is a sphere with g holes, connected; a Dijkstra tree P
-//     from the root over the vertices off the crosses, hanging every cross from the first of its
-//     vertices it reaches, leaves each cross's four ends next to each other in G's tour (G = P +
-//     the crosses' trees), where any rotation of X Y X' Y' reads a commutator block: nothing
-//     constrains where P meets a cross. Chords (edges off the crosses joining two of their
-//     vertices or the root) are handled as in (a): fewer seeds, then a copy with every chord split.
-//     At most g rounds (each takes at least one cross, as many disjoint ones as it finds). Its
-//     loops are longer than the rounds' on small meshes (eight 409 vertices instead of 323) but it
-//     does not compound: cheese g133 gets 600k vertices, 67x (its paths from the root wind between
-//     the crosses; measured against 2.5M for the prototype).
+//     path, where the loops cross once) and the two bands. After each round a Dijkstra from P's
+//     vertices (at their depths along P) over the free vertices hangs each new cross from the first
+//     of its vertices it reaches, and the paths join P, a wall for the later rounds. Disjoint
+//     crosses are independent and, cut along all of them, the surface is a sphere with g holes,
+//     connected; every cross's four ends lie next to each other in G's tour (G = P + the crosses'
+//     trees; P holds no band end, so a cross may hang anywhere on it), where any rotation of
+//     X Y X' Y' reads a commutator block. Chords (edges off the crosses and P joining two of their
+//     vertices) are handled as in (a): fewer seeds, then a copy with every chord split. At most g
+//     rounds (each takes at least one cross, as many disjoint ones as it finds). Its loops are
+//     longer than the rounds' on small meshes (eight 409 vertices instead of 323), and its late
+//     rounds compound too (P is a wall), but far less than the rounds: cheese g133 gets 373k
+//     vertices, 43x (measured against 2.5M for the prototype).
 //     Measured and rejected before: handle slides on the detached greedy loops (plan_handle_slides,
 //     handle_slides.h): the slides' paths double in length per handle on cheese; rounds that
 //     detached their loops before the next round (stop 13): every later round had to squeeze
-//     between parallel strands (couplingdown 3.45k vertices instead of 2.37k now); in (b), hanging
-//     each round's crosses from G at once (the later crosses then compound like the rounds).
+//     between parallel strands (couplingdown 3.45k vertices instead of 2.37k now); in (b), P built
+//     once after the last round (stop 15): its paths then wind through the maze the crosses leave
+//     (cheese: path lengths summing to ~100k vertices against ~6k when hung at once; 608k vertices
+//     instead of 373k, generated g200 697k instead of 148k), and hanging at once only until a round
+//     needs a copy (the late crosses' paths wind as well).
 //     The root and metric are chosen among candidates by the planned vertex count (the refined
 //     surface's vertices plus the planned detaching's crossings): each candidate is planned, not
 //     drawn, and only the one kept is realized; candidates go in fixed pairs, side by side on two
