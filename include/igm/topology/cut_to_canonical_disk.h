@@ -110,7 +110,7 @@ struct CutOptions {
   Construction construction = Construction::Best;
   /// Bound on the vertices the normal form may add, as a multiple of the input's vertex count;
   /// exceeding it with every root is igm::Error(Unsupported). Cheese (g133 on 8.6k vertices) needs
-  /// 67x: its crosses' loops are long for a mesh that coarse.
+  /// 43x: its late crosses' loops are long for a mesh that coarse.
   double max_normal_form_growth = 100.0;
   /// The rounds construction is abandoned for a root once it passes this multiple (its later loops
   /// compound on coarse meshes of high genus); with Best, after two roots that did so it is not
