@@ -286,6 +286,32 @@ struct DetachPlan {
   int band_splits = 0;
 };
 
+// Dijkstra from the entries already in pq (their dist set): each vertex is settled once (stale
+// entries are skipped) and relax(v, w, d) is called for every half-edge v->w of a settled v at
+// distance d; relax updates dist[w] and pushes w itself. O(E log E).
+// The min-heap order of (distance, vertex) entries: smaller distance first, then smaller vertex
+// (std::greater's order, without the three-way comparison of std::pair).
+struct LaterEntry {
+  bool operator()(const std::pair<double, int>& a, const std::pair<double, int>& b) const {
+    return a.first > b.first || (a.first == b.first && a.second > b.second);
+  }
+};
+using MinQueue = std::priority_queue<std::pair<double, int>, std::vector<std::pair<double, int>>, LaterEntry>;
+template <class Relax>
+void settle_all(const TriMesh& M, const std::vector<double>& dist, MinQueue& pq, Relax&& relax) {
+  while (!pq.empty()) {  // each vertex is pushed at most once per half-edge into it
+    auto [d, v] = pq.top();
+    pq.pop();
+    if (d > dist[v]) continue;
+    const int h0 = M.vertex_halfedge(v);
+    int h = h0;
+    do {
+      relax(v, M.target(h), d);
+      h = M.next_around_origin(h);
+    } while (h != h0);
+  }
+}
+
 void plan_strands(DetachPlan& P, const std::vector<std::pair<int, int>>& bands);
 
 // The vertex count a plan's realization will have: one new vertex per crossing (chord splits and
@@ -305,27 +331,13 @@ DetachPlan plan_detach(const TriMesh& mesh, const std::vector<Vec3d>& positions,
   std::vector<int>& parent = P.parent;
   parent.assign(nv0, -1);
   {
-    using Item = std::pair<double, int>;
-    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> pq;
+    MinQueue pq;
     dist[root] = 0;
     pq.push({0.0, root});
-    // Each vertex is settled once; each half-edge relaxed once: O(E log E) iterations.
-    while (!pq.empty()) {
-      auto [d, v] = pq.top();
-      pq.pop();
-      if (d > dist[v]) continue;
-      int h0 = mesh.vertex_halfedge(v), h = h0;
-      do {
-        int w = mesh.target(h);
-        double nd = d + edge_length(v, w);
-        if (nd < dist[w]) {
-          dist[w] = nd;
-          parent[w] = v;
-          pq.push({nd, w});
-        }
-        h = mesh.next_around_origin(h);
-      } while (h != h0);
-    }
+    settle_all(mesh, dist, pq, [&](int v, int w, double d) {
+      const double nd = d + edge_length(v, w);
+      if (nd < dist[w]) dist[w] = nd, parent[w] = v, pq.push({nd, w});
+    });
     for (int v = 0; v < nv0; ++v)
       if (!(dist[v] < INFINITY))
         throw Error(ErrorKind::SeveralComponents, "vertex " + std::to_string(v) + " is not connected to the root", {v});
@@ -956,32 +968,6 @@ bool plan_along_tree(CutResult& res, const GammaTree& G, int root_start, const s
   return true;
 }
 
-// Dijkstra from the entries already in pq (their dist set): each vertex is settled once (stale
-// entries are skipped) and relax(v, w, d) is called for every half-edge v->w of a settled v at
-// distance d; relax updates dist[w] and pushes w itself. O(E log E).
-// The min-heap order of (distance, vertex) entries: smaller distance first, then smaller vertex
-// (std::greater's order, without the three-way comparison of std::pair).
-struct LaterEntry {
-  bool operator()(const std::pair<double, int>& a, const std::pair<double, int>& b) const {
-    return a.first > b.first || (a.first == b.first && a.second > b.second);
-  }
-};
-using MinQueue = std::priority_queue<std::pair<double, int>, std::vector<std::pair<double, int>>, LaterEntry>;
-template <class Relax>
-void settle_all(const TriMesh& M, const std::vector<double>& dist, MinQueue& pq, Relax&& relax) {
-  while (!pq.empty()) {  // each vertex is pushed at most once per half-edge into it
-    auto [d, v] = pq.top();
-    pq.pop();
-    if (d > dist[v]) continue;
-    const int h0 = M.vertex_halfedge(v);
-    int h = h0;
-    do {
-      relax(v, M.target(h), d);
-      h = M.next_around_origin(h);
-    } while (h != h0);
-  }
-}
-
 // A copy of M with every chord (sorted vertex pairs of M) split at its midpoint: combinatorics
 // and double positions only, to guide a search. mid[k] is chord k's midpoint (ids from
 // M.num_vertices() on, in chord order). O(n + chords).
@@ -1608,27 +1594,11 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
     for (int v = 0; v < nv; ++v)
       if (!free_v(v)) d[v] = 0, source[v] = 1, pq.push({0.0, v});
     run();
-    // The farthest vertex from a max-heap of (distance, -id): distances only decrease, so an
-    // entry whose key is above its vertex's distance is stale and goes back in with the current
-    // one; a current top is the farthest (ties: lowest id). Each pop pushes at most once.
-    std::priority_queue<std::pair<double, int>> far;
-    for (int v = 0; v < nv; ++v)
-      if (!source[v]) far.push({d[v], -v});
     std::vector<int> seeds;
     while (seeds.size() < k) {
       int best = -1;
-      while (!far.empty()) {
-        const auto [key, mv] = far.top();
-        const int v = -mv;
-        far.pop();
-        if (source[v]) continue;
-        if (key != d[v]) {
-          far.push({d[v], mv});
-          continue;
-        }
-        best = v;
-        break;
-      }
+      for (int v = 0; v < nv; ++v)
+        if (!source[v] && (best < 0 || d[v] > d[best])) best = v;
       if (best < 0) break;
       seeds.push_back(best);
       d[best] = 0, source[best] = 1;
@@ -1655,6 +1625,9 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
   std::vector<double> pdepth(rs.mesh.num_vertices(), INFINITY);
   pdepth[root] = 0;
   auto hang_round = [&](std::size_t first) {
+    extend(rs, pos);
+    ppar.resize(rs.mesh.num_vertices(), -1);
+    pdepth.resize(rs.mesh.num_vertices(), INFINITY);
     hang.resize(crosses.size(), -1);
     hang_from.resize(crosses.size(), -1);
     std::vector<double> dist;
@@ -1700,7 +1673,7 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
       for (std::size_t i = first; i < crosses.size(); ++i) join_p(i, path_up(hang_from[i], cross_of));
       return rs.mesh.num_vertices() <= vertex_limit;
     }
-    // Some are walled off: all of this round's on a copy (so that their paths stay disjoint).
+    // Some are walled off: all of this round's on a copy (so that their paths form one tree).
     const int nv = rs.mesh.num_vertices();
     const auto chords = chords_of(rs.mesh, [&](int v) { return cross_of[v] != -1; });
     std::vector<int> mid;
@@ -1791,9 +1764,6 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
       }
       crosses.push_back(std::move(c));
     }
-    extend(rs, pos);
-    ppar.resize(rs.mesh.num_vertices(), -1);
-    pdepth.resize(rs.mesh.num_vertices(), INFINITY);
     if (!hang_round(crosses.size() - found.size())) return false;
     ++round;
     ++res.stats.normal_form_rounds;
@@ -1905,8 +1875,9 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     // Root and metric: the given root with 3D lengths, or among K deterministic candidates
     // (root_candidates, K = clamp(2e5 / F, 1, 12)) with 3D lengths and (K > 1) hop counts, the
     // pair whose planned detaching ends with the fewest vertices (planned_vertices; only that one
-    // is drawn); a candidate stops once it has more than the best so far. Per candidate (Best): the rounds, bounded by max_rounds_growth; if
-    // they pass it, the crosses. After two candidates whose rounds passed it, only the crosses.
+    // is drawn); a candidate stops once it has more than the best so far. Per candidate (Best):
+    // the rounds, bounded by max_rounds_growth; if they pass it, the crosses. After two
+    // candidates whose rounds passed it, only the crosses.
     const long limit = nv0 + static_cast<long>(options.max_normal_form_growth * nv0);
     const long rounds_limit = std::min(limit, nv0 + static_cast<long>(options.max_rounds_growth * nv0));
     std::vector<std::pair<int, bool>> candidates;
