@@ -56,20 +56,22 @@ Input generated(int genus, long faces) {
 
 CutOptions::Construction construction = CutOptions::Construction::Best;  // --crosses / --rounds
 bool parallel = true;                                                      // --serial: one thread
+bool tighten = true;                                                       // --no-tighten
 
 void run(const std::string& name, const Input& in, bool normal_form) {
   CutOptions o;
   o.normal_form = normal_form;
   o.construction = construction;
   o.parallel = parallel;
+  o.tighten = tighten;
   try {
     CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
     const auto& s = r.stats;
     std::printf("%-24s g=%-4d F=%-8d nf=%d  V %8d -> %8d (+%6.1f%%) | crossings %6d steiner %5d band %4d chord %5d"
-                " precond %6d | rounds %3d%s chords %6d | roots %2d | %7.3f s (basis %.3f, detach %.3f, cut %.3f)\n",
+                " collapsed %5d precond %6d | rounds %3d%s chords %6d | roots %2d | %7.3f s (basis %.3f, detach %.3f, cut %.3f)\n",
                 name.c_str(), s.genus, s.faces_before, normal_form ? 1 : 0, s.vertices_before, s.vertices_after,
                 100.0 * (s.vertices_after - s.vertices_before) / s.vertices_before, s.crossings, s.steiner_vertices,
-                s.band_splits, s.chord_splits, s.precondition_splits, s.normal_form_rounds, s.crosses ? " (crosses)" : "", s.round_chord_splits, s.roots_tried, s.seconds_total,
+                s.band_splits, s.chord_splits, s.collapsed, s.precondition_splits, s.normal_form_rounds, s.crosses ? " (crosses)" : "", s.round_chord_splits, s.roots_tried, s.seconds_total,
                 s.seconds_basis, s.seconds_detach, s.seconds_cut);
   } catch (const Error& e) {
     std::printf("%-24s nf=%d error: %s\n", name.c_str(), normal_form ? 1 : 0, e.what());
@@ -88,6 +90,7 @@ int main(int argc, char** argv) {
     else if (std::strcmp(argv[i], "--rounds") == 0) construction = CutOptions::Construction::Rounds;
     else if (std::strcmp(argv[i], "--only") == 0 && i + 1 < argc) only = argv[++i];
     else if (std::strcmp(argv[i], "--serial") == 0) parallel = false;
+    else if (std::strcmp(argv[i], "--no-tighten") == 0) tighten = false;
     else shared = argv[i];
   }
   struct Named {

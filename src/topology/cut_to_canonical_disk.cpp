@@ -20,6 +20,7 @@
 
 #include "igm/core/error.h"
 #include "igm/topology/handle_slides.h"
+#include "igm/topology/tighten_loops.h"
 
 namespace igm {
 
@@ -1998,6 +1999,14 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     res.loops = realize_strands(P, res.stats);
     rs = std::move(P.rs);
     res.stats.seconds_detach = seconds_since(t_detach);
+  }
+  if (options.tighten) {
+    const auto t_tighten = Clock::now();
+    TightenedLoops t = tighten_loops(std::move(rs), std::move(res.loops), res.root);
+    rs = std::move(t.surface);
+    res.loops = std::move(t.loops);
+    res.stats.collapsed = t.stats.collapsed;
+    res.stats.seconds_detach += seconds_since(t_tighten);
   }
   const auto t_cut = Clock::now();
 

@@ -119,6 +119,9 @@ struct CutOptions {
   /// Evaluate root candidates two at a time on two threads (root = -1). The result is the same
   /// either way: candidates go in fixed pairs, merged in order.
   bool parallel = true;
+  /// After the detaching, pull the loops onto free existing vertices where a crossing vertex has
+  /// one beside it (tighten_loops.h): the same loops and word, fewer vertices.
+  bool tighten = true;
 };
 
 struct CutStats {
@@ -129,6 +132,7 @@ struct CutStats {
   int steiner_vertices = 0;     // face-interior vertices added to avoid flat triangles (step 2)
   int band_splits = 0;          // band edge vertices (step 2; at most two per band)
   int chord_splits = 0;         // edges split so that no strand runs along an edge (step 2)
+  int collapsed = 0;            // constructed loop vertices removed by the tightening (step 2b)
   int precondition_splits = 0;  // edge splits of step 4
   long long predicted_crossings = 0;  // the detaching plan's count for the chosen root (step 2)
   int roots_tried = 0;          // (root, metric) candidates whose detaching was planned (root = -1)

@@ -1,0 +1,308 @@
+#include "igm/topology/tighten_loops.h"
+
+#include <algorithm>
+#include <array>
+#include <string>
+#include <utility>
+
+#include "igm/core/error.h"
+#include "igm/exact/predicates.h"
+
+namespace igm {
+
+namespace {
+
+[[noreturn]] void internal(const std::string& what, std::vector<std::int64_t> ids = {}) {
+  throw Error(ErrorKind::Internal, "loop tightening: " + what, std::move(ids));
+}
+
+// The weight of input vertex u in p (0 if u is not in its support).
+Rational weight_of(const SurfacePoint& p, int u) {
+  for (int i = 0; i < 3; ++i)
+    if (p.v[i] == u) return p.w[i];
+  return 0;
+}
+
+// The point p in the barycentric chart of the input face with vertices U (sorted): the weights of
+// U[1] and U[2]. An affine chart: the orientations of all triangles of the face in it differ from
+// those on the surface by one common sign.
+Point2q chart(const SurfacePoint& p, const std::array<int, 3>& U) { return {weight_of(p, U[1]), weight_of(p, U[2])}; }
+
+// The input vertices with positive weight in the three points, sorted, without repeats, into U;
+// false if they are not exactly three (then the points do not span one input face).
+bool face_support(const SurfacePoint& a, const SurfacePoint& b, const SurfacePoint& c, std::array<int, 3>& U) {
+  int n = 0;
+  for (const SurfacePoint* p : {&a, &b, &c})
+    for (int i = 0; i < 3; ++i) {
+      if (p->v[i] < 0 || sgn(p->w[i]) <= 0) continue;
+      const int u = p->v[i];
+      if (std::find(U.begin(), U.begin() + n, u) != U.begin() + n) continue;
+      if (n == 3) return false;
+      U[n++] = u;
+    }
+  std::sort(U.begin(), U.begin() + n);
+  return n == 3;
+}
+
+bool supported_in(const SurfacePoint& p, const std::array<int, 3>& U) {
+  for (int i = 0; i < 3; ++i)
+    if (p.v[i] >= 0 && sgn(p.w[i]) > 0 && std::find(U.begin(), U.end(), p.v[i]) == U.end()) return false;
+  return true;
+}
+
+bool has(const std::array<int, 3>& t, int v) { return t[0] == v || t[1] == v || t[2] == v; }
+
+}  // namespace
+
+TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int>> loops, int root) {
+  TightenedLoops out;
+  RefinedSurface& rs = surface;
+  const int nv = rs.mesh.num_vertices();
+  const int nin = rs.num_input_vertices;
+  if (static_cast<int>(rs.constructed.size()) != nv - nin) internal("constructed points out of step with the mesh");
+  const int nloops = static_cast<int>(loops.size());
+
+  // The mesh as a face list with per-vertex incident faces: a collapse is O(valence).
+  std::vector<std::array<int, 3>> tri(rs.mesh.num_faces());
+  std::vector<char> face_alive(tri.size(), 1), alive(nv, 1);
+  std::vector<std::vector<int>> inc(nv);
+  for (int f = 0; f < rs.mesh.num_faces(); ++f) {
+    tri[f] = rs.mesh.face_vertices(f);
+    for (int v : tri[f]) inc[v].push_back(f);
+  }
+  std::vector<int> stamp(nv, 0);
+  int clock = 0;
+  auto neighbours = [&](int v, std::vector<int>& nb) {  // each once; marks them with the new clock
+    nb.clear();
+    ++clock;
+    for (int f : inc[v])
+      for (int u : tri[f])
+        if (u != v && stamp[u] != clock) stamp[u] = clock, nb.push_back(u);
+  };
+  auto unlink_face = [&](int f, int except) {
+    face_alive[f] = 0;
+    for (int u : tri[f]) {
+      if (u == except) continue;
+      auto& l = inc[u];
+      const auto it = std::find(l.begin(), l.end(), f);
+      if (it == l.end()) internal("incidence out of step", {u});
+      *it = l.back();
+      l.pop_back();
+    }
+  };
+
+  // The loops as linked lists over their vertices (the root excluded: every other vertex is on at
+  // most one loop): loop_of (-1: free), nxt / prv (the root at the two ends).
+  std::vector<int> loop_of(nv, -1), nxt(nv, -1), prv(nv, -1), head(nloops), tail(nloops);
+  for (int i = 0; i < nloops; ++i) {
+    const auto& L = loops[i];
+    if (L.size() < 3 || L[0] != root) internal("loop does not start at the root", {i});
+    for (std::size_t j = 1; j < L.size(); ++j) {
+      const int v = L[j];
+      if (v < 0 || v >= nv) internal("loop vertex out of range", {v});
+      if (v == root || loop_of[v] != -1) internal("loops not simple or not disjoint", {v});
+      if (rs.mesh.find_halfedge(L[j - 1], v) < 0 || (j + 1 == L.size() && rs.mesh.find_halfedge(v, root) < 0))
+        internal("a loop step is not an edge", {L[j - 1], v});
+      loop_of[v] = i;
+      prv[v] = L[j - 1];
+      nxt[v] = j + 1 < L.size() ? L[j + 1] : root;
+    }
+    head[i] = L[1], tail[i] = L.back();
+  }
+  auto set_next = [&](int L, int a, int b) {  // a -> b along L (either may be the root)
+    if (a == root) head[L] = b;
+    else nxt[a] = b;
+    if (b == root) tail[L] = a;
+    else prv[b] = a;
+  };
+
+  std::vector<int> nc, nw;
+  // Whether v, a vertex of loop L or a free vertex about to join L's neighbourhood as `keeper`,
+  // may become adjacent to u: not if u is on L off keeper's two loop neighbours, or is the root
+  // while keeper is neither end of L (such an edge could join two vertices of one polygon side,
+  // which the cut would split again). `ok_extra` is one more allowed vertex (-1: none).
+  auto adjacency_ok = [&](int keeper, int L, int u, int ok_extra) {
+    if (L < 0 || u == ok_extra) return true;
+    if (u == prv[keeper] || u == nxt[keeper]) return true;
+    if (u == root) return prv[keeper] == root || nxt[keeper] == root;
+    return loop_of[u] != L;
+  };
+
+  // The geometric and combinatorial checks of an edge collapse c -> w (c constructed): the link
+  // condition, valences >= 3, and every face moving from c to w keeping its exact orientation in
+  // its input face. Fills shared with the two faces at cw. O(valence) exact orientations.
+  auto collapse_ok = [&](int c, int w, int shared[2]) {
+    int ns = 0;
+    for (int f : inc[c])
+      if (has(tri[f], w)) {
+        if (ns == 2) return false;
+        shared[ns++] = f;
+      }
+    if (ns != 2) return false;
+    int apex[2];
+    for (int k = 0; k < 2; ++k) {
+      const auto& t = tri[shared[k]];
+      apex[k] = t[0] != c && t[0] != w ? t[0] : (t[1] != c && t[1] != w ? t[1] : t[2]);
+    }
+    if (apex[0] == apex[1]) return false;
+    // Link condition (neighbours(c) runs last: its marks hold the current clock).
+    neighbours(w, nw);
+    neighbours(c, nc);
+    int common = 0;
+    for (int u : nw)
+      if (u != c && stamp[u] == clock) ++common;
+    if (common != 2) return false;
+    if (inc[apex[0]].size() < 4 || inc[apex[1]].size() < 4 || inc[c].size() + inc[w].size() < 7) return false;
+    const SurfacePoint pc = rs.point(c), pw = rs.point(w);
+    for (int f : inc[c]) {
+      if (f == shared[0] || f == shared[1]) continue;
+      const auto& t = tri[f];
+      const int k = t[0] == c ? 0 : (t[1] == c ? 1 : 2);
+      const SurfacePoint pa = rs.point(t[(k + 1) % 3]), pb = rs.point(t[(k + 2) % 3]);
+      std::array<int, 3> U{-1, -1, -1};
+      if (!face_support(pc, pa, pb, U) || !supported_in(pw, U)) return false;
+      const Point2q a = chart(pa, U), b = chart(pb, U);
+      const Sign before = orient2d(chart(pc, U), a, b);
+      if (before == Sign::Zero) internal("a refined face is flat in its input face", {c});
+      if (orient2d(chart(pw, U), a, b) != before) return false;
+    }
+    return true;
+  };
+  auto do_collapse = [&](int c, int w, const int shared[2]) {
+    for (int k = 0; k < 2; ++k) unlink_face(shared[k], c);
+    for (int f : inc[c]) {
+      if (!face_alive[f]) continue;
+      for (int& u : tri[f])
+        if (u == c) u = w;
+      inc[w].push_back(f);
+    }
+    std::vector<int>().swap(inc[c]);
+    alive[c] = 0;
+  };
+  auto face_with = [&](int a, int b, int c) {
+    for (int f : inc[a])
+      if (has(tri[f], b) && has(tri[f], c)) return true;
+    return false;
+  };
+
+  // M3: a free constructed vertex v is removed by collapsing it into a neighbour y (the lowest id
+  // that passes), if y gains no forbidden adjacency.
+  auto remove_free = [&](int v) {
+    if (v < nin || !alive[v] || loop_of[v] != -1) return false;
+    std::vector<int> cand;
+    neighbours(v, cand);
+    std::sort(cand.begin(), cand.end());
+    for (int y : cand) {
+      if (y == root) continue;
+      int shared[2];
+      if (!collapse_ok(v, y, shared)) continue;
+      bool ok = true;  // nc = v's neighbours: y's new ones
+      for (int u : nc)
+        if (u != y && !adjacency_ok(y, loop_of[y], u, -1)) ok = false;
+      if (!ok) continue;
+      do_collapse(v, y, shared);
+      ++out.stats.collapsed;
+      return true;
+    }
+    return false;
+  };
+  // M2: a loop vertex v whose loop neighbours u, t span a face (u, v, t), neither of them the
+  // root, leaves the loop (u -> t directly, across that face: an isotopy); a constructed v is then
+  // removed if it can be (M3).
+  auto shortcut = [&](int v) {
+    const int L = loop_of[v];
+    if (L < 0) return false;
+    const int u = prv[v], t = nxt[v];
+    if (u == root || t == root || !face_with(v, u, t)) return false;
+    set_next(L, u, t);
+    loop_of[v] = -1, prv[v] = nxt[v] = -1;
+    ++out.stats.shortcuts;
+    remove_free(v);
+    return true;
+  };
+  // M1: a constructed loop vertex c collapses into a free neighbour w (lowest id first), the loop
+  // then running through w. w may gain an edge to the loop vertex two steps from c only where a
+  // face makes the shortcut (M2) that turns it into a loop edge, done at once.
+  auto pull = [&](int c) {
+    if (c < nin || loop_of[c] < 0) return -1;
+    const int L = loop_of[c];
+    std::vector<int> cand;
+    neighbours(c, cand);
+    std::sort(cand.begin(), cand.end());
+    for (int w : cand) {
+      if (loop_of[w] != -1 || w == root) continue;
+      int shared[2];
+      if (!collapse_ok(c, w, shared)) continue;
+      const int p = prv[c], n = nxt[c];
+      const int pp = p == root ? -1 : prv[p], nn = n == root ? -1 : nxt[n];
+      int via = -1;  // the loop neighbour of c to shortcut past afterwards
+      bool ok = true;
+      for (int u : nw) {  // w's neighbours before the collapse (c's are kept by c's own rules)
+        if (u == c || adjacency_ok(c, L, u, -1)) continue;
+        if (u == nn && nn != root && via < 0 && (face_with(w, n, nn) || face_with(c, n, nn))) via = n;
+        else if (u == pp && pp != root && via < 0 && (face_with(w, p, pp) || face_with(c, p, pp))) via = p;
+        else ok = false;
+      }
+      if (!ok) continue;
+      do_collapse(c, w, shared);
+      loop_of[w] = L, prv[w] = p, nxt[w] = n;
+      set_next(L, p, w);
+      set_next(L, w, n);
+      loop_of[c] = -1;
+      ++out.stats.collapsed;
+      if (via >= 0) shortcut(via);
+      return w;
+    }
+    return -1;
+  };
+
+  // Passes until one changes nothing. Each change removes a vertex (M1, M3) or a loop vertex
+  // (M2), so there are at most (vertices + total loop length + 1) <= 2 V + 1 passes; a pass visits
+  // every loop vertex and every free constructed vertex once.
+  for (bool changed = true; changed;) {
+    changed = false;
+    ++out.stats.passes;
+    if (out.stats.passes > 2 * nv + 1) internal("no fixed point");
+    for (int L = 0; L < nloops; ++L)
+      for (int v = head[L], guard = 0; v != root; ++guard) {
+        if (guard > nv) internal("loop list does not end at the root");
+        const int before = prv[v];
+        if (shortcut(v)) {
+          changed = true;
+          v = before == root ? head[L] : nxt[before];
+          continue;
+        }
+        const int w = pull(v);
+        if (w >= 0) changed = true;
+        v = nxt[w >= 0 ? w : v];
+      }
+    for (int v = nin; v < nv; ++v)
+      if (alive[v] && loop_of[v] == -1 && remove_free(v)) changed = true;
+  }
+
+  // Compact: input vertices keep their ids, surviving constructed ones are renumbered in order.
+  std::vector<int> new_id(nv, -1);
+  for (int v = 0; v < nin; ++v) new_id[v] = v;
+  int next_id = nin;
+  std::vector<SurfacePoint> kept;
+  for (int v = nin; v < nv; ++v)
+    if (alive[v]) new_id[v] = next_id++, kept.push_back(std::move(rs.constructed[v - nin]));
+  std::vector<std::array<int, 3>> tris;
+  tris.reserve(tri.size());
+  for (std::size_t f = 0; f < tri.size(); ++f)
+    if (face_alive[f]) tris.push_back({new_id[tri[f][0]], new_id[tri[f][1]], new_id[tri[f][2]]});
+  out.surface.mesh = TriMesh::from_triangles(next_id, tris);
+  out.surface.num_input_vertices = nin;
+  out.surface.constructed = std::move(kept);
+  out.surface.input_positions = std::move(rs.input_positions);
+  out.loops.assign(nloops, {});
+  for (int L = 0; L < nloops; ++L) {
+    auto& P = out.loops[L];
+    P.push_back(root);
+    for (int v = head[L]; v != root; v = nxt[v]) P.push_back(new_id[v]);
+    if (P.size() < 3) internal("a loop became shorter than three vertices", {L});
+  }
+  return out;
+}
+
+}  // namespace igm

@@ -1,0 +1,131 @@
+// Tests of loop tightening: the tightened surface is re-checked as an exact refinement of the input
+// (tests/support/refinement_check.h, from the raw input triangles), the loops from their raw vertex
+// lists, and the order of the loop ends around the root against the untightened cut.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "igm/topology/cut_to_canonical_disk.h"
+#include "igm/topology/tighten_loops.h"
+#include "generated_mesh.h"
+#include "refinement_check.h"
+#include "test_data.h"
+
+using namespace igm;
+
+namespace {
+
+// The loop ends around the root, counter-clockwise from the end of loop 0's first edge: per end,
+// (loop, 0 for its first edge, 1 for its last). Empty if an edge at the root is on two loops.
+std::vector<std::pair<int, int>> ends_at_root(const TriMesh& M, const std::vector<std::vector<int>>& loops, int root) {
+  std::vector<std::pair<int, int>> ends;
+  const int h0 = M.vertex_halfedge(root);
+  int h = h0;
+  do {
+    const int t = M.target(h);
+    int found = 0;
+    for (int i = 0; i < static_cast<int>(loops.size()); ++i) {
+      if (loops[i][1] == t) ends.push_back({i, 0}), ++found;
+      if (loops[i].back() == t) ends.push_back({i, 1}), ++found;
+    }
+    if (found > 1) return {};
+    h = M.next_around_origin(h);
+  } while (h != h0);
+  const auto start = std::find(ends.begin(), ends.end(), std::pair{0, 0});
+  if (start == ends.end()) return {};
+  std::rotate(ends.begin(), start, ends.end());
+  return ends;
+}
+
+// Loops: 2g of them, from the root, along edges, simple and pairwise disjoint but at the root.
+std::string loop_violation(const TriMesh& M, const std::vector<std::vector<int>>& loops, int root, int genus) {
+  if (static_cast<int>(loops.size()) != 2 * genus) return "loop count";
+  std::vector<int> owner(M.num_vertices(), -1);
+  for (std::size_t i = 0; i < loops.size(); ++i) {
+    const auto& L = loops[i];
+    if (L.size() < 3 || L[0] != root) return "loop " + std::to_string(i) + " does not start at the root";
+    for (std::size_t j = 0; j < L.size(); ++j) {
+      if (L[j] < 0 || L[j] >= M.num_vertices()) return "vertex out of range";
+      if (M.find_halfedge(L[j], L[(j + 1) % L.size()]) < 0) return "loop step is not an edge";
+      if (j == 0) continue;
+      if (L[j] == root || owner[L[j]] != -1) return "loops not simple or not disjoint";
+      owner[L[j]] = static_cast<int>(i);
+    }
+  }
+  return "";
+}
+
+// Tightens the untightened cut of `in` and checks everything the header promises; returns the
+// number of vertices removed.
+int check_tightening(const ValidMesh& in, bool normal_form) {
+  CutOptions o;
+  o.normal_form = normal_form;
+  o.tighten = false;
+  const CutResult raw = cut_to_canonical_disk(in.mesh, in.positions, o);
+  const int before = raw.surface.mesh.num_vertices();
+  const auto ends_before = ends_at_root(raw.surface.mesh, raw.loops, raw.root);
+  REQUIRE(!ends_before.empty());
+  TightenedLoops t = tighten_loops(raw.surface, raw.loops, raw.root);
+  const TriMesh& M = t.surface.mesh;
+  CHECK(M.check_invariants() == "");
+  CHECK(M.num_vertices() - M.num_edges() + M.num_faces() == 2 - 2 * raw.genus);
+  CHECK(t.surface.num_input_vertices == in.mesh.num_vertices());
+  CHECK(M.num_vertices() == before - t.stats.collapsed);
+  CHECK(igm_test::refinement_violation(in, t.surface, true) == "");
+  CHECK(loop_violation(M, t.loops, raw.root, raw.genus) == "");
+  CHECK(ends_at_root(M, t.loops, raw.root) == ends_before);  // the same system: same order, same word
+  // A fixed point: tightening again changes nothing.
+  const TightenedLoops again = tighten_loops(t.surface, t.loops, raw.root);
+  CHECK(again.stats.collapsed == 0);
+  CHECK(again.stats.shortcuts == 0);
+  CHECK(again.loops == t.loops);
+  return t.stats.collapsed;
+}
+
+}  // namespace
+
+TEST_CASE("tightening generated cuts keeps an exact refinement, the loops' order and the word") {
+  int removed = 0;
+  for (int g : {1, 2, 3, 5, 10})
+    for (unsigned seed : {1u, 2u})
+      for (bool nf : {false, true}) {
+        CAPTURE(g);
+        CAPTURE(seed);
+        CAPTURE(nf);
+        removed += check_tightening(igm_test::generated_mesh(g, 400 * g, seed), nf);
+      }
+  CHECK(removed > 0);
+  MESSAGE("generated meshes: " << removed << " vertices removed in all");
+}
+
+TEST_CASE("tightening the shared meshes removes crossing vertices and keeps everything else") {
+  IGM_REQUIRE_DATA(dir);
+  for (const std::string name : {"helmet", "elephant", "anchor", "couplingdown"})
+    for (bool nf : {false, true}) {
+      CAPTURE(name);
+      CAPTURE(nf);
+      const ValidMesh in = load_mesh(dir / "meshes" / "clean" / (name + ".off"));
+      const int removed = check_tightening(in, nf);
+      // Measured (without / with the normal form): helmet 5 / 10, elephant 36 / 27, anchor 12 / 50,
+      // couplingdown 75 / 119.
+      CHECK(removed > 0);
+      MESSAGE(name << std::string(nf ? " (normal form)" : "") << ": " << removed << " vertices removed");
+    }
+}
+
+TEST_CASE("bad loops given to the tightening are typed errors") {
+  const ValidMesh in = igm_test::generated_mesh(1, 200, 1);
+  CutOptions o;
+  o.tighten = false;
+  const CutResult raw = cut_to_canonical_disk(in.mesh, in.positions, o);
+  auto loops = raw.loops;
+  loops[1][0] = loops[1][1];  // not from the root
+  CHECK_THROWS_AS(tighten_loops(raw.surface, loops, raw.root), Error);
+  loops = raw.loops;
+  loops[1].push_back(loops[0][1]);  // shares a vertex with loop 0
+  CHECK_THROWS_AS(tighten_loops(raw.surface, loops, raw.root), Error);
+}
