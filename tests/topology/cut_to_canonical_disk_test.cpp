@@ -515,7 +515,7 @@ TEST_CASE("the default root crosses no more edges than the vertex of maximum val
 
 TEST_CASE("the tightening keeps the root, the loops' order and the word, and removes vertices") {
   // tighten_loops.h: crossing vertices collapsed into free neighbours. Compared with the same cut
-  // untightened; both verified. Generated meshes, and couplingdown (shared) where it removes 75.
+  // untightened; both verified. Generated meshes, and couplingdown (shared) where it removes 117.
   std::vector<std::pair<std::string, Input>> inputs;
   for (int g : {2, 5, 10}) inputs.push_back({"generated g" + std::to_string(g), generated(g, 500 * g, 30 + g)});
   if (auto dir = igm_test::data_dir()) inputs.push_back({"couplingdown", read_off(*dir / "meshes" / "clean" / "couplingdown.off")});

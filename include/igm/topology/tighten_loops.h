@@ -28,7 +28,8 @@ namespace igm {
 struct TightenStats {
   int collapsed = 0;  // constructed vertices removed
   int shortcuts = 0;  // loop vertices left by a shortcut across a face
-  int passes = 0;     // sweeps over the loops (the last one changes nothing)
+  int pushes = 0;     // collapses made possible by pushing another loop off the target vertex
+  long long passes = 0;  // sweeps over the loops (the last one changes nothing)
 };
 
 struct TightenedLoops {
