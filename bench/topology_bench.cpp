@@ -1,12 +1,13 @@
 // Topology stage measurements: time and mesh growth of cut_to_canonical_disk.
 // Usage: igm_bench_topology [shared_dir] [--normal-form-all] [--crosses|--rounds] [--serial]
-//                           [--only NAME|g3|g20]
+//                           [--no-tighten] [--only NAME|g3|g20]
 // Growth is broken down by source: crossings, Steiner, band, chord and pre-condition splits, and
 // the normal form's rounds (marked "(crosses)" where the crosses construction won) and chord
 // splits. By default the normal form is measured for genus <= 10 only (cheese takes ~40 s and
 // grows to 373k vertices, the 1M-face g20 ~7 s); --normal-form-all measures it everywhere; --only
 // runs one mesh, with and without it; --crosses / --rounds use that construction alone; --serial
-// evaluates the root candidates on one thread (CutOptions::parallel = false; same results).
+// evaluates the root candidates on one thread (CutOptions::parallel = false; same results);
+// --no-tighten skips the loop tightening (CutOptions::tighten = false), for comparison.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>

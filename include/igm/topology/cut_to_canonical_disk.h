@@ -20,6 +20,12 @@
 //     programming over T, O(sum of strand lengths)). Each face is then re-triangulated along the
 //     curves. Growth: one vertex per crossing (plus a split where a curve would run along an edge,
 //     and a face vertex where a fan would be flat). Cost O(n + total crossings).
+//  2b. tightening (CutOptions::tighten, tighten_loops.h), after step 2 or 3: crossing vertices
+//     collapse into free neighbours (the outer strand of a bundle then runs through the existing
+//     vertices beside it), loops shortcut across faces, pushed aside to make room; each move
+//     checked exactly and refused where it would join a loop to itself. The same loops, order and
+//     word. Measured: couplingdown 2187 -> 2070 vertices (normal form 2369 -> 2163), anchor with
+//     the normal form 622 -> 558, a 1M-face genus 20 +0.2 s.
 //  3. normal form (CutOptions::normal_form), instead of steps 1-2, by one of two constructions
 //     (CutOptions::construction; Best: the rounds, and for a root whose rounds pass
 //     CutOptions::max_rounds_growth the crosses; after two such roots only the crosses). Both end

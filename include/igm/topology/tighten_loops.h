@@ -2,23 +2,33 @@
 // Loop tightening: the detaching (cut_to_canonical_disk.h, step 2) draws parallel strands as
 // normal curves that cross the edges around the tree they follow, one new vertex per crossing.
 // Where a crossing vertex has a neighbour that no loop uses, the loop can run through that
-// neighbour instead: the edge between them is collapsed into the neighbour, and the crossing
-// vertex is gone. Repeated until no collapse applies, this pulls the outermost strand of every
-// bundle onto the existing vertices beside it (a "lane"), where they are free.
-//
-// A collapse of a constructed loop vertex c (not the root) into a neighbour w on no loop is made
-// only if it keeps everything the later stages need, each checked exactly:
-//  - the mesh stays a closed 2-manifold: c and w have exactly the two common neighbours of the
-//    faces at the edge cw (link condition), and every vertex keeps valence >= 3;
-//  - the mesh stays a refinement of the input: each face (c, a, b) that becomes (w, a, b) lies in
-//    one input face F (the joint support of c, a, b), w's support lies in F too, and the exact
-//    orientation of (w, a, b) in F's barycentric chart is that of (c, a, b) (not zero);
-//  - the loops stay simple and pairwise disjoint but at the root (w is on none); no loop uses the
-//    edge cw, so the contraction (a homeomorphism up to isotopy, by the link condition) carries
-//    the old system onto the new one: the same loops, the same order at the root, the same word.
+// neighbour instead, and the crossing vertex goes. Four moves, repeated until none applies:
+//  M1 a constructed loop vertex c (not the root) collapses into a free neighbour w (the edge cw is
+//     contracted into w): the loop runs through w. This pulls the outer strand of a bundle onto
+//     the existing vertices beside it (a "lane");
+//  M2 a loop vertex whose two loop neighbours (neither the root) span a face leaves the loop, which
+//     takes the face's third edge (an isotopy across the face); done at once after an M1 that made
+//     w adjacent to the loop vertex two steps on;
+//  M3 a constructed vertex on no loop (left by M2, or by an earlier stage) collapses into a
+//     neighbour;
+//  M4 where a constructed loop vertex c is next to a vertex w of another loop B, B is pushed off w
+//     onto w's free neighbours on the far side from c (an isotopy across w's faces there), and c
+//     collapses into w; undone unless both succeed.
+// A collapse of v into u is made only if it keeps everything the later stages need, each checked
+// exactly:
+//  - the mesh stays a closed 2-manifold: v and u have exactly the two common neighbours of the
+//    faces at the edge vu (link condition), and every vertex keeps valence >= 3;
+//  - the mesh stays a refinement of the input: each face (v, a, b) that becomes (u, a, b) lies in
+//    one input face F (the joint support of v, a, b), u's support lies in F too, and the exact
+//    orientation of (u, a, b) in F's barycentric chart is that of (v, a, b) (not zero);
+//  - the loops stay simple and pairwise disjoint but at the root; no loop uses the edge vu, so the
+//    contraction (a homeomorphism up to isotopy, by the link condition) carries the old system
+//    onto the new one: the same loops, the same order at the root, the same word.
+// No move may make a loop vertex adjacent to a vertex of its own loop other than its two loop
+// neighbours, or to the root unless it is an end of its loop: such an edge could join two vertices
+// of one polygon side, which the cut would split again (cut_to_canonical_disk.h, step 4).
 // Input vertices are never removed or moved; the constructed vertices that stay keep their exact
-// points. The embedding's pre-conditions are not kept here: the cut's own pass restores them
-// (cut_to_canonical_disk.h, step 4).
+// points.
 #include <vector>
 
 #include "igm/mesh/surface_point.h"
@@ -40,10 +50,11 @@ struct TightenedLoops {
 
 /// Tightens `loops` (vertex cycles of surface.mesh, each starting at `root`, pairwise disjoint but
 /// at the root) as described above. Pre: surface is a valid refinement (closed manifold mesh,
-/// constructed points in step with it), the loops as stated. Post: a valid refinement with at most
-/// as many vertices, the loops as stated, each isotopic to its input. Cost: O(P * sum over loop
-/// vertices of their valence^2) exact orientation tests for P passes; P <= 1 + collapsed, and in
-/// practice 2-3 (a pass visits every loop vertex once).
+/// constructed points in step with it), the loops as stated (else igm::Error(Internal) naming the
+/// vertex). Post: a valid refinement with at most as many vertices, the same loops up to isotopy,
+/// in the same order at the root. Cost: O(F) to set up and rebuild, plus per pass O(sum over loop
+/// and free constructed vertices of valence^2) with O(valence) exact orientations per tried
+/// collapse; at most V (V + 2) + 1 passes (see the .cpp), in practice 3 to 6.
 TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int>> loops, int root);
 
 }  // namespace igm
