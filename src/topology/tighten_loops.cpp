@@ -132,13 +132,11 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
   };
 
   std::vector<int> nc, nw;
-  // Whether v, a vertex of loop L or a free vertex about to join L's neighbourhood as `keeper`,
-  // may become adjacent to u: not if u is on L off keeper's two loop neighbours, or is the root
-  // while keeper is neither end of L (such an edge could join two vertices of one polygon side,
-  // which the cut would split again). `ok_extra` is one more allowed vertex (-1: none).
-  auto adjacency_ok = [&](int keeper, int L, int u, int ok_extra) {
-    if (L < 0 || u == ok_extra) return true;
-    if (u == prv[keeper] || u == nxt[keeper]) return true;
+  // Whether `keeper`, a vertex of loop L (-1: on none) with its loop neighbours already set, may be
+  // adjacent to u: not if u is another vertex of L, or the root while keeper is neither end of L
+  // (such an edge could join two vertices of one polygon side, which the cut would split again).
+  auto adjacency_ok = [&](int keeper, int L, int u) {
+    if (L < 0 || u == prv[keeper] || u == nxt[keeper]) return true;
     if (u == root) return prv[keeper] == root || nxt[keeper] == root;
     return loop_of[u] != L;
   };
@@ -213,7 +211,7 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
       if (!collapse_ok(v, y, shared)) continue;
       bool ok = true;  // nc = v's neighbours: y's new ones
       for (int u : nc)
-        if (u != y && !adjacency_ok(y, loop_of[y], u, -1)) ok = false;
+        if (u != y && !adjacency_ok(y, loop_of[y], u)) ok = false;
       if (!ok) continue;
       do_collapse(v, y, shared);
       ++out.stats.collapsed;
@@ -247,7 +245,7 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
     const int pp = p == root ? -1 : prv[p], nn = n == root ? -1 : nxt[n];
     int via = -1;  // the loop neighbour of c to shortcut past afterwards
     for (int u : nw) {  // w's neighbours before the collapse (c's are kept by c's own rules)
-      if (u == c || adjacency_ok(c, L, u, -1)) continue;
+      if (u == c || adjacency_ok(c, L, u)) continue;
       if (u == nn && nn != root && via < 0 && (face_with(w, n, nn) || face_with(c, n, nn))) via = n;
       else if (u == pp && pp != root && via < 0 && (face_with(w, p, pp) || face_with(c, p, pp))) via = p;
       else return false;
@@ -335,7 +333,7 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
     for (int z : arc) {
       neighbours(z, nz);
       for (int u : nz)
-        if (!adjacency_ok(z, B, u, -1)) return false;
+        if (!adjacency_ok(z, B, u)) return false;
     }
     return true;
   };
