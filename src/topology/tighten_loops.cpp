@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <numeric>
 #include <string>
 #include <utility>
 
@@ -387,20 +388,26 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
   }
 
   // Compact: input vertices keep their ids, surviving constructed ones are renumbered in order.
+  // With no vertex removed the mesh is unchanged (only the loops may have moved): kept as it is.
   std::vector<int> new_id(nv, -1);
-  for (int v = 0; v < nin; ++v) new_id[v] = v;
-  int next_id = nin;
-  std::vector<SurfacePoint> kept;
-  for (int v = nin; v < nv; ++v)
-    if (alive[v]) new_id[v] = next_id++, kept.push_back(std::move(rs.constructed[v - nin]));
-  std::vector<std::array<int, 3>> tris;
-  tris.reserve(tri.size());
-  for (std::size_t f = 0; f < tri.size(); ++f)
-    if (face_alive[f]) tris.push_back({new_id[tri[f][0]], new_id[tri[f][1]], new_id[tri[f][2]]});
-  out.surface.mesh = TriMesh::from_triangles(next_id, tris);
-  out.surface.num_input_vertices = nin;
-  out.surface.constructed = std::move(kept);
-  out.surface.input_positions = std::move(rs.input_positions);
+  if (out.stats.collapsed == 0) {
+    std::iota(new_id.begin(), new_id.end(), 0);
+    out.surface = std::move(rs);
+  } else {
+    std::iota(new_id.begin(), new_id.begin() + nin, 0);
+    int next_id = nin;
+    std::vector<SurfacePoint> kept;
+    for (int v = nin; v < nv; ++v)
+      if (alive[v]) new_id[v] = next_id++, kept.push_back(std::move(rs.constructed[v - nin]));
+    std::vector<std::array<int, 3>> tris;
+    tris.reserve(tri.size());
+    for (std::size_t f = 0; f < tri.size(); ++f)
+      if (face_alive[f]) tris.push_back({new_id[tri[f][0]], new_id[tri[f][1]], new_id[tri[f][2]]});
+    out.surface.mesh = TriMesh::from_triangles(next_id, tris);
+    out.surface.num_input_vertices = nin;
+    out.surface.constructed = std::move(kept);
+    out.surface.input_positions = std::move(rs.input_positions);
+  }
   out.loops.assign(nloops, {});
   for (int L = 0; L < nloops; ++L) {
     auto& P = out.loops[L];
