@@ -8,6 +8,10 @@
 // runs one mesh, with and without it; --crosses / --rounds use that construction alone; --serial
 // evaluates the root candidates on one thread (CutOptions::parallel = false; same results);
 // --no-tighten skips the loop tightening (CutOptions::tighten = false), for comparison.
+// Under each line: the ring-capacity floor (topology/ring_bound.h) at the chosen root, the vertices
+// any loop system through it must add; without the normal form on meshes of <= 3,000 vertices also
+// the least floor over every root.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -21,6 +25,7 @@
 #include "igm/mesh/generate.h"
 #include "igm/mesh/validate.h"
 #include "igm/topology/cut_to_canonical_disk.h"
+#include "igm/topology/ring_bound.h"
 
 using namespace igm;
 
@@ -74,6 +79,16 @@ void run(const std::string& name, const Input& in, bool normal_form) {
                 100.0 * (s.vertices_after - s.vertices_before) / s.vertices_before, s.crossings, s.steiner_vertices,
                 s.band_splits, s.chord_splits, s.collapsed, s.precondition_splits, s.normal_form_rounds, s.crosses ? " (crosses)" : "", s.round_chord_splits, s.roots_tried, s.seconds_total,
                 s.seconds_basis, s.seconds_detach, s.seconds_cut);
+    // The ring-capacity floor (topology/ring_bound.h): what any loop system through this root must
+    // add, and on small meshes the least over every root.
+    const RingBound floor_here = ring_capacity_bound(in.mesh, r.root);
+    std::printf("%-24s        floor at root %d: >= %lld added", "", r.root, floor_here.new_vertices);
+    if (!normal_form && in.mesh.num_vertices() <= 3000) {
+      long long least = floor_here.new_vertices;
+      for (int v = 0; v < in.mesh.num_vertices(); ++v) least = std::min(least, ring_capacity_bound(in.mesh, v).new_vertices);
+      std::printf(" (least over all roots: %lld)", least);
+    }
+    std::printf("\n");
   } catch (const Error& e) {
     std::printf("%-24s nf=%d error: %s\n", name.c_str(), normal_form ? 1 : 0, e.what());
   }
