@@ -76,7 +76,15 @@
 //     once after the last round (stop 15): its paths then wind through the maze the crosses leave
 //     (cheese: path lengths summing to ~100k vertices against ~6k when hung at once; 608k vertices
 //     instead of 373k, generated g200 697k instead of 148k), and hanging at once only until a round
-//     needs a copy (the late crosses' paths wind as well).
+//     needs a copy (the late crosses' paths wind as well). Prototyped on cheese (stop 19, outside
+//     the library) and rejected: meridians first, then the longitudes as disjoint arcs between the
+//     two sides of each: 133 disjoint independent cycles of total length 529 exist, and the arcs
+//     alone would sum to 7.5k vertices, but routed one at a time with the earlier ones as walls
+//     they need 70k chord splits (shortest first; longest first: 5.2M), and P then costs ~1.4M
+//     detaching crossings hung last, 0.95M chord splits in the arcs hung first, 2M interleaved.
+//     The crosses' size is chaotic in their greedy choices: capping a round's pairs at 1.5, 2, 3,
+//     5 or 10 times its cheapest gives 543k, 664k, 484k, 841k, 664k vertices on cheese's root 0
+//     (649k uncapped); the choice among root candidates picks the best of such draws.
 //     The root and metric are chosen among candidates by the planned vertex count (the refined
 //     surface's vertices plus the planned detaching's crossings): each candidate is planned, not
 //     drawn, and only the one kept is realized; candidates go in fixed pairs, side by side on two
