@@ -29,39 +29,34 @@ bool is_disk(const TriMesh& M, const std::vector<char>& in_set) {
   if (faces == 0) return false;
   const long long edges = (3 * faces + boundary) / 2;
   long long vertices = 0;
-  std::vector<int> parent(M.num_vertices());
+  std::vector<int> parent(M.num_vertices()), on_boundary;
   std::iota(parent.begin(), parent.end(), 0);
   for (int v = 0; v < M.num_vertices(); ++v) {
     const int h0 = M.vertex_halfedge(v);
     if (h0 < 0) continue;
     int entries = 0, inside = 0, h = h0;  // entries: a face in the set after one outside, going ccw
+    bool boundary_here = false;
     do {
       const bool cur = in_set[TriMesh::face(h)];
       const bool before = in_set[TriMesh::face(M.twin(TriMesh::prev(h)))];  // the face cw of h's
       inside += cur;
       entries += cur && !before;
-      if (cur && !in_set[TriMesh::face(M.twin(h))]) parent[find_root(parent, v)] = find_root(parent, M.target(h));
+      if (cur && !in_set[TriMesh::face(M.twin(h))]) {
+        parent[find_root(parent, v)] = find_root(parent, M.target(h));
+        boundary_here = true;
+      }
       h = M.next_around_origin(h);
     } while (h != h0);
     if (inside == 0) continue;
     ++vertices;
     if (entries > 1) return false;  // two fans meet at v: not a surface with boundary
+    if (boundary_here) on_boundary.push_back(v);
   }
   if (vertices - edges + faces != 1) return false;
   // Boundary cycles = components of the boundary graph (each boundary vertex has one fan, so two
-  // boundary edges).
+  // boundary edges; every boundary vertex starts one, which the union above records).
   int cycles = 0;
-  for (int v = 0; v < M.num_vertices(); ++v) {
-    const int h0 = M.vertex_halfedge(v);
-    if (h0 < 0) continue;
-    bool on_boundary = false;
-    int h = h0;
-    do {
-      on_boundary |= in_set[TriMesh::face(h)] != in_set[TriMesh::face(M.twin(h))];
-      h = M.next_around_origin(h);
-    } while (h != h0);
-    if (on_boundary && find_root(parent, v) == v) ++cycles;
-  }
+  for (int v : on_boundary) cycles += find_root(parent, v) == v;
   return cycles == 1;
 }
 
