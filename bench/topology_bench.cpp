@@ -1,13 +1,15 @@
 // Topology stage measurements: time and mesh growth of cut_to_canonical_disk.
 // Usage: igm_bench_topology [shared_dir] [--normal-form-all] [--crosses|--rounds] [--serial]
-//                           [--no-tighten] [--only NAME|g3|g20]
+//                           [--no-tighten] [--congestion-rounds N] [--only NAME|g3|g20]
 // Growth is broken down by source: crossings, Steiner, band, chord and pre-condition splits, and
 // the normal form's rounds (marked "(crosses)" where the crosses construction won) and chord
 // splits. By default the normal form is measured for genus <= 10 only (cheese takes ~40 s and
 // grows to 373k vertices, the 1M-face g20 ~7 s); --normal-form-all measures it everywhere; --only
 // runs one mesh, with and without it; --crosses / --rounds use that construction alone; --serial
 // evaluates the root candidates on one thread (CutOptions::parallel = false; same results);
-// --no-tighten skips the loop tightening (CutOptions::tighten = false), for comparison.
+// --no-tighten skips the loop tightening (CutOptions::tighten = false), for comparison;
+// --congestion-rounds N sets CutOptions::congestion_rounds (0: off; default: automatic). The line
+// without the normal form shows "congestion r/n" (the round kept, of the n recomputed bases).
 // Under each line: the ring-capacity floor (topology/ring_bound.h) at the chosen root, the vertices
 // any loop system through it must add; without the normal form on meshes of <= 3,000 vertices also
 // the least floor over every root.
@@ -63,6 +65,7 @@ Input generated(int genus, long faces) {
 CutOptions::Construction construction = CutOptions::Construction::Best;  // --crosses / --rounds
 bool parallel = true;                                                      // --serial: one thread
 bool tighten = true;                                                       // --no-tighten
+int congestion_rounds = -1;                                                // --congestion-rounds N
 
 void run(const std::string& name, const Input& in, bool normal_form) {
   CutOptions o;
@@ -70,14 +73,16 @@ void run(const std::string& name, const Input& in, bool normal_form) {
   o.construction = construction;
   o.parallel = parallel;
   o.tighten = tighten;
+  o.congestion_rounds = congestion_rounds;
   try {
     CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
     const auto& s = r.stats;
     std::printf("%-24s g=%-4d F=%-8d nf=%d  V %8d -> %8d (+%6.1f%%) | crossings %6d steiner %5d band %4d chord %5d"
-                " collapsed %5d precond %6d | rounds %3d%s chords %6d | roots %2d | %7.3f s (basis %.3f, detach %.3f, cut %.3f)\n",
+                " collapsed %5d precond %6d | rounds %3d%s chords %6d | roots %2d congestion %2d/%-2d | %7.3f s (basis %.3f, detach %.3f, cut %.3f)\n",
                 name.c_str(), s.genus, s.faces_before, normal_form ? 1 : 0, s.vertices_before, s.vertices_after,
                 100.0 * (s.vertices_after - s.vertices_before) / s.vertices_before, s.crossings, s.steiner_vertices,
-                s.band_splits, s.chord_splits, s.collapsed, s.precondition_splits, s.normal_form_rounds, s.crosses ? " (crosses)" : "", s.round_chord_splits, s.roots_tried, s.seconds_total,
+                s.band_splits, s.chord_splits, s.collapsed, s.precondition_splits, s.normal_form_rounds, s.crosses ? " (crosses)" : "", s.round_chord_splits, s.roots_tried,
+                s.congestion_best_round, s.congestion_rounds, s.seconds_total,
                 s.seconds_basis, s.seconds_detach, s.seconds_cut);
     // The ring-capacity floor (topology/ring_bound.h): what any loop system through this root must
     // add, and on small meshes the least over every root.
@@ -107,6 +112,7 @@ int main(int argc, char** argv) {
     else if (std::strcmp(argv[i], "--only") == 0 && i + 1 < argc) only = argv[++i];
     else if (std::strcmp(argv[i], "--serial") == 0) parallel = false;
     else if (std::strcmp(argv[i], "--no-tighten") == 0) tighten = false;
+    else if (std::strcmp(argv[i], "--congestion-rounds") == 0 && i + 1 < argc) congestion_rounds = std::atoi(argv[++i]);
     else shared = argv[i];
   }
   struct Named {

@@ -272,8 +272,9 @@ void relabel_blocks(CutResult& res, const Word& cur) {
   res.loops = std::move(loops);
 }
 
-// The greedy homotopy basis at `root` (metric: 3D edge lengths, or hop counts if `hops`) and the
-// plan of its detaching (steps 1-2 up to the owners):
+// The greedy homotopy basis at `root` (metric: 3D edge lengths, or hop counts if `hops`, plus
+// (penalty[a] + penalty[b]) / 2 per edge ab if `penalty` is given, one value per input vertex) and
+// the plan of its detaching (steps 1-2 up to the owners):
 // the surface with the band splits, the pruned tree, the tour and the owners. `crossings` is the
 // number of edge crossings the strands will make (the dynamic programme's optimum, chord splits
 // not counted). Pre: mesh valid, connected, of genus `genus` >= 1. Cost O(n log n).
@@ -285,6 +286,7 @@ struct DetachPlan {
   std::vector<char> pruned, is_leaf;
   long long crossings = 0;
   int band_splits = 0;
+  bool hops = false;  // the metric of the basis
 };
 
 // Dijkstra from the entries already in pq (their dist set): each vertex is settled once (stale
@@ -319,10 +321,15 @@ void plan_strands(DetachPlan& P, const std::vector<std::pair<int, int>>& bands);
 // face vertices, usually none, come on top).
 long planned_vertices(const DetachPlan& P) { return P.rs.mesh.num_vertices() + P.crossings; }
 
-DetachPlan plan_detach(const TriMesh& mesh, const std::vector<Vec3d>& positions, int root, int genus, bool hops) {
-  auto edge_length = [&](int a, int b) { return hops ? 1.0 : length(positions[a], positions[b]); };
+DetachPlan plan_detach(const TriMesh& mesh, const std::vector<Vec3d>& positions, int root, int genus, bool hops,
+                       const std::vector<double>* penalty = nullptr) {
+  auto edge_length = [&](int a, int b) {
+    const double base = hops ? 1.0 : length(positions[a], positions[b]);
+    return penalty ? base + 0.5 * ((*penalty)[a] + (*penalty)[b]) : base;
+  };
   DetachPlan P;
   P.root = root;
+  P.hops = hops;
   const int nv0 = mesh.num_vertices();
   RefinedSurface& rs = P.rs;
   rs.mesh = mesh;
@@ -562,6 +569,67 @@ void plan_strands(DetachPlan& P, const std::vector<std::pair<int, int>>& bands) 
       if (owner[l] != leaf_index[l]) internal("leaf not owned by its strand", {l});
     for (int c : children(root, nullptr)) P.crossings += arr_free[c];
   }
+}
+
+// Congestion penalties (negotiated congestion, after the PathFinder router of McMurchie & Ebeling
+// 1995). Strands that share a tree path are drawn side by side (step 2), and past the free vertices
+// beside the path each further strand costs a crossing vertex per edge it passes. So after a plan
+// every tree vertex x of the input (x < nv0, not the root) that k > 1 strands pass has its penalty
+// raised by raise * (k - 1); a basis recomputed with the metric plus the penalties (per edge ab,
+// (penalty[a] + penalty[b]) / 2) routes its paths around the crowded vertices, and its cotree,
+// weighted by the same loop lengths, picks other bands. O(nv0).
+void raise_penalties(const DetachPlan& p, int nv0, double raise, std::vector<double>& penalty) {
+  for (int x = 0; x < nv0; ++x)  // input vertices only (band splits and chord splits come after them)
+    if (x != p.root && p.pruned[x] && !p.is_leaf[x]) {
+      const int k = p.max_leaf[x] - p.min_leaf[x] + 1;
+      if (k > 1) penalty[x] += raise * (k - 1);
+    }
+}
+
+// The unit of a metric on `unit` positions: the mean edge length (0 only if every edge has length
+// 0; the penalties then do nothing), or one hop. O(E).
+double metric_unit(const TriMesh& mesh, const std::vector<Vec3d>& unit, bool hops) {
+  if (hops) return 1.0;
+  double sum = 0;
+  for (int h = 0; h < mesh.num_halfedges(); ++h) sum += length(unit[mesh.origin(h)], unit[mesh.target(h)]);
+  return sum / mesh.num_halfedges();
+}
+
+// Throws InvalidArgument unless CutOptions::congestion_step is finite and > 0.
+void check_congestion_step(double step) {
+  if (!(step > 0) || !std::isfinite(step))
+    throw Error(ErrorKind::InvalidArgument, "CutOptions::congestion_step must be finite and > 0, got " + std::to_string(step));
+}
+
+// Step 1c: `rounds` rounds of congestion reweighting of the greedy basis at first's root and
+// metric, the penalties accumulating over the rounds (raise_penalties from each round's plan).
+// Returns the plan with the fewest planned vertices among `first` and the recomputed ones (the
+// earliest on ties; *best_round = its index, 0 for `first`), so never more than `first`'s.
+// Deterministic. Cost O(rounds n log n).
+DetachPlan reweight_for_congestion(const TriMesh& mesh, const std::vector<Vec3d>& unit, int genus, DetachPlan first,
+                                   int rounds, double step, int* best_round) {
+  const int nv0 = mesh.num_vertices();
+  const double raise = step * metric_unit(mesh, unit, first.hops);
+  std::vector<double> penalty(nv0, 0.0);
+  DetachPlan best = std::move(first), current;
+  long best_count = planned_vertices(best);
+  *best_round = 0;
+  const DetachPlan* last = &best;
+  for (int r = 1; r <= rounds; ++r) {
+    raise_penalties(*last, nv0, raise, penalty);
+    DetachPlan next = plan_detach(mesh, unit, best.root, genus, best.hops, &penalty);
+    const long count = planned_vertices(next);
+    if (count < best_count) {
+      best_count = count;
+      *best_round = r;
+      best = std::move(next);
+      last = &best;
+    } else {
+      current = std::move(next);
+      last = &current;
+    }
+  }
+  return best;
 }
 
 // Step 2 realized: draws the strands planned in P as pairwise disjoint normal curves around the
@@ -1054,7 +1122,8 @@ std::vector<int> split_like_copy(RefinedSurface& rs, const std::vector<std::pair
 //  b. the gap t between blocks whose free half-edges reach the largest connected set of vertices
 //     off Gamma;
 //  c. greedy basis of the surface cut along Gamma: Dijkstra forest T from the free half-edges of
-//     gap t (a vertex x of G starts at dg[x]; metric `hops` or 3D lengths) over the vertices off
+//     gap t (a vertex x of G starts at dg[x]; metric `hops` or 3D lengths, plus the congestion
+//     penalties of the input vertices if `penalty` is given: raise_penalties) over the vertices off
 //     Gamma; dual maximum spanning tree on the edges off T and off Gamma, every edge at a Gamma
 //     vertex (but the sources) or at a vertex T misses forced in first;
 //  d. the leftover edges' ends in the tour of G + T (they lie inside gap t); linked pairs (ends
@@ -1070,7 +1139,8 @@ std::vector<int> split_like_copy(RefinedSurface& rs, const std::vector<std::pair
 // more than vertex_limit vertices. Post (true): res.loops holds the 2g loops, their word in
 // commutator blocks (relabelled by the caller); res.stats has the counts. Cost O(g^2 n log n +
 // crossings) in the worst case, O(g n log n + crossings) when no gap is given up.
-bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops, long vertex_limit, DetachPlan& plan) {
+bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops, long vertex_limit, DetachPlan& plan,
+                      const std::vector<double>* penalty = nullptr) {
   const int root = res.root, genus = res.genus;
   RefinedSurface& rs = res.surface;
   std::vector<Vec3d> pos(unit.begin(), unit.begin() + rs.num_input_vertices);
@@ -1102,7 +1172,11 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
     constexpr double kMidpointCost = 1000.0;  // unit-scaled lengths: crossing a chord is a last resort
     const int nv = M.num_vertices(), nh = M.num_halfedges();
     auto len = [&](int a, int b) {
-      return (hops ? 1.0 : length(P[a], P[b])) + (a >= first_mid ? kMidpointCost : 0.0) + (b >= first_mid ? kMidpointCost : 0.0);
+      const double base = (hops ? 1.0 : length(P[a], P[b])) + (a >= first_mid ? kMidpointCost : 0.0) +
+                          (b >= first_mid ? kMidpointCost : 0.0);
+      if (!penalty) return base;
+      const int n0 = static_cast<int>(penalty->size());  // input vertices; splits and midpoints: none
+      return base + 0.5 * ((a < n0 ? (*penalty)[a] : 0.0) + (b < n0 ? (*penalty)[b] : 0.0));
     };
     const int want = 2 * genus - static_cast<int>(taken.size());
     std::vector<int> band_of, gap_of;
@@ -1866,6 +1940,9 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
   if (options.root < -1 || options.root >= nv0)
     throw Error(ErrorKind::InvalidArgument, "root vertex " + std::to_string(options.root) + " out of range [0, " +
                                                 std::to_string(nv0) + ")", {options.root});
+  if (options.congestion_rounds < -1)
+    throw Error(ErrorKind::InvalidArgument,
+                "CutOptions::congestion_rounds must be >= -1 (-1: automatic), got " + std::to_string(options.congestion_rounds));
   const std::vector<Vec3d> unit = unit_scaled(positions);  // edge lengths finite at any magnitude
   res.genus = genus;
   res.stats.genus = genus;
@@ -1898,7 +1975,7 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     // order (a candidate is kept if it plans strictly fewer vertices), so that the result does not
     // depend on the threads.
     struct Outcome {
-      bool ok = false, rounds_passed = false, crosses = false;
+      bool ok = false, rounds_passed = false, crosses = false, hops = false;
       CutStats stats;
       DetachPlan plan;
     };
@@ -1913,7 +1990,7 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
         DetachPlan plan;
         const bool ok = crosses ? canonical_crosses(trial, unit, hops, bound, plan)
                                 : canonical_rounds(trial, unit, hops, bound, plan);
-        if (ok) out.ok = true, out.crosses = crosses, out.stats = trial.stats, out.plan = std::move(plan);
+        if (ok) out.ok = true, out.crosses = crosses, out.hops = hops, out.stats = trial.stats, out.plan = std::move(plan);
         return ok;
       };
       bool crosses = crosses_only;
@@ -1923,7 +2000,7 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
         out.rounds_passed = crosses = true;
       if (crosses) attempt(true, best);
     };
-    bool found = false;
+    bool found = false, kept_hops = false;
     int tried = 0, rounds_passed = 0;
     DetachPlan kept;
     for (std::size_t i = 0; i < candidates.size(); i += 2) {  // chunks of two
@@ -1945,11 +2022,49 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
           res.stats = out[j].stats;
           res.stats.crosses = out[j].crosses;
           kept = std::move(out[j].plan);
+          kept_hops = out[j].hops;
           found = true;
         }
       }
     }
+    // Congestion reweighting of the rounds at the kept root and metric (step 3a with the penalties
+    // of step 1c, accumulated from each round's plan); the plan with the fewest planned vertices
+    // is kept. Not for the crosses (a candidate costs seconds where they are needed).
+    const int reweight_rounds = options.congestion_rounds >= 0
+                                    ? options.congestion_rounds
+                                    : static_cast<int>(std::clamp(200000L / std::max(1, mesh.num_faces()), 1L, 40L));
+    if (found && !res.stats.crosses && reweight_rounds > 0) {
+      check_congestion_step(options.congestion_step);
+      const double raise = options.congestion_step * metric_unit(mesh, unit, kept_hops);
+      std::vector<double> penalty(nv0, 0.0);
+      DetachPlan last;
+      const DetachPlan* from = &kept;
+      for (int r = 1; r <= reweight_rounds; ++r) {
+        raise_penalties(*from, nv0, raise, penalty);
+        CutResult trial;
+        trial.root = res.root;
+        trial.genus = genus;
+        trial.surface.mesh = mesh;
+        trial.surface.num_input_vertices = nv0;
+        trial.surface.input_positions = positions;
+        DetachPlan plan;
+        // Bounded by the rounds' own limit only: a round past the kept plan still gives the next
+        // penalties. A round that passes it gives none (the penalties grow from the last plan).
+        if (!canonical_rounds(trial, unit, kept_hops, rounds_limit, plan, &penalty)) continue;
+        if (planned_vertices(plan) < planned_vertices(kept)) {
+          res.stats = trial.stats;
+          res.stats.congestion_best_round = r;
+          kept = std::move(plan);
+          from = &kept;
+        } else {
+          last = std::move(plan);
+          from = &last;
+        }
+      }
+      res.stats.congestion_rounds = reweight_rounds;
+    }
     if (found) {
+      res.stats.planned_vertices = planned_vertices(kept);
       res.loops = realize_strands(kept, res.stats);
       rs = std::move(kept.rs);
       found = rs.mesh.num_vertices() <= limit;  // chord splits and face vertices come on top of the plan
@@ -1973,26 +2088,67 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     // Root and metric: the given root with 3D edge lengths, or among K deterministic root
     // candidates (root_candidates, K = clamp(1e6 / F, 1, 24): the extra cost is bounded by one
     // basis computation on a 1M-face mesh), each with 3D lengths and with hop counts as the basis
-    // metric, the pair whose detaching crosses the fewest edges (predicted by plan_detach, without
-    // building anything; the first wins ties).
-    DetachPlan P;
+    // metric, ranked by the crossings their detaching will make (predicted by plan_detach, without
+    // building anything; the earlier wins ties). The best CutOptions::congestion_candidates of them
+    // are reweighted (step 1c, two at a time on two threads) and the plan with the fewest planned
+    // vertices is kept (the better ranked on ties), so the result does not depend on the threads.
+    std::vector<DetachPlan> top;  // the best ranked plans, best first
+    const int rounds = options.congestion_rounds >= 0
+                           ? options.congestion_rounds
+                           : static_cast<int>(std::clamp(1000000L / std::max(1, mesh.num_faces()), 1L, 40L));
+    if (options.congestion_candidates < 1)
+      throw Error(ErrorKind::InvalidArgument, "CutOptions::congestion_candidates must be >= 1, got " +
+                                                  std::to_string(options.congestion_candidates));
+    const std::size_t keep = rounds > 0 ? static_cast<std::size_t>(options.congestion_candidates) : 1;
     if (options.root >= 0) {
-      P = plan_detach(mesh, unit, options.root, genus, false);
+      top.push_back(plan_detach(mesh, unit, options.root, genus, false));
     } else {
       const long k = std::clamp(1000000L / std::max(1, mesh.num_faces()), 1L, 24L);
       for (int c : root_candidates(mesh, k)) {
-        DetachPlan q[2];  // 3D lengths, hop counts: planned side by side, compared in that order
+        DetachPlan q[2];  // 3D lengths, hop counts: planned side by side, ranked in that order
         run_pair(options.parallel, [&] { q[0] = plan_detach(mesh, unit, c, genus, false); },
                  [&] { q[1] = plan_detach(mesh, unit, c, genus, true); });
         for (DetachPlan& p : q) {
           ++res.stats.roots_tried;
-          if (P.root < 0 || p.crossings < P.crossings) P = std::move(p);
+          // Insert after every kept plan with at most as many crossings (stable), drop the last.
+          std::size_t at = top.size();
+          while (at > 0 && p.crossings < top[at - 1].crossings) --at;
+          if (at < keep) {
+            top.insert(top.begin() + static_cast<std::ptrdiff_t>(at), std::move(p));
+            if (top.size() > keep) top.pop_back();
+          }
         }
       }
+    }
+    // Congestion reweighting at each kept root and metric (reweight_for_congestion).
+    DetachPlan P;
+    if (rounds > 0) {
+      check_congestion_step(options.congestion_step);
+      std::vector<int> best_round(top.size(), 0);
+      for (std::size_t i = 0; i < top.size(); i += 2) {
+        auto one = [&](std::size_t j) {
+          return [&, j] {
+            if (j < top.size())
+              top[j] = reweight_for_congestion(mesh, unit, genus, std::move(top[j]), rounds, options.congestion_step,
+                                               &best_round[j]);
+          };
+        };
+        run_pair(options.parallel && i + 1 < top.size(), one(i), one(i + 1));
+      }
+      std::size_t win = 0;
+      for (std::size_t j = 1; j < top.size(); ++j)
+        if (planned_vertices(top[j]) < planned_vertices(top[win])) win = j;
+      P = std::move(top[win]);
+      res.stats.congestion_rounds = rounds;
+      res.stats.congestion_best_round = best_round[win];
+      res.stats.congestion_candidates = static_cast<int>(top.size());
+    } else {
+      P = std::move(top[0]);
     }
     res.root = P.root;
     res.stats.band_splits = P.band_splits;
     res.stats.predicted_crossings = P.crossings;
+    res.stats.planned_vertices = planned_vertices(P);
     res.stats.seconds_basis = seconds_since(t_start);
     const auto t_detach = Clock::now();
     P.rs.input_positions = positions;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <numeric>
@@ -498,6 +499,7 @@ TEST_CASE("the default root crosses no more edges than the vertex of maximum val
       if (in.mesh.valence(v) > in.mesh.valence(top)) top = v;
     CutOptions o;
     o.normal_form = false;
+    o.congestion_rounds = 0;  // the root choice alone (the reweighting is tested below)
     CutResult chosen = cut_to_canonical_disk(in.mesh, in.positions, o);
     o.root = top;
     CutResult fixed = cut_to_canonical_disk(in.mesh, in.positions, o);
@@ -510,6 +512,128 @@ TEST_CASE("the default root crosses no more edges than the vertex of maximum val
     CHECK(verify_cut(in, chosen, false) == "");
     MESSAGE(std::string(name) << ": crossings " << chosen.stats.crossings << " (root " << chosen.root << ") vs " << fixed.stats.crossings
                  << " (root " << top << ")");
+  }
+}
+
+TEST_CASE("the congestion reweighting never plans more vertices than the first basis, and lowers it") {
+  // Without and with the normal form, at fixed roots of generated meshes of genus 2-10.
+  // The planned vertices: the input's, the band splits and one per planned crossing. The kept
+  // plan is the fewest of the first and the recomputed ones, so never more; on these meshes some
+  // recomputed basis plans fewer (if the penalties did nothing, every round would repeat the
+  // first basis and none would).
+  auto planned = [](const CutResult& r) { return r.stats.band_splits + r.stats.predicted_crossings; };
+  int lowered = 0, cases = 0, lowered_nf = 0;
+  for (const auto& [g, faces, seed] : {std::tuple{2, 2000L, 1u}, std::tuple{3, 3000L, 2u}, std::tuple{5, 4000L, 3u},
+                                       std::tuple{8, 6000L, 4u}, std::tuple{10, 8000L, 5u}}) {
+    CAPTURE(g);
+    Input in = generated(g, faces, seed);
+    for (int root : {0, in.mesh.num_vertices() / 2}) {
+      CAPTURE(root);
+      CutOptions o;
+      o.normal_form = false;
+      o.root = root;
+      o.congestion_rounds = 0;
+      const CutResult first = cut_to_canonical_disk(in.mesh, in.positions, o);
+      o.congestion_rounds = 30;
+      const CutResult reweighted = cut_to_canonical_disk(in.mesh, in.positions, o);
+      CHECK(first.stats.congestion_rounds == 0);
+      CHECK(first.stats.congestion_best_round == 0);
+      CHECK(reweighted.stats.congestion_rounds == 30);
+      CHECK(reweighted.stats.congestion_best_round >= 0);
+      CHECK(reweighted.stats.congestion_best_round <= 30);
+      CHECK(reweighted.root == root);
+      CHECK(planned(reweighted) <= planned(first));
+      if (reweighted.stats.congestion_best_round == 0) CHECK(planned(reweighted) == planned(first));
+      else CHECK(planned(reweighted) < planned(first));
+      lowered += planned(reweighted) < planned(first);
+      ++cases;
+      CHECK(reweighted.stats.planned_vertices == in.mesh.num_vertices() + planned(reweighted));
+      CHECK(verify_cut(in, reweighted, false) == "");
+      // With the normal form: the rounds of step 3a reweighted alike.
+      o.normal_form = true;
+      o.congestion_rounds = 0;
+      const CutResult first_nf = cut_to_canonical_disk(in.mesh, in.positions, o);
+      o.congestion_rounds = 30;
+      const CutResult reweighted_nf = cut_to_canonical_disk(in.mesh, in.positions, o);
+      CHECK(!reweighted_nf.stats.crosses);
+      CHECK(reweighted_nf.stats.congestion_rounds == 30);
+      CHECK(reweighted_nf.stats.planned_vertices <= first_nf.stats.planned_vertices);
+      if (reweighted_nf.stats.congestion_best_round == 0)
+        CHECK(reweighted_nf.stats.planned_vertices == first_nf.stats.planned_vertices);
+      else
+        CHECK(reweighted_nf.stats.planned_vertices < first_nf.stats.planned_vertices);
+      lowered_nf += reweighted_nf.stats.planned_vertices < first_nf.stats.planned_vertices;
+      CHECK(verify_cut(in, reweighted_nf, true) == "");
+      MESSAGE("genus " << g << " root " << root << ": planned " << planned(first) << " -> " << planned(reweighted) << " (round "
+                       << reweighted.stats.congestion_best_round << "), vertices " << first.stats.vertices_after << " -> "
+                       << reweighted.stats.vertices_after << "; normal form planned " << first_nf.stats.planned_vertices
+                       << " -> " << reweighted_nf.stats.planned_vertices << ", vertices " << first_nf.stats.vertices_after
+                       << " -> " << reweighted_nf.stats.vertices_after);
+    }
+  }
+  CHECK(lowered >= cases / 2);
+  CHECK(lowered_nf >= cases / 2);
+}
+
+TEST_CASE("the congestion reweighting of several root candidates gives the same cut on two threads as on one") {
+  // The candidates are reweighted two at a time and compared in rank order afterwards.
+  for (const auto& [g, faces, seed] : {std::tuple{4, 3000L, 6u}, std::tuple{9, 5000L, 8u}}) {
+    CAPTURE(g);
+    Input in = generated(g, faces, seed);
+    for (bool normal_form : {false, true}) {
+      CAPTURE(normal_form);
+      CutOptions o;
+      o.normal_form = normal_form;
+      o.congestion_candidates = 3;  // odd: the last pair has one
+      o.parallel = false;
+      const CutResult one = cut_to_canonical_disk(in.mesh, in.positions, o);
+      o.parallel = true;
+      const CutResult two = cut_to_canonical_disk(in.mesh, in.positions, o);
+      CHECK(one.stats.congestion_rounds > 0);
+      if (!normal_form) CHECK(one.stats.congestion_candidates == 3);
+      CHECK(one.root == two.root);
+      CHECK(one.loops == two.loops);
+      CHECK(one.stats.congestion_best_round == two.stats.congestion_best_round);
+      CHECK(one.surface.mesh.num_vertices() == two.surface.mesh.num_vertices());
+      CHECK(verify_cut(in, two, normal_form) == "");
+    }
+  }
+}
+
+TEST_CASE("the congestion reweighting's options are checked") {
+  Input in = generated(2, 500, 1);
+  CutOptions o;
+  o.normal_form = false;
+  for (double bad : {0.0, -1.0, std::nan(""), double(INFINITY)}) {
+    o.congestion_step = bad;
+    CHECK_THROWS_AS(cut_to_canonical_disk(in.mesh, in.positions, o), Error);
+    try {
+      cut_to_canonical_disk(in.mesh, in.positions, o);
+    } catch (const Error& e) {
+      CHECK(e.kind() == ErrorKind::InvalidArgument);
+      CHECK(std::string(e.what()).find("congestion_step") != std::string::npos);
+    }
+  }
+  o.congestion_rounds = 0;  // off: the step is not used
+  CHECK(verify_cut(in, cut_to_canonical_disk(in.mesh, in.positions, o), false) == "");
+  o.congestion_step = 0.05;
+  o.congestion_rounds = -1;
+  o.congestion_candidates = 0;
+  try {
+    cut_to_canonical_disk(in.mesh, in.positions, o);
+    FAIL("congestion_candidates 0 accepted");
+  } catch (const Error& e) {
+    CHECK(e.kind() == ErrorKind::InvalidArgument);
+    CHECK(std::string(e.what()).find("congestion_candidates") != std::string::npos);
+  }
+  o.congestion_candidates = 4;
+  o.congestion_rounds = -2;
+  try {
+    cut_to_canonical_disk(in.mesh, in.positions, o);
+    FAIL("congestion_rounds -2 accepted");
+  } catch (const Error& e) {
+    CHECK(e.kind() == ErrorKind::InvalidArgument);
+    CHECK(std::string(e.what()).find("congestion_rounds") != std::string::npos);
   }
 }
 
