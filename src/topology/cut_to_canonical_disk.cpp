@@ -1940,6 +1940,9 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
   if (options.root < -1 || options.root >= nv0)
     throw Error(ErrorKind::InvalidArgument, "root vertex " + std::to_string(options.root) + " out of range [0, " +
                                                 std::to_string(nv0) + ")", {options.root});
+  if (options.congestion_candidates < 1)
+    throw Error(ErrorKind::InvalidArgument, "CutOptions::congestion_candidates must be >= 1, got " +
+                                                std::to_string(options.congestion_candidates));
   if (options.congestion_rounds < -1)
     throw Error(ErrorKind::InvalidArgument,
                 "CutOptions::congestion_rounds must be >= -1 (-1: automatic), got " + std::to_string(options.congestion_rounds));
@@ -2096,9 +2099,6 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     const int rounds = options.congestion_rounds >= 0
                            ? options.congestion_rounds
                            : static_cast<int>(std::clamp(1000000L / std::max(1, mesh.num_faces()), 1L, 40L));
-    if (options.congestion_candidates < 1)
-      throw Error(ErrorKind::InvalidArgument, "CutOptions::congestion_candidates must be >= 1, got " +
-                                                  std::to_string(options.congestion_candidates));
     const std::size_t keep = rounds > 0 ? static_cast<std::size_t>(options.congestion_candidates) : 1;
     if (options.root >= 0) {
       top.push_back(plan_detach(mesh, unit, options.root, genus, false));
@@ -2138,6 +2138,22 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
       std::size_t win = 0;
       for (std::size_t j = 1; j < top.size(); ++j)
         if (planned_vertices(top[j]) < planned_vertices(top[win])) win = j;
+      // On meshes of at most 2e5 faces the reweighted candidates are drawn and tightened on copies,
+      // and the fewest vertices win instead (the better ranked on ties): the plan does not see
+      // what the tightening will remove. Tightened here even with CutOptions::tighten off, so that
+      // the option does not change the loops chosen. O(C (n + crossings)).
+      if (top.size() > 1 && mesh.num_faces() <= 200000) {
+        long fewest = -1;
+        for (std::size_t j = 0; j < top.size(); ++j) {
+          DetachPlan copy = top[j];
+          CutStats scratch;
+          copy.rs.input_positions = positions;
+          std::vector<std::vector<int>> loops = realize_strands(copy, scratch);
+          const long drawn =
+              tighten_loops(std::move(copy.rs), std::move(loops), copy.root).surface.mesh.num_vertices();
+          if (fewest < 0 || drawn < fewest) fewest = drawn, win = j;
+        }
+      }
       P = std::move(top[win]);
       res.stats.congestion_rounds = rounds;
       res.stats.congestion_best_round = best_round[win];

@@ -123,8 +123,9 @@ namespace igm {
 struct CutOptions {
   /// Root vertex (the basis then uses 3D edge lengths); -1 picks, among a few deterministic
   /// candidates (the vertex of maximum valence, then evenly spaced ids) and two metrics (3D
-  /// lengths, hop counts), the pair whose detaching crosses the fewest edges (with normal_form:
-  /// whose planned construction ends with the fewest vertices).
+  /// lengths, hop counts), the pair whose detaching crosses the fewest edges, then the best of
+  /// those after the congestion reweighting (with normal_form: whose planned construction ends
+  /// with the fewest vertices).
   int root = -1;
   /// Bring the word into a1 b1 a1^-1 b1^-1 ... (step 3, <= g rounds). Off: the word is whatever the
   /// detached greedy loops give (still 4g sides, paired). The pipeline runs with it off by default
@@ -152,7 +153,9 @@ struct CutOptions {
   /// clamp(2e5 / F, 1, 40)), 0 turns it off, < -1 is InvalidArgument.
   int congestion_rounds = -1;
   /// Without the normal form and with root = -1: how many of the best ranked root candidates
-  /// (by their first plan) are reweighted; the fewest planned vertices win. >= 1.
+  /// (by their first plan) are reweighted; the fewest vertices once drawn and tightened win (even
+  /// with tighten off, so that it does not change the choice; on meshes of more than 2e5 faces
+  /// the fewest planned). >= 1.
   int congestion_candidates = 4;
   /// The raise per round and per extra strand through a vertex, in the metric's unit (the mean
   /// edge length, or one hop). Must be finite and > 0 when congestion_rounds != 0.
@@ -219,7 +222,8 @@ struct CutResult {
 /// invariant breaks (a round whose word is not in blocks included), igm::Error(InvalidArgument) for
 /// bad congestion options. Cost without the normal form O((K + C R) n log n + crossings) for K
 /// root candidates (2K plans, K = clamp(1e6 / F, 1, 24); one plan if the root is given), C of
-/// them reweighted in R rounds (CutOptions::congestion_candidates, congestion_rounds); with it
+/// them reweighted in R rounds (CutOptions::congestion_candidates,
+/// congestion_rounds) and, on at most 2e5 faces, drawn to compare; with it
 /// O((K' + R') g log g n log n + crossings) for K' = clamp(2e5 / F, 1, 12) roots (x2 metrics if
 /// K' > 1; 1 if the root is given) and R' reweighting rounds, n the refined size; with
 /// CutOptions::parallel the candidates take about half that time on two cores.
