@@ -611,39 +611,32 @@ TEST_CASE("the congestion reweighting of several root candidates gives the same 
 
 TEST_CASE("the congestion reweighting's options are checked") {
   Input in = generated(2, 500, 1);
+  // A typed InvalidArgument naming the option.
+  auto rejected = [&](const CutOptions& o, const std::string& option) {
+    CAPTURE(option);
+    try {
+      cut_to_canonical_disk(in.mesh, in.positions, o);
+      FAIL("accepted");
+    } catch (const Error& e) {
+      CHECK(e.kind() == ErrorKind::InvalidArgument);
+      CHECK(std::string(e.what()).find(option) != std::string::npos);
+    }
+  };
   CutOptions o;
   o.normal_form = false;
   for (double bad : {0.0, -1.0, std::nan(""), double(INFINITY)}) {
     o.congestion_step = bad;
-    CHECK_THROWS_AS(cut_to_canonical_disk(in.mesh, in.positions, o), Error);
-    try {
-      cut_to_canonical_disk(in.mesh, in.positions, o);
-    } catch (const Error& e) {
-      CHECK(e.kind() == ErrorKind::InvalidArgument);
-      CHECK(std::string(e.what()).find("congestion_step") != std::string::npos);
-    }
+    rejected(o, "congestion_step");
   }
   o.congestion_rounds = 0;  // off: the step is not used
   CHECK(verify_cut(in, cut_to_canonical_disk(in.mesh, in.positions, o), false) == "");
   o.congestion_step = 0.05;
   o.congestion_rounds = -1;
   o.congestion_candidates = 0;
-  try {
-    cut_to_canonical_disk(in.mesh, in.positions, o);
-    FAIL("congestion_candidates 0 accepted");
-  } catch (const Error& e) {
-    CHECK(e.kind() == ErrorKind::InvalidArgument);
-    CHECK(std::string(e.what()).find("congestion_candidates") != std::string::npos);
-  }
+  rejected(o, "congestion_candidates");
   o.congestion_candidates = 4;
   o.congestion_rounds = -2;
-  try {
-    cut_to_canonical_disk(in.mesh, in.positions, o);
-    FAIL("congestion_rounds -2 accepted");
-  } catch (const Error& e) {
-    CHECK(e.kind() == ErrorKind::InvalidArgument);
-    CHECK(std::string(e.what()).find("congestion_rounds") != std::string::npos);
-  }
+  rejected(o, "congestion_rounds");
 }
 
 TEST_CASE("the tightening keeps the root, the loops' order and the word, and removes vertices") {
