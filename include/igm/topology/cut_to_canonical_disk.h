@@ -14,10 +14,11 @@
 //     the path every further strand costs a vertex per edge it passes. So the basis is recomputed
 //     at the chosen root and metric with each tree vertex's length raised by congestion_step x
 //     (strands through it - 1) per round, accumulated (negotiated congestion, as in the PathFinder
-//     router, McMurchie & Ebeling 1995); the plan with the fewest planned vertices is kept, so
+//     router, McMurchie & Ebeling 1995), until the budget ends (the basis: or 10 rounds pass
+//     without a new best); the plan with the fewest planned vertices is kept, so
 //     this never plans more vertices than step 1. Without the normal form the best
 //     CutOptions::congestion_candidates root candidates are reweighted. Measured, vertices added
-//     (before -> after): couplingdown 229 -> 135 (12.4 % -> 7.3 %), elephant 38 -> 10, helmet
+//     (before -> after): couplingdown 229 -> 134 (12.4 % -> 7.3 %), elephant 38 -> 10, helmet
 //     6 -> 3, anchor 10 -> 0, cheese 19.6k -> 18.2k; with the normal form couplingdown 322 -> 300,
 //     elephant 87 -> 21, helmet 31 -> 9, anchor 39 -> 3.
 //  2. detaching: a band end that is a leaf of the tree spanned by all band ends ends its strand
@@ -147,9 +148,10 @@ struct CutOptions {
   /// either way: candidates go in fixed pairs, merged in order.
   bool parallel = true;
   /// After the root and metric are chosen, the basis (with the normal form: the rounds of step
-  /// 3a; not the crosses) is recomputed this many times with the metric raised at the vertices
-  /// that several strands pass (step 1c; the plan with the fewest planned vertices wins, so it
-  /// never plans more than the first). -1 picks clamp(1e6 / F, 1, 40) (with the normal form
+  /// 3a; not the crosses) is recomputed up to this many times with the metric raised at the
+  /// vertices that several strands pass, the basis stopping 10 rounds after its last new best
+  /// (step 1c; the plan with the fewest planned vertices wins, so it never plans more than the
+  /// first). -1 picks clamp(1e6 / F, 1, 40) (with the normal form
   /// clamp(2e5 / F, 1, 40)), 0 turns it off, < -1 is InvalidArgument.
   int congestion_rounds = -1;
   /// Without the normal form and with root = -1: how many of the best ranked root candidates
@@ -178,7 +180,7 @@ struct CutStats {
   long long predicted_crossings = 0;  // the detaching plan's count for the chosen root (step 2)
   long long planned_vertices = 0;     // the kept plan's vertices: refined surface + planned crossings
   int roots_tried = 0;          // (root, metric) candidates whose detaching was planned (root = -1)
-  int congestion_rounds = 0;    // bases recomputed by the congestion reweighting (step 1c)
+  int congestion_rounds = 0;    // the congestion reweighting's round budget (step 1c; 0: off)
   int congestion_best_round = 0;  // the one kept (0: the first basis)
   int congestion_candidates = 0;  // root candidates reweighted (without the normal form)
   int normal_form_rounds = 0;   // rounds of the normal form's construction (<= g)
