@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "igm/core/union_find.h"
 #include "igm/io/read_mesh.h"
 
 namespace igm {
@@ -17,27 +18,6 @@ namespace {
 constexpr std::size_t kMaxElements = 100;  // ids kept per problem
 constexpr std::size_t kMaxNamed = 5;       // ids named in a message
 
-// Union-find with path halving and union by size. find() is amortized O(alpha).
-struct Dsu {
-  std::vector<int> parent, size;
-  explicit Dsu(std::size_t n) : parent(n), size(n, 1) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[x] != x) {  // bounded by the tree height (O(log n) with union by size)
-      parent[x] = parent[parent[x]];
-      x = parent[x];
-    }
-    return x;
-  }
-  bool unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return false;
-    if (size[a] < size[b]) std::swap(a, b);
-    parent[b] = a;
-    size[a] += size[b];
-    return true;
-  }
-};
 
 // Union-find that also keeps each element's parity relative to its root: used to 2-colour the
 // faces into "keep" and "flip" so that every manifold edge is traversed once in each direction.
@@ -321,7 +301,7 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
   }
   radix_sort(keys);
 
-  Dsu corners(3 * T);   // corner h = (triangle h/3, vertex origin(h)); joined across manifold edges
+  UnionFind corners(3 * T);   // corner h = (triangle h/3, vertex origin(h)); joined across manifold edges
   ParityDsu orient(T);  // flip(t1) xor flip(t2) == "same direction" on every manifold edge
   std::vector<std::pair<int, int>> witness;  // (h1, h2) of each orientation contradiction
   std::vector<int> boundary;                 // boundary half-edges
@@ -436,7 +416,7 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
   // --- 11: boundary loops: connected components of the graph of boundary edges (loops that
   // touch at a vertex count as one, as the shared meshes' README counts them) ---
   {
-    Dsu loops(nv);
+    UnionFind loops(nv);
     for (int h : boundary) loops.unite(origin(h), origin(hnext(h)));
     std::vector<std::int64_t> length(nv, 0);
     for (int h : boundary) ++length[loops.find(origin(h))];
@@ -459,7 +439,7 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
 
   // --- 12: components through shared vertices (kept unreferenced vertices are their own) ---
   {
-    Dsu comp(nv);
+    UnionFind comp(nv);
     for (const auto& t : a.tris) {
       comp.unite(t[0], t[1]);
       comp.unite(t[0], t[2]);

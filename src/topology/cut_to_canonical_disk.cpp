@@ -19,6 +19,7 @@
 #include <utility>
 
 #include "igm/core/error.h"
+#include "igm/core/union_find.h"
 #include "igm/topology/handle_slides.h"
 #include "igm/topology/tighten_loops.h"
 
@@ -68,21 +69,6 @@ int find_he(const TriMesh& m, int a, int b) {
   if (h < 0) internal("missing edge", {a, b});
   return h;
 }
-
-struct Dsu {
-  std::vector<int> p;
-  explicit Dsu(int n) : p(n) { std::iota(p.begin(), p.end(), 0); }
-  int find(int x) {
-    while (p[x] != x) x = p[x] = p[p[x]];
-    return x;
-  }
-  bool unite(int a, int b) {
-    a = find(a), b = find(b);
-    if (a == b) return false;
-    p[a] = b;
-    return true;
-  }
-};
 
 // A point of a strand before realization: a mesh vertex (>= 0) or a crossing (-1 - crossing id).
 struct Crossing {
@@ -367,7 +353,7 @@ DetachPlan plan_detach(const TriMesh& mesh, const std::vector<Vec3d>& positions,
     std::sort(cand.begin(), cand.end(), [](const auto& x, const auto& y) {
       return x.first != y.first ? x.first > y.first : x.second < y.second;
     });
-    Dsu dsu(mesh.num_faces());
+    UnionFind dsu(mesh.num_faces());
     for (const auto& [w, h] : cand) {
       (void)w;
       if (!dsu.unite(TriMesh::face(h), TriMesh::face(mesh.twin(h)))) bands.push_back({mesh.origin(h), mesh.target(h)});
@@ -1231,7 +1217,7 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
       std::sort(cand.begin(), cand.end(), [](const auto& x, const auto& y) {
         return x.first != y.first ? x.first > y.first : x.second < y.second;
       });
-      Dsu dsu(M.num_faces());
+      UnionFind dsu(M.num_faces());
       for (const auto& [w, h] : cand)
         if (!dsu.unite(TriMesh::face(h), TriMesh::face(M.twin(h)))) {
           bands.push_back({M.origin(h), M.target(h)});
@@ -1377,7 +1363,7 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
     // b. the gaps by the size of the largest connected set of vertices off Gamma their free
     // half-edges reach (then by their number of such half-edges). O(n + E).
     {
-      Dsu comp(nv);
+      UnionFind comp(nv);
       for (int h = 0; h < nh; ++h)
         if (!G.on_g[M.origin(h)] && !G.on_g[M.target(h)]) comp.unite(M.origin(h), M.target(h));
       std::vector<int> size(nv, 0);
@@ -1538,7 +1524,7 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
         return x.first != y.first ? x.first > y.first : x.second < y.second;
       });
       cand.insert(cand.end(), weighted.begin(), weighted.end());
-      Dsu dsu(M.num_faces());
+      UnionFind dsu(M.num_faces());
       long left = 0;
       for (const auto& [w, h] : cand)
         if (!dsu.unite(TriMesh::face(h), TriMesh::face(M.twin(h)))) {

@@ -2,19 +2,14 @@
 
 #include <algorithm>
 #include <deque>
-#include <numeric>
 #include <string>
 #include <vector>
 
 #include "igm/core/error.h"
+#include "igm/core/union_find.h"
 
 namespace igm {
 namespace {
-
-int find_root(std::vector<int>& parent, int x) {
-  while (parent[x] != x) x = parent[x] = parent[parent[x]];
-  return x;
-}
 
 // Whether the faces with in_set[f] form a closed disk: every vertex's faces in the set form one
 // fan (or all of its faces), V - E + F = 1, and the boundary edges form one cycle. O(F).
@@ -29,8 +24,8 @@ bool is_disk(const TriMesh& M, const std::vector<char>& in_set) {
   if (faces == 0) return false;
   const long long edges = (3 * faces + boundary) / 2;
   long long vertices = 0;
-  std::vector<int> parent(M.num_vertices()), on_boundary;
-  std::iota(parent.begin(), parent.end(), 0);
+  UnionFind boundary_graph(static_cast<std::size_t>(M.num_vertices()));
+  std::vector<int> on_boundary;
   for (int v = 0; v < M.num_vertices(); ++v) {
     const int h0 = M.vertex_halfedge(v);
     if (h0 < 0) continue;
@@ -42,7 +37,7 @@ bool is_disk(const TriMesh& M, const std::vector<char>& in_set) {
       inside += cur;
       entries += cur && !before;
       if (cur && !in_set[TriMesh::face(M.twin(h))]) {
-        parent[find_root(parent, v)] = find_root(parent, M.target(h));
+        boundary_graph.unite(v, M.target(h));
         boundary_here = true;
       }
       h = M.next_around_origin(h);
@@ -56,7 +51,7 @@ bool is_disk(const TriMesh& M, const std::vector<char>& in_set) {
   // Boundary cycles = components of the boundary graph (each boundary vertex has one fan, so two
   // boundary edges; every boundary vertex starts one, which the union above records).
   int cycles = 0;
-  for (int v : on_boundary) cycles += find_root(parent, v) == v;
+  for (int v : on_boundary) cycles += boundary_graph.find(v) == v;
   return cycles == 1;
 }
 
