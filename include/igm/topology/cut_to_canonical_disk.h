@@ -20,7 +20,12 @@
 //     CutOptions::congestion_candidates root candidates are reweighted. Measured, vertices added
 //     (before -> after): couplingdown 229 -> 134 (12.4 % -> 7.3 %), elephant 38 -> 10, helmet
 //     6 -> 3, anchor 10 -> 0, cheese 19.6k -> 18.2k; with the normal form couplingdown 322 -> 300,
-//     elephant 87 -> 21, helmet 31 -> 9, anchor 39 -> 3.
+//     elephant 87 -> 21, helmet 31 -> 9, anchor 39 -> 3. Measured and not kept (stop 20): more
+//     root candidates (couplingdown 105-151 as the candidate set changes: noise, at up to 2x the
+//     time); PathFinder's present-congestion term on top (worse on every weight tried); penalties
+//     from the vertices left after tightening; reweighting the normal form's runners-up or
+//     warm-starting its rounds from the basis's penalties; choosing the normal form's plan by
+//     drawn count; reweighting the crosses (cheese: 804k, 668k, 615k against 649k, erratic).
 //  2. detaching: a band end that is a leaf of the tree spanned by all band ends ends its strand
 //     itself; the others get a vertex on the band edge hanging below them in T (u-a-b-v at 1/3 and
 //     2/3, or u-b-v at 1/2). The 4g paths root~a, root~b ("strands") are drawn pairwise disjoint
