@@ -577,7 +577,7 @@ TEST_CASE("the congestion reweighting never plans more vertices than the first b
 
 TEST_CASE("the congestion reweighting lowers the growth of the shared meshes that bundle their loops") {
   // Without the normal form, default options against the same with the reweighting off: fewer
-  // vertices on each of these (measured: elephant 38 -> 10, anchor 10 -> 0, couplingdown 229 -> 134).
+  // vertices on each of these (measured: elephant 21 -> 7, anchor 10 -> 0, couplingdown 200 -> 106).
   IGM_REQUIRE_DATA(dir);
   for (const char* name : {"elephant", "anchor", "couplingdown"}) {
     CAPTURE(name);
