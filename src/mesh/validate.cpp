@@ -301,8 +301,8 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
   }
   radix_sort(keys);
 
-  UnionFind corners(3 * T);   // corner h = (triangle h/3, vertex origin(h)); joined across manifold edges
-  ParityDsu orient(T);  // flip(t1) xor flip(t2) == "same direction" on every manifold edge
+  UnionFind corners(3 * T);  // corner h = (triangle h/3, vertex origin(h)); joined across manifold edges
+  ParityDsu orient(T);       // flip(t1) xor flip(t2) == "same direction" on every manifold edge
   std::vector<std::pair<int, int>> witness;  // (h1, h2) of each orientation contradiction
   std::vector<int> boundary;                 // boundary half-edges
   Collector nm_edges, inconsistent;

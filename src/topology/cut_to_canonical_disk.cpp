@@ -594,28 +594,37 @@ void check_congestion_step(double step) {
 // less time.
 constexpr int kCongestionPatience = 10;
 
-// Step 1c: up to `rounds` rounds (kCongestionPatience after the last new best) of congestion
-// reweighting of the greedy basis at first's root and metric, the penalties accumulating over the
-// rounds (raise_penalties from each round's plan).
-// Returns the plan with the fewest planned vertices among `first` and the recomputed ones (the
-// earliest on ties; *best_round = its index, 0 for `first`), so never more than `first`'s.
-// Deterministic. Cost O(rounds n log n).
-DetachPlan reweight_for_congestion(const TriMesh& mesh, const std::vector<Vec3d>& unit, int genus, DetachPlan first,
-                                   int rounds, double step, int* best_round) {
-  const int nv0 = mesh.num_vertices();
-  const double raise = step * metric_unit(mesh, unit, first.hops);
+// The round budget of the congestion reweighting: CutOptions::congestion_rounds, or for -1
+// clamp(per_faces / F, 1, 40).
+int congestion_budget(const CutOptions& options, const TriMesh& mesh, long per_faces) {
+  if (options.congestion_rounds >= 0) return options.congestion_rounds;
+  return static_cast<int>(std::clamp(per_faces / std::max(1, mesh.num_faces()), 1L, 40L));
+}
+
+// Step 1c: up to `rounds` rounds (and at most `patience` after the last new best) of congestion
+// reweighting from the plan `best`, the penalties (raise_penalties, `raise` per extra strand)
+// accumulating over the rounds, each from the last plan made. replan(penalty, plan) makes a plan
+// with the penalties, or returns false (that round gives none). `best` becomes the plan with the
+// fewest planned vertices (the earliest on ties), so never more than it had; kept(r) is called
+// when round r's plan becomes the best, before it moves into `best`. Returns the index of the
+// round kept (0: none). Deterministic. Cost: `rounds` replans and O(rounds nv0).
+template <class Replan, class Kept>
+int reweight_for_congestion(DetachPlan& best, int nv0, double raise, int rounds, int patience, Replan&& replan,
+                            Kept&& kept) {
   std::vector<double> penalty(nv0, 0.0);
-  DetachPlan best = std::move(first), current;
-  long best_count = planned_vertices(best);
-  *best_round = 0;
+  DetachPlan current;
   const DetachPlan* last = &best;
-  for (int r = 1; r <= rounds && r - *best_round <= kCongestionPatience; ++r) {
+  long best_count = planned_vertices(best);
+  int best_round = 0;
+  for (int r = 1; r <= rounds && r - best_round <= patience; ++r) {
     raise_penalties(*last, nv0, raise, penalty);
-    DetachPlan next = plan_detach(mesh, unit, best.root, genus, best.hops, &penalty);
+    DetachPlan next;
+    if (!replan(penalty, next)) continue;
     const long count = planned_vertices(next);
     if (count < best_count) {
       best_count = count;
-      *best_round = r;
+      best_round = r;
+      kept(r);
       best = std::move(next);
       last = &best;
     } else {
@@ -623,7 +632,7 @@ DetachPlan reweight_for_congestion(const TriMesh& mesh, const std::vector<Vec3d>
       last = &current;
     }
   }
-  return best;
+  return best_round;
 }
 
 // Step 2 realized: draws the strands planned in P as pairwise disjoint normal curves around the
@@ -2021,14 +2030,19 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
       CutStats stats;
       DetachPlan plan;
     };
+    // A construction's starting point: the input surface, unrefined, at `root`.
+    auto new_trial = [&](int root) {
+      CutResult trial;
+      trial.root = root;
+      trial.genus = genus;
+      trial.surface.mesh = mesh;
+      trial.surface.num_input_vertices = nv0;
+      trial.surface.input_positions = positions;
+      return trial;
+    };
     auto run_candidate = [&](int c, bool hops, bool crosses_only, long best, Outcome& out) {
       auto attempt = [&](bool crosses, long bound) {
-        CutResult trial;
-        trial.root = c;
-        trial.genus = genus;
-        trial.surface.mesh = mesh;
-        trial.surface.num_input_vertices = nv0;
-        trial.surface.input_positions = positions;
+        CutResult trial = new_trial(c);
         DetachPlan plan;
         const bool ok = crosses ? canonical_crosses(trial, unit, hops, bound, plan)
                                 : canonical_rounds(trial, unit, hops, bound, plan);
@@ -2070,39 +2084,24 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
       }
     }
     // Congestion reweighting of the rounds at the kept root and metric (step 3a with the penalties
-    // of step 1c, accumulated from each round's plan); the plan with the fewest planned vertices
-    // is kept. Not for the crosses (a candidate costs seconds where they are needed).
-    const int reweight_rounds = options.congestion_rounds >= 0
-                                    ? options.congestion_rounds
-                                    : static_cast<int>(std::clamp(200000L / std::max(1, mesh.num_faces()), 1L, 40L));
+    // of step 1c, accumulated from each round's plan), all rounds of the budget (their outcomes
+    // are erratic); the plan with the fewest planned vertices is kept. Not for the crosses (a
+    // candidate costs seconds where they are needed). Each round is bounded by the rounds' own
+    // limit only: a round past the kept plan still gives the next penalties.
+    const int reweight_rounds = congestion_budget(options, mesh, 200000L);
     if (found && !res.stats.crosses && reweight_rounds > 0) {
       check_congestion_step(options.congestion_step);
-      const double raise = options.congestion_step * metric_unit(mesh, unit, kept_hops);
-      std::vector<double> penalty(nv0, 0.0);
-      DetachPlan last;
-      const DetachPlan* from = &kept;
-      for (int r = 1; r <= reweight_rounds; ++r) {  // all of them: here the rounds' outcomes are erratic
-        raise_penalties(*from, nv0, raise, penalty);
-        CutResult trial;
-        trial.root = res.root;
-        trial.genus = genus;
-        trial.surface.mesh = mesh;
-        trial.surface.num_input_vertices = nv0;
-        trial.surface.input_positions = positions;
-        DetachPlan plan;
-        // Bounded by the rounds' own limit only: a round past the kept plan still gives the next
-        // penalties. A round that passes it gives none (the penalties grow from the last plan).
-        if (!canonical_rounds(trial, unit, kept_hops, rounds_limit, plan, &penalty)) continue;
-        if (planned_vertices(plan) < planned_vertices(kept)) {
-          res.stats = trial.stats;
-          res.stats.congestion_best_round = r;
-          kept = std::move(plan);
-          from = &kept;
-        } else {
-          last = std::move(plan);
-          from = &last;
-        }
-      }
+      CutStats latest;  // the stats of the last round's construction
+      const int kept_round = reweight_for_congestion(
+          kept, nv0, options.congestion_step * metric_unit(mesh, unit, kept_hops), reweight_rounds, reweight_rounds,
+          [&](const std::vector<double>& penalty, DetachPlan& plan) {
+            CutResult trial = new_trial(res.root);
+            const bool ok = canonical_rounds(trial, unit, kept_hops, rounds_limit, plan, &penalty);
+            latest = trial.stats;
+            return ok;
+          },
+          [&](int) { res.stats = latest; });
+      res.stats.congestion_best_round = kept_round;
       res.stats.congestion_rounds = reweight_rounds;
     }
     if (found) {
@@ -2130,15 +2129,12 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     // Root and metric: the given root with 3D edge lengths, or among K deterministic root
     // candidates (root_candidates_by_ring_deficit, K = clamp(1e6 / F, 1, 24): the extra cost is
     // bounded by one basis computation on a 1M-face mesh), each with 3D lengths and with hop
-    // counts as the basis
-    // metric, ranked by the crossings their detaching will make (predicted by plan_detach, without
+    // counts as the basis metric, ranked by the crossings their detaching will make (predicted by plan_detach, without
     // building anything; the earlier wins ties). The best CutOptions::congestion_candidates of them
     // are reweighted (step 1c, two at a time on two threads) and the plan with the fewest planned
     // vertices is kept (the better ranked on ties), so the result does not depend on the threads.
     std::vector<DetachPlan> top;  // the best ranked plans, best first
-    const int rounds = options.congestion_rounds >= 0
-                           ? options.congestion_rounds
-                           : static_cast<int>(std::clamp(1000000L / std::max(1, mesh.num_faces()), 1L, 40L));
+    const int rounds = congestion_budget(options, mesh, 1000000L);
     const std::size_t keep = rounds > 0 ? static_cast<std::size_t>(options.congestion_candidates) : 1;
     if (options.root >= 0) {
       top.push_back(plan_detach(mesh, unit, options.root, genus, false));
@@ -2168,9 +2164,16 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
       for (std::size_t i = 0; i < top.size(); i += 2) {
         auto one = [&](std::size_t j) {
           return [&, j] {
-            if (j < top.size())
-              top[j] = reweight_for_congestion(mesh, unit, genus, std::move(top[j]), rounds, options.congestion_step,
-                                               &best_round[j]);
+            if (j >= top.size()) return;
+            const bool hops = top[j].hops;
+            const int root = top[j].root;
+            best_round[j] = reweight_for_congestion(
+                top[j], nv0, options.congestion_step * metric_unit(mesh, unit, hops), rounds, kCongestionPatience,
+                [&](const std::vector<double>& penalty, DetachPlan& plan) {
+                  plan = plan_detach(mesh, unit, root, genus, hops, &penalty);
+                  return true;
+                },
+                [](int) {});
           };
         };
         run_pair(options.parallel && i + 1 < top.size(), one(i), one(i + 1));
