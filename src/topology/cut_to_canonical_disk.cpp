@@ -9,6 +9,7 @@
 #include <exception>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <queue>
 #include <string>
 #include <system_error>
@@ -2000,6 +2001,7 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
   res.stats.vertices_before = nv0;
   res.stats.faces_before = mesh.num_faces();
   RefinedSurface& rs = res.surface;
+  bool tightened = false;  // the loops were drawn and tightened while the root was chosen
   if (options.normal_form) {
     // Root and metric: the given root with 3D lengths, or among K deterministic candidates
     // (root_candidates, K = clamp(2e5 / F, 1, 12)) with 3D lengths and (K > 1) hop counts, the
@@ -2158,6 +2160,8 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     }
     // Congestion reweighting at each kept root and metric (reweight_for_congestion).
     DetachPlan P;
+    std::optional<TightenedLoops> drawn_win;  // the drawn comparison's winner, drawn and tightened
+    CutStats drawn_stats;                     // its drawing's counts
     if (rounds > 0) {
       check_congestion_step(options.congestion_step);
       std::vector<int> best_round(top.size(), 0);
@@ -2184,7 +2188,8 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
       // On meshes of at most 2e5 faces the reweighted candidates are drawn and tightened on copies,
       // and the fewest vertices win instead (the better ranked on ties): the plan does not see
       // what the tightening will remove. Tightened here even with CutOptions::tighten off, so that
-      // the option does not change the loops chosen. O(C (n + crossings)).
+      // the option does not change the loops chosen; with it on, the winner's copy is the result
+      // (not drawn a second time). O(C (n + crossings)).
       if (top.size() > 1 && mesh.num_faces() <= 200000) {
         long fewest = -1;
         for (std::size_t j = 0; j < top.size(); ++j) {
@@ -2192,9 +2197,12 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
           CutStats scratch;
           copy.rs.input_positions = positions;
           std::vector<std::vector<int>> loops = realize_strands(copy, scratch);
-          const long drawn =
-              tighten_loops(std::move(copy.rs), std::move(loops), copy.root).surface.mesh.num_vertices();
-          if (fewest < 0 || drawn < fewest) fewest = drawn, win = j;
+          TightenedLoops t = tighten_loops(std::move(copy.rs), std::move(loops), copy.root);
+          const long drawn = t.surface.mesh.num_vertices();
+          if (fewest < 0 || drawn < fewest) {
+            fewest = drawn, win = j;
+            if (options.tighten) drawn_win = std::move(t), drawn_stats = scratch;
+          }
         }
       }
       P = std::move(top[win]);
@@ -2210,12 +2218,22 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     res.stats.planned_vertices = planned_vertices(P);
     res.stats.seconds_basis = seconds_since(t_start);
     const auto t_detach = Clock::now();
-    P.rs.input_positions = positions;
-    res.loops = realize_strands(P, res.stats);
-    rs = std::move(P.rs);
+    if (drawn_win) {
+      res.stats.crossings = drawn_stats.crossings;
+      res.stats.steiner_vertices = drawn_stats.steiner_vertices;
+      res.stats.chord_splits = drawn_stats.chord_splits;
+      res.stats.collapsed = drawn_win->stats.collapsed;
+      rs = std::move(drawn_win->surface);
+      res.loops = std::move(drawn_win->loops);
+      tightened = true;
+    } else {
+      P.rs.input_positions = positions;
+      res.loops = realize_strands(P, res.stats);
+      rs = std::move(P.rs);
+    }
     res.stats.seconds_detach = seconds_since(t_detach);
   }
-  if (options.tighten) {
+  if (options.tighten && !tightened) {
     const auto t_tighten = Clock::now();
     TightenedLoops t = tighten_loops(std::move(rs), std::move(res.loops), res.root);
     rs = std::move(t.surface);

@@ -682,6 +682,13 @@ TEST_CASE("the tightening keeps the root, the loops' order and the word, and rem
       CHECK(tight.stats.crossings == loose.stats.crossings);
       CHECK(loose.stats.collapsed == 0);
       CHECK(tight.stats.vertices_after <= loose.stats.vertices_after);
+      // Every added vertex is counted once by its source (without the normal form the tightened
+      // cut is the drawn comparison's winner, kept as it was drawn: its counts come with it).
+      for (const CutResult* r : {&loose, &tight}) {
+        const CutStats& s = r->stats;
+        CHECK(s.vertices_after == s.vertices_before + s.crossings + s.steiner_vertices + s.band_splits + s.chord_splits +
+                                      s.round_chord_splits + s.precondition_splits - s.collapsed);
+      }
       if (name == "couplingdown") CHECK(tight.stats.vertices_after < loose.stats.vertices_after);
       removed += loose.stats.vertices_after - tight.stats.vertices_after;
       MESSAGE(name << std::string(nf ? " (normal form)" : "") << ": V " << loose.stats.vertices_after << " -> "
