@@ -21,6 +21,7 @@
 
 #include "igm/core/error.h"
 #include "igm/core/union_find.h"
+#include "igm/topology/ring_bound.h"
 #include "igm/topology/handle_slides.h"
 #include "igm/topology/tighten_loops.h"
 
@@ -1901,28 +1902,16 @@ std::vector<int> root_candidates(const TriMesh& mesh, long k) {
 std::vector<int> root_candidates_by_ring_deficit(const TriMesh& mesh, long k, int genus) {
   const int nv = mesh.num_vertices();
   const std::vector<int> sample = root_candidates(mesh, std::min<long>(nv, 50 * k));
-  std::vector<int> mark(nv, -1), ring, next;
+  HopRings rings(mesh);
   std::vector<std::pair<long, int>> score;  // (deficit, position in the sample)
   for (int i = 0; i < static_cast<int>(sample.size()); ++i) {
-    const int r = sample[i];
     long deficit = 0, visited = 1;
-    ring.assign(1, r);
-    mark[r] = r;
-    while (visited < 20000) {  // each pass visits a new ring: at most 20,000 vertices in all
-      next.clear();
-      for (int x : ring) {
-        const int h0 = mesh.vertex_halfedge(x);
-        int h = h0;
-        do {
-          const int w = mesh.target(h);
-          if (mark[w] != r) mark[w] = r, next.push_back(w);
-          h = mesh.next_around_origin(h);
-        } while (h != h0);
-      }
-      visited += static_cast<long>(next.size());
-      if (next.empty() || static_cast<long>(next.size()) >= 4L * genus) break;
-      deficit += 4L * genus - static_cast<long>(next.size());
-      std::swap(ring, next);
+    rings.start(sample[i]);
+    while (visited < 20000 && rings.next()) {  // each ring is new: at most 20,000 vertices in all
+      const long size = static_cast<long>(rings.ring().size());
+      visited += size;
+      if (size >= 4L * genus) break;
+      deficit += 4L * genus - size;
     }
     score.push_back({deficit, i});
   }

@@ -1,7 +1,6 @@
 #include "igm/topology/ring_bound.h"
 
 #include <algorithm>
-#include <deque>
 #include <string>
 #include <vector>
 
@@ -57,6 +56,29 @@ bool is_disk(const TriMesh& M, const std::vector<char>& in_set) {
 
 }  // namespace
 
+void HopRings::start(int root) {
+  ++starts_;
+  level_ = 0;
+  ring_.assign(1, root);
+  mark_[root] = starts_;
+}
+
+bool HopRings::next() {
+  next_.clear();
+  for (int x : ring_) {
+    const int h0 = mesh_.vertex_halfedge(x);
+    int h = h0;
+    do {  // valence steps
+      const int w = mesh_.target(h);
+      if (mark_[w] != starts_) mark_[w] = starts_, next_.push_back(w);
+      h = mesh_.next_around_origin(h);
+    } while (h != h0);
+  }
+  std::swap(ring_, next_);
+  ++level_;
+  return !ring_.empty();
+}
+
 RingBound ring_capacity_bound(const TriMesh& M, int root) {
   const int n = M.num_vertices();
   if (root < 0 || root >= n || M.vertex_halfedge(root) < 0)
@@ -68,18 +90,12 @@ RingBound ring_capacity_bound(const TriMesh& M, int root) {
   const long long chi = static_cast<long long>(n) - M.num_edges() + M.num_faces();
   out.genus = static_cast<int>((2 - chi) / 2);
   std::vector<int> dist(n, -1);
-  std::deque<int> queue{root};
+  HopRings rings(M);
+  rings.start(root);
   dist[root] = 0;
-  while (!queue.empty()) {  // BFS: each vertex enters the queue once
-    const int u = queue.front();
-    queue.pop_front();
-    const int h0 = M.vertex_halfedge(u);
-    int h = h0;
-    do {
-      const int w = M.target(h);
-      if (dist[w] < 0) dist[w] = dist[u] + 1, queue.push_back(w), out.max_level = dist[w];
-      h = M.next_around_origin(h);
-    } while (h != h0);
+  while (rings.next()) {  // each vertex is in one ring
+    out.max_level = rings.level();
+    for (int w : rings.ring()) dist[w] = rings.level();
   }
   if (out.genus <= 0) return out;
   std::vector<long long> ring(out.max_level + 1, 0);

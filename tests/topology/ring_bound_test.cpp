@@ -185,3 +185,47 @@ TEST_CASE("ring bound: genus 0 gives 0, a root out of range is a typed error nam
     }
   }
 }
+
+TEST_CASE("hop rings: each ring holds the vertices at that hop distance, from root after root") {
+  // One HopRings object started at many roots in turn (its marks are kept between starts), against
+  // a fresh BFS over an explicit edge set per root; a start that stops after two rings must not
+  // leave marks that hide vertices from the next.
+  for (const auto& [g, faces] : {std::pair{0, 200}, std::pair{2, 600}, std::pair{5, 1500}}) {
+    const ValidMesh in = igm_test::generated_mesh(g, faces, 7);
+    const TriMesh& M = in.mesh;
+    const int nv = M.num_vertices();
+    std::vector<std::set<int>> adj(nv);
+    for (const auto& t : triangles(M))
+      for (int i = 0; i < 3; ++i) adj[t[i]].insert(t[(i + 1) % 3]), adj[t[(i + 1) % 3]].insert(t[i]);
+    HopRings rings(M);
+    for (int root = 0; root < nv; root += 7) {
+      CAPTURE(g);
+      CAPTURE(root);
+      std::vector<int> d(nv, -1);
+      d[root] = 0;
+      std::deque<int> q{root};
+      while (!q.empty()) {
+        const int u = q.front();
+        q.pop_front();
+        for (int w : adj[u])
+          if (d[w] < 0) d[w] = d[u] + 1, q.push_back(w);
+      }
+      rings.start(root);
+      REQUIRE(rings.ring() == std::vector<int>{root});
+      std::vector<int> seen(nv, -1);
+      seen[root] = 0;
+      const bool stop_early = root % 2 == 1;
+      while (rings.next()) {
+        CHECK(rings.level() >= 1);
+        for (int v : rings.ring()) {
+          CHECK(seen[v] == -1);  // each vertex in one ring
+          seen[v] = rings.level();
+        }
+        if (stop_early && rings.level() == 2) break;
+      }
+      for (int v = 0; v < nv; ++v)
+        if (!stop_early || d[v] <= 2) CHECK(seen[v] == d[v]);
+      if (!stop_early) CHECK(rings.ring().empty());
+    }
+  }
+}
