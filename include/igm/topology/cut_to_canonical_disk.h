@@ -107,6 +107,22 @@
 //     The crosses' size is chaotic in their greedy choices: capping a round's pairs at 1.5, 2, 3,
 //     5 or 10 times its cheapest gives 543k, 664k, 484k, 841k, 664k vertices on cheese's root 0
 //     (649k uncapped); the choice among root candidates picks the best of such draws.
+//     Where the size comes from (stop 21, cheese root 7844, 506k vertices, 31 rounds): rounds 0-11
+//     take 67 of the 133 crosses with no chord split; rounds 12-24 take 57 with 36k; rounds 25-30
+//     take the last 9 with 222k, the last three (4 crosses) 51k, 47k and 97k, the last cross alone
+//     96,768 edges long. Of the last round's 96.8k split chords, 92.9k join two vertices made by
+//     earlier splits: a path through a corridor between two walls splits each of its rungs, and the
+//     fans at the new midpoints leave about 1.5 rungs per old one on each side, which the next path
+//     through that corridor must split in turn (geometric in the paths sharing a corridor). Drawn
+//     as normal curves, k paths through a corridor of L rungs would add k L. The fix this points to
+//     (not built): keep every constructed vertex of the rounds on an input edge, treat a chord that
+//     is a diagonal inside an input face as free to cross (it is not a vertex once the face is
+//     triangulated again along the walls), and re-triangulate each input face along its wall arcs
+//     after a round; a path that turns around a wall's dead end on an input edge needs a bend
+//     point inside the face. Steering the paths instead does not help: a halo cost beside the
+//     walls (1 or 3 mean edges: root 7844 506k -> failed / 623k, root 0 649k -> 698k / 486k) or
+//     midpoints costing 3x or 5x when one or both ends of their chord are split vertices (437k,
+//     843k): the same noise.
 //     The root and metric are chosen among candidates by the planned vertex count (the refined
 //     surface's vertices plus the planned detaching's crossings): each candidate is planned, not
 //     drawn, and only the one kept is realized; candidates go in fixed pairs, side by side on two
