@@ -119,7 +119,8 @@
 //     is a diagonal inside an input face as free to cross (it is not a vertex once the face is
 //     triangulated again along the walls), and re-triangulate each input face along its wall arcs
 //     after a round; a path that turns around a wall's dead end on an input edge needs a bend
-//     point inside the face. Steering the paths instead does not help: a halo cost beside the
+//     point inside the face. In that last round 79.1k of the 96.8k split chords are such
+//     diagonals (17.6k lie on input edges), in round 25 7.1k of 12.2k, in round 17 0.3k of 1.7k. Steering the paths instead does not help: a halo cost beside the
 //     walls (1 or 3 mean edges: root 7844 506k -> failed / 623k, root 0 649k -> 698k / 486k) or
 //     midpoints costing 3x or 5x when one or both ends of their chord are split vertices (437k,
 //     843k): the same noise.
