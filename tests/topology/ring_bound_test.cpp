@@ -21,6 +21,20 @@ using namespace igm;
 
 namespace {
 
+// Hop distances from root by BFS over an explicit adjacency (-1: unreached).
+std::vector<int> hop_distances(const std::vector<std::set<int>>& adj, int root) {
+  std::vector<int> d(adj.size(), -1);
+  d[root] = 0;
+  std::deque<int> q{root};
+  while (!q.empty()) {  // each vertex enters once
+    const int u = q.front();
+    q.pop_front();
+    for (int w : adj[u])
+      if (d[w] < 0) d[w] = d[u] + 1, q.push_back(w);
+  }
+  return d;
+}
+
 // The bound recounted from the triangle list alone: hop distances by BFS over an edge set, each D_k
 // as a set of triangles, a disk iff V - E + F = 1, every vertex's triangles in D_k are joined
 // through shared edges around it into one fan, and the boundary edges form one closed walk.
@@ -28,15 +42,7 @@ long long recount(const std::vector<std::array<int, 3>>& tris, int nv, int root)
   std::vector<std::set<int>> adj(nv);
   for (const auto& t : tris)
     for (int i = 0; i < 3; ++i) adj[t[i]].insert(t[(i + 1) % 3]), adj[t[(i + 1) % 3]].insert(t[i]);
-  std::vector<int> d(nv, -1);
-  d[root] = 0;
-  std::deque<int> q{root};
-  while (!q.empty()) {
-    const int u = q.front();
-    q.pop_front();
-    for (int w : adj[u])
-      if (d[w] < 0) d[w] = d[u] + 1, q.push_back(w);
-  }
+  const std::vector<int> d = hop_distances(adj, root);
   const long long edges_total = static_cast<long long>(tris.size()) * 3 / 2;
   const long long genus = (2 - (nv - edges_total + static_cast<long long>(tris.size()))) / 2;
   const int top = *std::max_element(d.begin(), d.end());
@@ -201,15 +207,7 @@ TEST_CASE("hop rings: each ring holds the vertices at that hop distance, from ro
     for (int root = 0; root < nv; root += 7) {
       CAPTURE(g);
       CAPTURE(root);
-      std::vector<int> d(nv, -1);
-      d[root] = 0;
-      std::deque<int> q{root};
-      while (!q.empty()) {
-        const int u = q.front();
-        q.pop_front();
-        for (int w : adj[u])
-          if (d[w] < 0) d[w] = d[u] + 1, q.push_back(w);
-      }
+      const std::vector<int> d = hop_distances(adj, root);
       rings.start(root);
       REQUIRE(rings.ring() == std::vector<int>{root});
       std::vector<int> seen(nv, -1);
