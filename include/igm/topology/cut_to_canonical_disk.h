@@ -120,7 +120,11 @@
 //     triangulated again along the walls), and re-triangulate each input face along its wall arcs
 //     after a round; a path that turns around a wall's dead end on an input edge needs a bend
 //     point inside the face. In that last round 79.1k of the 96.8k split chords are such
-//     diagonals (17.6k lie on input edges), in round 25 7.1k of 12.2k, in round 17 0.3k of 1.7k. Steering the paths instead does not help: a halo cost beside the
+//     diagonals (17.6k lie on input edges), in round 25 7.1k of 12.2k, in round 17 0.3k of 1.7k.
+//     The new walls cross those diagonals in runs between two points that stay (input-edge
+//     points), each run to become one straight arc: 16.6k runs in the last round; per round at
+//     most 7 diagonal midpoints are branch points or band ends (they must stay, inside the face)
+//     and at most 57 runs end on one input edge (they need a bend point). Steering the paths instead does not help: a halo cost beside the
 //     walls (1 or 3 mean edges: root 7844 506k -> failed / 623k, root 0 649k -> 698k / 486k) or
 //     midpoints costing 3x or 5x when one or both ends of their chord are split vertices (437k,
 //     843k): the same noise.
