@@ -1828,6 +1828,26 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
         for (auto& [x, y] : c.edges) map_ids(to_surface, x), map_ids(to_surface, y);
         for (auto& [x, y] : c.bands) map_ids(to_surface, x), map_ids(to_surface, y);
       }
+      // The split diagonals inside input faces that the crosses' tree paths merely pass go again
+      // (straighten_paths): measured on cheese, 371k -> 148k vertices in all.
+      {
+        std::vector<std::pair<int, int>> tree_edges;
+        std::vector<int> band_ends;
+        for (const Cross& c : found) {
+          tree_edges.insert(tree_edges.end(), c.edges.begin(), c.edges.end());
+          for (const auto& [x, y] : c.bands) band_ends.push_back(x), band_ends.push_back(y);
+        }
+        StraightenedPaths st = straighten_paths(std::move(rs), tree_edges, band_ends, nv);
+        rs = std::move(st.surface);
+        res.stats.straightened += st.removed;
+        for (Cross& c : found) {
+          std::vector<std::pair<int, int>> edges;
+          for (const auto& [x, y] : c.edges)
+            if (st.to[x] != st.to[y]) edges.push_back({st.to[x], st.to[y]});
+          c.edges = std::move(edges);
+          for (auto& [x, y] : c.bands) x = st.to[x], y = st.to[y];
+        }
+      }
       if (rs.mesh.num_vertices() > vertex_limit) return false;
     }
     cross_of.resize(rs.mesh.num_vertices(), -1);

@@ -56,25 +56,26 @@ bool supported_in(const SurfacePoint& p, const std::array<int, 3>& U) {
 
 bool has(const std::array<int, 3>& t, int v) { return t[0] == v || t[1] == v || t[2] == v; }
 
-}  // namespace
+// The refined surface as a face list with per-vertex incident faces, for edge collapses: a collapse
+// is O(valence). A vertex's list is read off rs.mesh (which is not changed here) the first time it
+// is needed: a collapse changes the lists of c, w and the two apexes only, and checks all four
+// before it does, so a list built later is still right (face ids are stable; the faces' corners
+// are in tri).
+struct FaceList {
+  const RefinedSurface& rs;
+  std::vector<std::array<int, 3>> tri;
+  std::vector<char> face_alive, alive, built;
+  std::vector<std::vector<int>> inc;
+  std::vector<int> stamp;
+  int clock = 0;
+  std::vector<int> nc, nw;  // the neighbours of c and of w found by the last collapse_ok
 
-TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int>> loops, int root) {
-  TightenedLoops out;
-  RefinedSurface& rs = surface;
-  const int nv = rs.mesh.num_vertices();
-  const int nin = rs.num_input_vertices;
-  if (static_cast<int>(rs.constructed.size()) != nv - nin) internal("constructed points out of step with the mesh");
-  const int nloops = static_cast<int>(loops.size());
-
-  // The mesh as a face list with per-vertex incident faces: a collapse is O(valence). A vertex's
-  // list is read off rs.mesh (which is not changed here) the first time it is needed: a collapse
-  // changes the lists of c, w and the two apexes only, and checks all four before it does, so a
-  // list built later is still right (face ids are stable; the faces' corners are in tri).
-  std::vector<std::array<int, 3>> tri(rs.mesh.num_faces());
-  std::vector<char> face_alive(tri.size(), 1), alive(nv, 1), built(nv, 0);
-  for (int f = 0; f < rs.mesh.num_faces(); ++f) tri[f] = rs.mesh.face_vertices(f);
-  std::vector<std::vector<int>> inc(nv);
-  auto faces_at = [&](int v) -> std::vector<int>& {
+  explicit FaceList(const RefinedSurface& s)
+      : rs(s), tri(s.mesh.num_faces()), face_alive(tri.size(), 1), alive(s.mesh.num_vertices(), 1),
+        built(s.mesh.num_vertices(), 0), inc(s.mesh.num_vertices()), stamp(s.mesh.num_vertices(), 0) {
+    for (int f = 0; f < rs.mesh.num_faces(); ++f) tri[f] = rs.mesh.face_vertices(f);
+  }
+  std::vector<int>& faces_at(int v) {
     if (!built[v]) {
       built[v] = 1;
       const int h0 = rs.mesh.vertex_halfedge(v);
@@ -85,17 +86,16 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
       } while (h != h0);
     }
     return inc[v];
-  };
-  std::vector<int> stamp(nv, 0);
-  int clock = 0;
-  auto neighbours = [&](int v, std::vector<int>& nb) {  // each once; marks them with the new clock
+  }
+  // v's neighbours, each once, into nb; marks them with the new clock.
+  void neighbours(int v, std::vector<int>& nb) {
     nb.clear();
     ++clock;
     for (int f : faces_at(v))
       for (int u : tri[f])
         if (u != v && stamp[u] != clock) stamp[u] = clock, nb.push_back(u);
-  };
-  auto unlink_face = [&](int f, int except) {
+  }
+  void unlink_face(int f, int except) {
     face_alive[f] = 0;
     for (int u : tri[f]) {
       if (u == except) continue;
@@ -105,47 +105,17 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
       *it = l.back();
       l.pop_back();
     }
-  };
-
-  // The loops as linked lists over their vertices (the root excluded: every other vertex is on at
-  // most one loop): loop_of (-1: free), nxt / prv (the root at the two ends).
-  std::vector<int> loop_of(nv, -1), nxt(nv, -1), prv(nv, -1), head(nloops), tail(nloops);
-  for (int i = 0; i < nloops; ++i) {
-    const auto& L = loops[i];
-    if (L.size() < 3 || L[0] != root) internal("loop does not start at the root", {i});
-    for (std::size_t j = 1; j < L.size(); ++j) {
-      const int v = L[j];
-      if (v < 0 || v >= nv) internal("loop vertex out of range", {v});
-      if (v == root || loop_of[v] != -1) internal("loops not simple or not disjoint", {v});
-      if (rs.mesh.find_halfedge(L[j - 1], v) < 0 || (j + 1 == L.size() && rs.mesh.find_halfedge(v, root) < 0))
-        internal("a loop step is not an edge", {L[j - 1], v});
-      loop_of[v] = i;
-      prv[v] = L[j - 1];
-      nxt[v] = j + 1 < L.size() ? L[j + 1] : root;
-    }
-    head[i] = L[1], tail[i] = L.back();
   }
-  auto set_next = [&](int L, int a, int b) {  // a -> b along L (either may be the root)
-    if (a == root) head[L] = b;
-    else nxt[a] = b;
-    if (b == root) tail[L] = a;
-    else prv[b] = a;
-  };
-
-  std::vector<int> nc, nw;
-  // Whether `keeper`, a vertex of loop L (-1: on none) with its loop neighbours already set, may be
-  // adjacent to u: not if u is another vertex of L, or the root while keeper is neither end of L
-  // (such an edge could join two vertices of one polygon side, which the cut would split again).
-  auto adjacency_ok = [&](int keeper, int L, int u) {
-    if (L < 0 || u == prv[keeper] || u == nxt[keeper]) return true;
-    if (u == root) return prv[keeper] == root || nxt[keeper] == root;
-    return loop_of[u] != L;
-  };
-
+  bool face_with(int a, int b, int c) {
+    for (int f : faces_at(a))
+      if (has(tri[f], b) && has(tri[f], c)) return true;
+    return false;
+  }
   // The geometric and combinatorial checks of an edge collapse c -> w (c constructed): the link
   // condition, valences >= 3, and every face moving from c to w keeping its exact orientation in
-  // its input face. Fills shared with the two faces at cw. O(valence) exact orientations.
-  auto collapse_ok = [&](int c, int w, int shared[2]) {
+  // its input face. Fills shared with the two faces at cw, nc and nw with the neighbours of c and
+  // w. O(valence) exact orientations.
+  bool collapse_ok(int c, int w, int shared[2]) {
     int ns = 0;
     for (int f : faces_at(c))
       if (has(tri[f], w)) {
@@ -181,8 +151,8 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
       if (orient2d(chart(pw, U), a, b) != before) return false;
     }
     return true;
-  };
-  auto do_collapse = [&](int c, int w, const int shared[2]) {
+  }
+  void collapse(int c, int w, const int shared[2]) {
     for (int k = 0; k < 2; ++k) unlink_face(shared[k], c);
     for (int f : faces_at(c)) {
       if (!face_alive[f]) continue;
@@ -192,11 +162,81 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
     }
     std::vector<int>().swap(faces_at(c));
     alive[c] = 0;
+  }
+  // The surface without the collapsed vertices: input vertices keep their ids, the surviving
+  // constructed ones are renumbered in order (new_id; -1 for a collapsed one). O(n + F log F).
+  RefinedSurface compacted(RefinedSurface&& old, std::vector<int>& new_id) const {
+    const int nv = old.mesh.num_vertices(), nin = old.num_input_vertices;
+    new_id.assign(nv, -1);
+    std::iota(new_id.begin(), new_id.begin() + nin, 0);
+    int next_id = nin;
+    RefinedSurface out;
+    for (int v = nin; v < nv; ++v)
+      if (alive[v]) new_id[v] = next_id++, out.constructed.push_back(std::move(old.constructed[v - nin]));
+    std::vector<std::array<int, 3>> tris;
+    tris.reserve(tri.size());
+    for (std::size_t f = 0; f < tri.size(); ++f)
+      if (face_alive[f]) tris.push_back({new_id[tri[f][0]], new_id[tri[f][1]], new_id[tri[f][2]]});
+    out.mesh = TriMesh::from_triangles(next_id, tris);
+    out.num_input_vertices = nin;
+    out.input_positions = std::move(old.input_positions);
+    return out;
+  }
+};
+
+}  // namespace
+
+TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int>> loops, int root) {
+  TightenedLoops out;
+  RefinedSurface& rs = surface;
+  const int nv = rs.mesh.num_vertices();
+  const int nin = rs.num_input_vertices;
+  if (static_cast<int>(rs.constructed.size()) != nv - nin) internal("constructed points out of step with the mesh");
+  const int nloops = static_cast<int>(loops.size());
+
+  FaceList fl(rs);
+  auto& tri = fl.tri;
+  auto& alive = fl.alive;
+  auto& nc = fl.nc;
+  auto& nw = fl.nw;
+  auto faces_at = [&](int v) -> std::vector<int>& { return fl.faces_at(v); };
+  auto neighbours = [&](int v, std::vector<int>& nb) { fl.neighbours(v, nb); };
+  auto collapse_ok = [&](int c, int w, int shared[2]) { return fl.collapse_ok(c, w, shared); };
+  auto do_collapse = [&](int c, int w, const int shared[2]) { fl.collapse(c, w, shared); };
+  auto face_with = [&](int a, int b, int c) { return fl.face_with(a, b, c); };
+
+  // The loops as linked lists over their vertices (the root excluded: every other vertex is on at
+  // most one loop): loop_of (-1: free), nxt / prv (the root at the two ends).
+  std::vector<int> loop_of(nv, -1), nxt(nv, -1), prv(nv, -1), head(nloops), tail(nloops);
+  for (int i = 0; i < nloops; ++i) {
+    const auto& L = loops[i];
+    if (L.size() < 3 || L[0] != root) internal("loop does not start at the root", {i});
+    for (std::size_t j = 1; j < L.size(); ++j) {
+      const int v = L[j];
+      if (v < 0 || v >= nv) internal("loop vertex out of range", {v});
+      if (v == root || loop_of[v] != -1) internal("loops not simple or not disjoint", {v});
+      if (rs.mesh.find_halfedge(L[j - 1], v) < 0 || (j + 1 == L.size() && rs.mesh.find_halfedge(v, root) < 0))
+        internal("a loop step is not an edge", {L[j - 1], v});
+      loop_of[v] = i;
+      prv[v] = L[j - 1];
+      nxt[v] = j + 1 < L.size() ? L[j + 1] : root;
+    }
+    head[i] = L[1], tail[i] = L.back();
+  }
+  auto set_next = [&](int L, int a, int b) {  // a -> b along L (either may be the root)
+    if (a == root) head[L] = b;
+    else nxt[a] = b;
+    if (b == root) tail[L] = a;
+    else prv[b] = a;
   };
-  auto face_with = [&](int a, int b, int c) {
-    for (int f : faces_at(a))
-      if (has(tri[f], b) && has(tri[f], c)) return true;
-    return false;
+
+  // Whether `keeper`, a vertex of loop L (-1: on none) with its loop neighbours already set, may be
+  // adjacent to u: not if u is another vertex of L, or the root while keeper is neither end of L
+  // (such an edge could join two vertices of one polygon side, which the cut would split again).
+  auto adjacency_ok = [&](int keeper, int L, int u) {
+    if (L < 0 || u == prv[keeper] || u == nxt[keeper]) return true;
+    if (u == root) return prv[keeper] == root || nxt[keeper] == root;
+    return loop_of[u] != L;
   };
 
   // M3: a free constructed vertex v is removed by collapsing it into a neighbour y (the lowest id
@@ -394,19 +434,7 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
     std::iota(new_id.begin(), new_id.end(), 0);
     out.surface = std::move(rs);
   } else {
-    std::iota(new_id.begin(), new_id.begin() + nin, 0);
-    int next_id = nin;
-    std::vector<SurfacePoint> kept;
-    for (int v = nin; v < nv; ++v)
-      if (alive[v]) new_id[v] = next_id++, kept.push_back(std::move(rs.constructed[v - nin]));
-    std::vector<std::array<int, 3>> tris;
-    tris.reserve(tri.size());
-    for (std::size_t f = 0; f < tri.size(); ++f)
-      if (face_alive[f]) tris.push_back({new_id[tri[f][0]], new_id[tri[f][1]], new_id[tri[f][2]]});
-    out.surface.mesh = TriMesh::from_triangles(next_id, tris);
-    out.surface.num_input_vertices = nin;
-    out.surface.constructed = std::move(kept);
-    out.surface.input_positions = std::move(rs.input_positions);
+    out.surface = fl.compacted(std::move(rs), new_id);
   }
   out.loops.assign(nloops, {});
   for (int L = 0; L < nloops; ++L) {
@@ -414,6 +442,68 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
     P.push_back(root);
     for (int v = head[L]; v != root; v = nxt[v]) P.push_back(new_id[v]);
     if (P.size() < 3) internal("a loop became shorter than three vertices", {L});
+  }
+  return out;
+}
+
+StraightenedPaths straighten_paths(RefinedSurface surface, const std::vector<std::pair<int, int>>& edges,
+                                   const std::vector<int>& keep, int first) {
+  RefinedSurface& rs = surface;
+  const int n = rs.mesh.num_vertices();
+  const int nin = rs.num_input_vertices;
+  if (static_cast<int>(rs.constructed.size()) != n - nin) internal("constructed points out of step with the mesh");
+  if (first < nin || first > n) internal("first candidate out of range", {first});
+  // Each vertex's path neighbours (a candidate has exactly two).
+  std::vector<int> degree(n, 0);
+  std::vector<std::array<int, 2>> nb(n, {-1, -1});
+  for (const auto& [x, y] : edges) {
+    if (x < 0 || x >= n || y < 0 || y >= n || x == y) internal("a path edge out of range", {x, y});
+    if (rs.mesh.find_halfedge(x, y) < 0) internal("a path step is not an edge", {x, y});
+    for (const auto& [a, b] : {std::pair{x, y}, std::pair{y, x}})
+      if (++degree[a] <= 2) nb[a][degree[a] - 1] = b;
+  }
+  std::vector<char> kept(n, 0);
+  for (int v : keep)
+    if (v >= 0 && v < n) kept[v] = 1;
+  FaceList fl(rs);
+  std::vector<int> into(n, -1);  // a removed vertex -> the vertex it was collapsed into
+  StraightenedPaths out;
+  for (int v = first; v < n; ++v) {  // each candidate once: O(candidates x valence) checks
+    if (degree[v] != 2 || kept[v]) continue;
+    const SurfacePoint pv = rs.point(v);
+    int support = 0;
+    for (int i = 0; i < 3; ++i) support += pv.v[i] >= 0 && sgn(pv.w[i]) > 0;
+    if (support != 3) continue;  // on an input edge: where the path crosses it
+    for (int k = 0; k < 2; ++k) {
+      const int w = nb[v][k], o = nb[v][1 - k];
+      int shared[2];
+      if (!fl.collapse_ok(v, w, shared)) continue;
+      fl.collapse(v, w, shared);
+      into[v] = w;
+      for (int& z : nb[w])
+        if (z == v) z = o;
+      for (int& z : nb[o])
+        if (z == v) z = w;
+      ++out.removed;
+      break;
+    }
+  }
+  std::vector<int> new_id;
+  if (out.removed == 0) {
+    new_id.resize(n);
+    std::iota(new_id.begin(), new_id.end(), 0);
+    out.surface = std::move(rs);
+  } else {
+    out.surface = fl.compacted(std::move(rs), new_id);
+  }
+  out.to.resize(n);
+  for (int v = 0; v < n; ++v) {
+    int u = v;
+    for (int guard = 0; into[u] >= 0; ++guard) {  // each step goes to a vertex still alive then
+      if (guard > n) internal("collapse chain does not end", {v});
+      u = into[u];
+    }
+    out.to[v] = new_id[u];
   }
   return out;
 }

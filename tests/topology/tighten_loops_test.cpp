@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "igm/core/error.h"
+#include "igm/exact/rational.h"
 #include "igm/topology/cut_to_canonical_disk.h"
 #include "igm/topology/tighten_loops.h"
 #include "generated_mesh.h"
@@ -131,4 +133,52 @@ TEST_CASE("bad loops given to the tightening are typed errors") {
   loops = raw.loops;
   loops[1].push_back(loops[0][1]);  // shares a vertex with loop 0
   CHECK_THROWS_AS(tighten_loops(raw.surface, loops, raw.root), Error);
+}
+
+TEST_CASE("straightening removes path vertices inside input faces, keeps the others, and stays an exact refinement") {
+  const ValidMesh in = igm_test::generated_mesh(2, 400, 3);
+  const int nin = in.mesh.num_vertices();
+  RefinedSurface base;
+  base.mesh = in.mesh;
+  base.num_input_vertices = nin;
+  base.input_positions = in.positions;
+  const auto abc = base.mesh.face_vertices(0);
+  const int a = abc[0], b = abc[1], c = abc[2];
+  RefinedSurface rs = base;
+  const int s = rs.split_face(0);  // inside the input face (a, b, c), joined to a, b and c
+
+  // The path a - s - b: s goes into a (its first listed neighbour), the path runs a - b.
+  StraightenedPaths st = straighten_paths(rs, {{a, s}, {s, b}}, {}, nin);
+  CHECK(st.removed == 1);
+  CHECK(st.to[s] == a);
+  CHECK(st.to[a] == a);
+  CHECK(st.surface.mesh.num_vertices() == nin);
+  CHECK(st.surface.mesh.find_halfedge(a, b) >= 0);
+  CHECK(igm_test::refinement_violation(in, st.surface, true) == "");
+
+  // Not removed: a vertex asked to be kept, one below `first`, one with three path neighbours.
+  CHECK(straighten_paths(rs, {{a, s}, {s, b}}, {s}, nin).removed == 0);
+  CHECK(straighten_paths(rs, {{a, s}, {s, b}}, {}, s + 1).removed == 0);
+  CHECK(straighten_paths(rs, {{a, s}, {s, b}, {s, c}}, {}, nin).removed == 0);
+
+  // Not removed: a point on an input edge (where a path crosses it).
+  RefinedSurface on_edge = base;
+  const int m = on_edge.split_edge(on_edge.mesh.find_halfedge(a, b), make_rational(1, 3));
+  CHECK(straighten_paths(on_edge, {{c, m}, {m, a}}, {}, nin).removed == 0);
+
+  // Two face points, only the second on a path: the first keeps its id, the second goes.
+  RefinedSurface two = base;
+  const int s1 = two.split_face(0);
+  const int f2 = TriMesh::face(two.mesh.twin(two.mesh.find_halfedge(b, a)));  // the face across a-b
+  const auto uvw = two.mesh.face_vertices(f2);
+  const int s2 = two.split_face(f2);
+  StraightenedPaths st2 = straighten_paths(two, {{uvw[0], s2}, {s2, uvw[1]}}, {}, nin);
+  CHECK(st2.removed == 1);
+  CHECK(st2.to[s1] == s1);
+  CHECK(st2.to[s2] == uvw[0]);
+  CHECK(st2.surface.mesh.num_vertices() == nin + 1);
+  CHECK(igm_test::refinement_violation(in, st2.surface, true) == "");
+
+  // A path edge that is not an edge of the mesh is a typed error, not a silent skip.
+  CHECK_THROWS_AS(straighten_paths(rs, {{a, s}, {s, nin + 7}}, {}, nin), Error);
 }

@@ -35,7 +35,7 @@ struct PipelineOptions {
   /// a unit-square edge, so any pairing of sides glues by R^k x + t with integer t (the certifier
   /// checks it). Off by default: its loops are longer and grow the mesh more (couplingdown g9:
   /// 2.37k instead of 2.19k refined vertices; a 1M-face g20 mesh 0.54M instead of 0.51M vertices,
-  /// in ~9 s instead of ~3 s; cheese g133 ~600k instead of 30k, by the crosses construction).
+  /// in ~9 s instead of ~3 s; cheese g133 ~150k instead of 27k, by the crosses construction).
   bool normal_form = false;
   /// Genus 0 only: the four cone vertices (input vertex ids) in path order A, B, C, D; empty: the
   /// deterministic default (topology/sphere_cut.h). Bad lists give igm::Error(InvalidArgument).

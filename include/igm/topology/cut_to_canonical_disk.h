@@ -89,8 +89,13 @@
 //     vertices) are handled as in (a): fewer seeds, then a copy with every chord split. At most g
 //     rounds (each takes at least one cross, as many disjoint ones as it finds). Its loops are
 //     longer than the rounds' on small meshes (eight 409 vertices instead of 323), and its late
-//     rounds compound too (P is a wall), but far less than the rounds: cheese g133 gets 373k
-//     vertices, 43x (measured against 2.5M for the prototype).
+//     rounds compound too (P is a wall), but far less than the rounds. A round on a copy crosses
+//     the chords at their midpoints; where a cross's tree path passes a split diagonal inside an
+//     input face (neither a branch point nor a band end), that vertex is collapsed again into a
+//     path neighbour when the tightening's exact checks allow (straighten_paths, tighten_loops.h),
+//     so the path runs straight across the face and later rounds do not meet the fan the midpoint
+//     made: cheese g133 gets 148k vertices, 17x (373k, 43x, without; measured against 2.5M for the
+//     prototype), generated genus 200 on 30k faces 151k instead of 191k.
 //     Measured and rejected before: handle slides on the detached greedy loops (plan_handle_slides,
 //     handle_slides.h): the slides' paths double in length per handle on cheese; rounds that
 //     detached their loops before the next round (stop 13): every later round had to squeeze
@@ -107,27 +112,24 @@
 //     The crosses' size is chaotic in their greedy choices: capping a round's pairs at 1.5, 2, 3,
 //     5 or 10 times its cheapest gives 543k, 664k, 484k, 841k, 664k vertices on cheese's root 0
 //     (649k uncapped); the choice among root candidates picks the best of such draws.
-//     Where the size comes from (stop 21, cheese root 7844, 506k vertices, 31 rounds): rounds 0-11
-//     take 67 of the 133 crosses with no chord split; rounds 12-24 take 57 with 36k; rounds 25-30
-//     take the last 9 with 222k, the last three (4 crosses) 51k, 47k and 97k, the last cross alone
-//     96,768 edges long. Of the last round's 96.8k split chords, 92.9k join two vertices made by
-//     earlier splits: a path through a corridor between two walls splits each of its rungs, and the
-//     fans at the new midpoints leave about 1.5 rungs per old one on each side, which the next path
-//     through that corridor must split in turn (geometric in the paths sharing a corridor). Drawn
-//     as normal curves, k paths through a corridor of L rungs would add k L. The fix this points to
-//     (not built): keep every constructed vertex of the rounds on an input edge, treat a chord that
-//     is a diagonal inside an input face as free to cross (it is not a vertex once the face is
-//     triangulated again along the walls), and re-triangulate each input face along its wall arcs
-//     after a round; a path that turns around a wall's dead end on an input edge needs a bend
-//     point inside the face. In that last round 79.1k of the 96.8k split chords are such
-//     diagonals (17.6k lie on input edges), in round 25 7.1k of 12.2k, in round 17 0.3k of 1.7k.
-//     The new walls cross those diagonals in runs between two points that stay (input-edge
-//     points), each run to become one straight arc: 16.6k runs in the last round; per round at
-//     most 7 diagonal midpoints are branch points or band ends (they must stay, inside the face)
-//     and at most 57 runs end on one input edge (they need a bend point). Steering the paths instead does not help: a halo cost beside the
-//     walls (1 or 3 mean edges: root 7844 506k -> failed / 623k, root 0 649k -> 698k / 486k) or
-//     midpoints costing 3x or 5x when one or both ends of their chord are split vertices (437k,
-//     843k): the same noise.
+//     Where the size comes from (stop 21, cheese root 7844, 506k vertices before the
+//     straightening, 31 rounds): rounds 0-11 take 67 of the 133 crosses with no chord split;
+//     rounds 12-24 take 57 with 36k; rounds 25-30 take the last 9 with 222k, the last three (4
+//     crosses) 51k, 47k and 97k, the last cross alone 96,768 edges long. Of the last round's 96.8k
+//     split chords, 92.9k join two vertices made by earlier splits: a path through a corridor
+//     between two walls splits each of its rungs, and the fans at the new midpoints leave about
+//     1.5 rungs per old one on each side, which the next path through that corridor must split in
+//     turn (geometric in the paths sharing a corridor); 79.1k of them are diagonals inside input
+//     faces (17.6k lie on input edges). Per round at most 7 such diagonal midpoints are branch
+//     points or band ends, which must stay. With the straightening, root 7844 gets 211k vertices
+//     (its last round 32k new, 14.7k collapsed again), root 0 211k instead of 649k. What is left
+//     compounds through the input edges' crossings; drawn as normal curves, k paths through a
+//     corridor of L rungs would add k L: rounds that keep every constructed vertex on an input
+//     edge and triangulate each input face again along its wall arcs (a path turning around a
+//     wall's dead end on an input edge then needs a bend point inside the face). Steering the
+//     paths instead does not help: a halo cost beside the walls (1 or 3 mean edges: root 7844
+//     506k -> failed / 623k, root 0 649k -> 698k / 486k) or midpoints costing 3x or 5x when one
+//     or both ends of their chord are split vertices (437k, 843k): the same noise.
 //     The root and metric are chosen among candidates by the planned vertex count (the refined
 //     surface's vertices plus the planned detaching's crossings): each candidate is planned, not
 //     drawn, and only the one kept is realized; candidates go in fixed pairs, side by side on two
@@ -169,7 +171,7 @@ struct CutOptions {
   Construction construction = Construction::Best;
   /// Bound on the vertices the normal form may add, as a multiple of the input's vertex count;
   /// exceeding it with every root is igm::Error(Unsupported). Cheese (g133 on 8.6k vertices) needs
-  /// 43x: its late crosses' loops are long for a mesh that coarse.
+  /// 17x: its late crosses' loops are long for a mesh that coarse.
   double max_normal_form_growth = 100.0;
   /// The rounds construction is abandoned for a root once it passes this multiple (its later loops
   /// compound on coarse meshes of high genus); with Best, after two roots that did so it is not
@@ -216,6 +218,7 @@ struct CutStats {
   int congestion_candidates = 0;  // root candidates reweighted (without the normal form)
   int normal_form_rounds = 0;   // rounds of the normal form's construction (<= g)
   int round_chord_splits = 0;   // chords split so that a round's (or the crosses' tree's) paths exist
+  int straightened = 0;         // of those, split diagonals inside input faces removed again (step 3b)
   bool crosses = false;         // the normal form came from the crosses construction
   double seconds_basis = 0, seconds_detach = 0, seconds_cut = 0, seconds_total = 0;
 };

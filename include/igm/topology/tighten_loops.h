@@ -39,6 +39,7 @@
 // radius k (a disk for k <= 3; min-cost flow with the strands' exits on its boundary fixed) saves
 // 0, 2 and 9 of the 30, 82 and 126 constructed vertices there. The floor is loose where the loops
 // leave the root in bundles towards their handles, as they do here.
+#include <utility>
 #include <vector>
 
 #include "igm/mesh/surface_point.h"
@@ -57,6 +58,28 @@ struct TightenedLoops {
   std::vector<std::vector<int>> loops;   // the same loops (same order, same start at the root)
   TightenStats stats;
 };
+
+struct StraightenedPaths {
+  RefinedSurface surface;  // vertices below `first` keep their ids; the others are renumbered in order
+  std::vector<int> to;     // old vertex -> its new id, or (removed) that of the vertex it went into
+  int removed = 0;
+};
+
+/// Straightens paths between the points where they cross input edges: every vertex v >= first
+/// that lies strictly inside an input face, has exactly two neighbours along `edges` (vertex pairs
+/// of surface.mesh: the union of some vertex-disjoint paths and trees) and is not in `keep`, is
+/// collapsed into one of its two path neighbours (the first listed, else the other), where the
+/// collapse passes the tightening's exact checks (link condition, valences >= 3, every moved face
+/// keeping its orientation in its input face). The path then runs straight from that neighbour
+/// to the next. For the normal form's crosses (cut_to_canonical_disk.h, step 3b): a path found on
+/// a copy crosses the diagonals between walls inside an input face at their midpoints, and without
+/// this every later path through the corridor would cross the fans at those midpoints in turn.
+/// Pre: a valid refinement, `edges` edges of its mesh (else igm::Error(Internal)). Post: a valid
+/// refinement of the same surface with `removed` fewer vertices; an edge (x, y) of `edges` becomes
+/// (to[x], to[y]) (dropped where they are equal). Cost O(F + candidates x valence^2) and
+/// O(valence) exact orientations per tried collapse.
+StraightenedPaths straighten_paths(RefinedSurface surface, const std::vector<std::pair<int, int>>& edges,
+                                   const std::vector<int>& keep, int first);
 
 /// Tightens `loops` (vertex cycles of surface.mesh, each starting at `root`, pairwise disjoint but
 /// at the root) as described above. Pre: surface is a valid refinement (closed manifold mesh,
