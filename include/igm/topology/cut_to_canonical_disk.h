@@ -123,10 +123,10 @@
 //     faces (17.6k lie on input edges). Per round at most 7 such diagonal midpoints are branch
 //     points or band ends, which must stay. With the straightening, root 7844 gets 211k vertices
 //     (its last round 32k new, 14.7k collapsed again), root 0 211k instead of 649k. What is left
-//     compounds through the input edges' crossings; drawn as normal curves, k paths through a
-//     corridor of L rungs would add k L: rounds that keep every constructed vertex on an input
-//     edge and triangulate each input face again along its wall arcs (a path turning around a
-//     wall's dead end on an input edge then needs a bend point inside the face). Steering the
+//     is the late crosses' own length: the last four rounds' single crosses are then 9.9k, 15.8k,
+//     26.4k and 32k edges long and cross input edges 5.6k, 8.7k, 13.9k and 17.2k times (cheese
+//     has 26.7k edges), winding through what the earlier walls leave; shorter ones need earlier
+//     rounds that leave room for them (a choice of crosses, not a cheaper drawing). Steering the
 //     paths instead does not help: a halo cost beside the walls (1 or 3 mean edges: root 7844
 //     506k -> failed / 623k, root 0 649k -> 698k / 486k) or midpoints costing 3x or 5x when one
 //     or both ends of their chord are split vertices (437k, 843k): the same noise.
