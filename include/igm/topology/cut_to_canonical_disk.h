@@ -73,7 +73,8 @@
 //     copy's order, so that the paths exist). With no chord a linked pair exists (the
 //     intersection form is nondegenerate). At most g rounds, at most 2 (log2 g + 2) searches per
 //     round. On a coarse mesh of high genus the late rounds' paths must run along earlier loops
-//     through chords and the splits compound (cheese g133 passes 4x its vertices).
+//     through chords and the splits compound (cheese g133 passes 4x its vertices; straightening the
+//     new paths as in (b) does not stop it: root 7844 still passes 100x, stop 21).
 //     b. crosses: g disjoint crosses, each round's hung at once from one tree P from the root. A
 //     cross is a linked pair of loops of a tree-cotree basis of the surface cut along the crosses
 //     and P so far (Dijkstra forest from seeds off them, spread farthest-first; dual maximum
