@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <random>
 #include <set>
 #include <string>
 #include <utility>
@@ -179,6 +180,75 @@ TEST_CASE("straightening removes path vertices inside input faces, keeps the oth
   CHECK(st2.surface.mesh.num_vertices() == nin + 1);
   CHECK(igm_test::refinement_violation(in, st2.surface, true) == "");
 
+  // A collapse that would flatten a face is refused, and the other neighbour is tried: with the
+  // input edge a-c split at m, s into a would make (a, c, m) flat; s goes into b.
+  RefinedSurface flat = base;
+  const int s3 = flat.split_face(0);
+  flat.split_edge(flat.mesh.find_halfedge(a, c), make_rational(1, 2));
+  StraightenedPaths st3 = straighten_paths(flat, {{a, s3}, {s3, b}}, {}, s3);
+  CHECK(st3.removed == 1);
+  CHECK(st3.to[s3] == b);
+  CHECK(igm_test::refinement_violation(in, st3.surface, true) == "");
+
   // A path edge that is not an edge of the mesh is a typed error, not a silent skip.
   CHECK_THROWS_AS(straighten_paths(rs, {{a, s}, {s, nin + 7}}, {}, nin), Error);
+}
+
+TEST_CASE("straightening random paths through nested face points keeps an exact refinement and the paths' edges") {
+  // Face points split again and again (each inside the one before), joined into vertex-disjoint
+  // paths corner - p_k - ... - p_1 - corner; after the straightening every mapped path edge must be
+  // an edge, and the surface an exact refinement of the input (re-checked from the raw triangles).
+  std::mt19937 rng(21);
+  for (int trial = 0; trial < 12; ++trial) {
+    CAPTURE(trial);
+    const ValidMesh in = igm_test::generated_mesh(1 + trial % 3, 300 + 40 * trial, 100 + trial);
+    const int nin = in.mesh.num_vertices();
+    RefinedSurface rs;
+    rs.mesh = in.mesh;
+    rs.num_input_vertices = nin;
+    rs.input_positions = in.positions;
+    std::vector<std::pair<int, int>> edges;
+    std::vector<char> used(nin, 0);
+    int paths = 0;
+    for (int attempt = 0; attempt < 40 && paths < 6; ++attempt) {
+      const int f = static_cast<int>(rng() % static_cast<unsigned>(in.mesh.num_faces()));
+      const auto t = rs.mesh.face_vertices(f);
+      if (std::any_of(t.begin(), t.end(), [&](int v) { return v >= nin || used[v]; })) continue;
+      for (int v : t) used[v] = 1;
+      // Nested points: each split of a face (corner a, corner b, previous point).
+      const int a = t[0], b = t[1];
+      int prev = rs.split_face(f);
+      std::vector<int> chain{prev};
+      const int depth = 1 + static_cast<int>(rng() % 4);
+      for (int k = 1; k < depth; ++k) {
+        int g = -1;
+        for (int h = rs.mesh.vertex_halfedge(prev), h0 = h;;) {  // the face (prev, a, b)
+          const auto u = rs.mesh.face_vertices(TriMesh::face(h));
+          if (std::count(u.begin(), u.end(), a) && std::count(u.begin(), u.end(), b)) g = TriMesh::face(h);
+          h = rs.mesh.next_around_origin(h);
+          if (h == h0) break;
+        }
+        REQUIRE(g >= 0);
+        prev = rs.split_face(g);
+        chain.push_back(prev);
+      }
+      // The path a - p_last - ... - p_1 - b, every step an edge of the mesh.
+      std::vector<int> path{a};
+      for (auto it = chain.rbegin(); it != chain.rend(); ++it) path.push_back(*it);
+      path.push_back(b);
+      bool ok = true;
+      for (std::size_t i = 0; i + 1 < path.size(); ++i) ok = ok && rs.mesh.find_halfedge(path[i], path[i + 1]) >= 0;
+      if (!ok) continue;  // a nested point not adjacent to the one before: not a path
+      for (std::size_t i = 0; i + 1 < path.size(); ++i) edges.push_back({path[i], path[i + 1]});
+      ++paths;
+    }
+    REQUIRE(paths > 0);
+    const int before = rs.mesh.num_vertices();
+    const StraightenedPaths st = straighten_paths(rs, edges, {}, nin);
+    CHECK(st.removed > 0);
+    CHECK(st.surface.mesh.num_vertices() == before - st.removed);
+    CHECK(igm_test::refinement_violation(in, st.surface, true) == "");
+    for (const auto& [x, y] : edges)
+      if (st.to[x] != st.to[y]) CHECK(st.surface.mesh.find_halfedge(st.to[x], st.to[y]) >= 0);
+  }
 }
