@@ -73,6 +73,8 @@ struct FaceList {
   explicit FaceList(const RefinedSurface& s)
       : rs(s), tri(s.mesh.num_faces()), face_alive(tri.size(), 1), alive(s.mesh.num_vertices(), 1),
         built(s.mesh.num_vertices(), 0), inc(s.mesh.num_vertices()), stamp(s.mesh.num_vertices(), 0) {
+    if (static_cast<int>(rs.constructed.size()) != rs.mesh.num_vertices() - rs.num_input_vertices)
+      internal("constructed points out of step with the mesh");
     for (int f = 0; f < rs.mesh.num_faces(); ++f) tri[f] = rs.mesh.face_vertices(f);
   }
   std::vector<int>& faces_at(int v) {
@@ -164,9 +166,15 @@ struct FaceList {
     alive[c] = 0;
   }
   // The surface without the collapsed vertices: input vertices keep their ids, the surviving
-  // constructed ones are renumbered in order (new_id; -1 for a collapsed one). O(n + F log F).
+  // constructed ones are renumbered in order (new_id; -1 for a collapsed one). With none collapsed
+  // the surface is returned as it is (only loops on it may have moved). O(n + F log F).
   RefinedSurface compacted(RefinedSurface&& old, std::vector<int>& new_id) const {
     const int nv = old.mesh.num_vertices(), nin = old.num_input_vertices;
+    if (std::find(alive.begin(), alive.end(), 0) == alive.end()) {
+      new_id.resize(nv);
+      std::iota(new_id.begin(), new_id.end(), 0);
+      return std::move(old);
+    }
     new_id.assign(nv, -1);
     std::iota(new_id.begin(), new_id.begin() + nin, 0);
     int next_id = nin;
@@ -191,19 +199,9 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
   RefinedSurface& rs = surface;
   const int nv = rs.mesh.num_vertices();
   const int nin = rs.num_input_vertices;
-  if (static_cast<int>(rs.constructed.size()) != nv - nin) internal("constructed points out of step with the mesh");
   const int nloops = static_cast<int>(loops.size());
 
   FaceList fl(rs);
-  auto& tri = fl.tri;
-  auto& alive = fl.alive;
-  auto& nc = fl.nc;
-  auto& nw = fl.nw;
-  auto faces_at = [&](int v) -> std::vector<int>& { return fl.faces_at(v); };
-  auto neighbours = [&](int v, std::vector<int>& nb) { fl.neighbours(v, nb); };
-  auto collapse_ok = [&](int c, int w, int shared[2]) { return fl.collapse_ok(c, w, shared); };
-  auto do_collapse = [&](int c, int w, const int shared[2]) { fl.collapse(c, w, shared); };
-  auto face_with = [&](int a, int b, int c) { return fl.face_with(a, b, c); };
 
   // The loops as linked lists over their vertices (the root excluded: every other vertex is on at
   // most one loop): loop_of (-1: free), nxt / prv (the root at the two ends).
@@ -242,19 +240,19 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
   // M3: a free constructed vertex v is removed by collapsing it into a neighbour y (the lowest id
   // that passes), if y gains no forbidden adjacency.
   auto remove_free = [&](int v) {
-    if (v < nin || !alive[v] || loop_of[v] != -1) return false;
+    if (v < nin || !fl.alive[v] || loop_of[v] != -1) return false;
     std::vector<int> cand;
-    neighbours(v, cand);
+    fl.neighbours(v, cand);
     std::sort(cand.begin(), cand.end());
     for (int y : cand) {
       if (y == root) continue;
       int shared[2];
-      if (!collapse_ok(v, y, shared)) continue;
-      bool ok = true;  // nc = v's neighbours: y's new ones
-      for (int u : nc)
+      if (!fl.collapse_ok(v, y, shared)) continue;
+      bool ok = true;  // fl.nc = v's neighbours (from collapse_ok): y's new ones
+      for (int u : fl.nc)
         if (u != y && !adjacency_ok(y, loop_of[y], u)) ok = false;
       if (!ok) continue;
-      do_collapse(v, y, shared);
+      fl.collapse(v, y, shared);
       ++out.stats.collapsed;
       return true;
     }
@@ -267,7 +265,7 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
     const int L = loop_of[v];
     if (L < 0) return false;
     const int u = prv[v], t = nxt[v];
-    if (u == root || t == root || !face_with(v, u, t)) return false;
+    if (u == root || t == root || !fl.face_with(v, u, t)) return false;
     set_next(L, u, t);
     loop_of[v] = -1, prv[v] = nxt[v] = -1;
     ++out.stats.shortcuts;
@@ -281,17 +279,17 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
   auto pull_into = [&](int c, int w) {
     const int L = loop_of[c];
     int shared[2];
-    if (!collapse_ok(c, w, shared)) return false;
+    if (!fl.collapse_ok(c, w, shared)) return false;
     const int p = prv[c], n = nxt[c];
     const int pp = p == root ? -1 : prv[p], nn = n == root ? -1 : nxt[n];
     int via = -1;  // the loop neighbour of c to shortcut past afterwards
-    for (int u : nw) {  // w's neighbours before the collapse (c's are kept by c's own rules)
+    for (int u : fl.nw) {  // w's neighbours before the collapse (c's are kept by c's own rules)
       if (u == c || adjacency_ok(c, L, u)) continue;
-      if (u == nn && nn != root && via < 0 && (face_with(w, n, nn) || face_with(c, n, nn))) via = n;
-      else if (u == pp && pp != root && via < 0 && (face_with(w, p, pp) || face_with(c, p, pp))) via = p;
+      if (u == nn && nn != root && via < 0 && (fl.face_with(w, n, nn) || fl.face_with(c, n, nn))) via = n;
+      else if (u == pp && pp != root && via < 0 && (fl.face_with(w, p, pp) || fl.face_with(c, p, pp))) via = p;
       else return false;
     }
-    do_collapse(c, w, shared);
+    fl.collapse(c, w, shared);
     loop_of[w] = L, prv[w] = p, nxt[w] = n;
     set_next(L, p, w);
     set_next(L, w, n);
@@ -320,8 +318,8 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
   // in order from p. Empty if none (or `from` is on neither side).
   auto far_arc = [&](int w, int from, int p, int n) {
     fan.clear();
-    for (int f : faces_at(w)) {
-      const auto& t = tri[f];
+    for (int f : fl.faces_at(w)) {
+      const auto& t = fl.tri[f];
       const int k = t[0] == w ? 0 : (t[1] == w ? 1 : 2);
       fan.push_back({t[(k + 1) % 3], t[(k + 2) % 3]});
     }
@@ -372,7 +370,7 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
     loop_of[w] = -1, prv[w] = nxt[w] = -1;
     std::vector<int> nz;
     for (int z : arc) {
-      neighbours(z, nz);
+      fl.neighbours(z, nz);
       for (int u : nz)
         if (!adjacency_ok(z, B, u)) return false;
     }
@@ -392,7 +390,7 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
   auto pull = [&](int c) {
     if (c < nin || loop_of[c] < 0) return -1;
     std::vector<int> cand;
-    neighbours(c, cand);
+    fl.neighbours(c, cand);
     std::sort(cand.begin(), cand.end());
     for (int w : cand)
       if (loop_of[w] == -1 && w != root && pull_into(c, w)) return w;
@@ -424,18 +422,12 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
         v = nxt[w >= 0 ? w : v];
       }
     for (int v = nin; v < nv; ++v)
-      if (alive[v] && loop_of[v] == -1 && remove_free(v)) changed = true;
+      if (fl.alive[v] && loop_of[v] == -1 && remove_free(v)) changed = true;
   }
 
   // Compact: input vertices keep their ids, surviving constructed ones are renumbered in order.
-  // With no vertex removed the mesh is unchanged (only the loops may have moved): kept as it is.
-  std::vector<int> new_id(nv, -1);
-  if (out.stats.collapsed == 0) {
-    std::iota(new_id.begin(), new_id.end(), 0);
-    out.surface = std::move(rs);
-  } else {
-    out.surface = fl.compacted(std::move(rs), new_id);
-  }
+  std::vector<int> new_id;
+  out.surface = fl.compacted(std::move(rs), new_id);
   out.loops.assign(nloops, {});
   for (int L = 0; L < nloops; ++L) {
     auto& P = out.loops[L];
@@ -451,7 +443,6 @@ StraightenedPaths straighten_paths(RefinedSurface surface, const std::vector<std
   RefinedSurface& rs = surface;
   const int n = rs.mesh.num_vertices();
   const int nin = rs.num_input_vertices;
-  if (static_cast<int>(rs.constructed.size()) != n - nin) internal("constructed points out of step with the mesh");
   if (first < nin || first > n) internal("first candidate out of range", {first});
   // Each vertex's path neighbours (a candidate has exactly two).
   std::vector<int> degree(n, 0);
@@ -489,19 +480,20 @@ StraightenedPaths straighten_paths(RefinedSurface surface, const std::vector<std
     }
   }
   std::vector<int> new_id;
-  if (out.removed == 0) {
-    new_id.resize(n);
-    std::iota(new_id.begin(), new_id.end(), 0);
-    out.surface = std::move(rs);
-  } else {
-    out.surface = fl.compacted(std::move(rs), new_id);
-  }
+  out.surface = fl.compacted(std::move(rs), new_id);
+  // Each removed vertex's chain of targets ends at a surviving vertex (a target was alive when
+  // taken); chains are compressed as they are followed, so O(n) steps in all.
   out.to.resize(n);
   for (int v = 0; v < n; ++v) {
     int u = v;
-    for (int guard = 0; into[u] >= 0; ++guard) {  // each step goes to a vertex still alive then
+    for (int guard = 0; into[u] >= 0; ++guard) {
       if (guard > n) internal("collapse chain does not end", {v});
       u = into[u];
+    }
+    for (int x = v; into[x] >= 0;) {
+      const int next = into[x];
+      into[x] = u;
+      x = next;
     }
     out.to[v] = new_id[u];
   }
