@@ -131,6 +131,21 @@
 //     paths instead does not help: a halo cost beside the walls (1 or 3 mean edges: root 7844
 //     506k -> failed / 623k, root 0 649k -> 698k / 486k) or midpoints costing 3x or 5x when one
 //     or both ends of their chord are split vertices (437k, 843k): the same noise.
+//     Where cheese's size comes from (stop 22, root 4706): the detaching's 85k crossings are at
+//     least 16.3k on P (four strands per cross hung below) plus 25.3k inside the crosses (a cross
+//     hung on an arm carries three strands to where its loops meet; 8.2k if each were hung at its
+//     best vertex), a pass costing about two; the crosses hold 60.8k of the 63.6k surface
+//     vertices, nearly all in the last rounds' crosses, whatever their seed. Not kept (stop 22;
+//     roots 4706 / 7844 / 2: 148k / 211k / 257k): each cross hung where 4 x its depth along P plus
+//     its own passes is least (229k / 246k / 223k); midpoints at 1-10 mean edges (190k-209k); P
+//     passable at a cost, cut there and the crosses below hung again (a round's crosses get 2-10x
+//     shorter, but the re-hung paths wind: > 0.7M); crosses also hung from earlier crosses' wedges
+//     between blocks (195k / 304k / 212k; after rounds without P, 0.56M); the rounds (a) for the
+//     last 3-20 handles (326k to > 870k); pairs by the size of their union (182k / 240k / 218k).
+//     Couplingdown (2141 vertices): every edge in a gap as a candidate band (2152-2195), the gaps'
+//     depths scaled by 0.3-10 (2200-2294), the ring-deficit roots of step 1 (2234); every 10th
+//     vertex as the root gives at best 2123. One shortest-path tree spanning every vertex seldom
+//     holds g crossing pairs of single-edge bands with disjoint spans (couplingdown 4-6 of 9).
 //     The root and metric are chosen among candidates by the planned vertex count (the refined
 //     surface's vertices plus the planned detaching's crossings): each candidate is planned, not
 //     drawn, and only the one kept is realized; candidates go in fixed pairs, side by side on two
