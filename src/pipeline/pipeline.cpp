@@ -1,5 +1,7 @@
 #include "igm/pipeline/pipeline.h"
 
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -27,6 +29,28 @@ std::string format(const char* fmt, double a = 0, double b = 0, double c = 0, do
   char buf[256];
   std::snprintf(buf, sizeof buf, fmt, a, b, c, d);
   return buf;
+}
+
+// This machine's physical memory in bytes, 0 if unknown.
+std::uint64_t physical_memory() {
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && page > 0 ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) : 0;
+}
+
+// Throws Unsupported if the stages after an arrangement of `triangles` triangles would need more
+// than the memory limit (PipelineOptions::memory_limit_bytes, kBytesPerIgmTriangle each).
+void check_memory(std::size_t triangles, const PipelineOptions& options) {
+  const bool own = options.memory_limit_bytes > 0;
+  const std::uint64_t limit = own ? options.memory_limit_bytes : physical_memory();
+  const double need = kBytesPerIgmTriangle * static_cast<double>(triangles);
+  if (limit == 0 || need <= static_cast<double>(limit)) return;
+  const double gb = 1024.0 * 1024.0 * 1024.0;
+  throw Error(ErrorKind::Unsupported,
+              format("the arrangement has %.0f triangles: the IGM, its quads and its certificate would need about "
+                     "%.1f GB (%.0f bytes per triangle), more than the %.1f GB ",
+                     static_cast<double>(triangles), need / gb, kBytesPerIgmTriangle, static_cast<double>(limit) / gb) +
+                  (own ? "memory limit" : "of this machine's memory") +
+                  (options.normal_form ? "; without the normal form the topology stage grows the mesh far less" : ""));
 }
 
 }  // namespace
@@ -131,6 +155,7 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
              format("%.0f layout quads, %.0f crossings, %.0f -> %.0f triangles", static_cast<double>(layout.quads.size()),
                     static_cast<double>(overlay.stats.crossings), static_cast<double>(disk.triangles.size()),
                     static_cast<double>(overlay.mesh.triangles.size())));
+  check_memory(overlay.mesh.triangles.size(), options);
 
   // --- igm: piecewise-affine map of every layout quad onto the unit square ---
   t0 = Clock::now();

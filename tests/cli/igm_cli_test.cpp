@@ -113,6 +113,27 @@ TEST_CASE("igm run: shared torus certified, invalid mesh and bad options exit 2"
   }
 }
 
+TEST_CASE("igm run: a memory limit too small for the arrangement exits 2 after the arrange stage") {
+  const auto cwd = tmp_dir() / "memory";
+  const std::string igm_cmd = quote(IGM_CLI_PATH);
+  REQUIRE(in_folder(cwd, igm_cmd + " generate --genus 4 --faces 2000 --seed 3 g4.obj").code == 0);
+  const Run small = in_folder(cwd, igm_cmd + " run g4.obj -o res --memory-limit-mb 1");
+  CHECK(small.code == 2);
+  CHECK(has(small.err, "unsupported"));
+  CHECK(has(small.err, "memory limit"));
+  CHECK(has(small.out, "[arrange "));
+  CHECK(!has(small.out, "[igm "));
+  CHECK(!std::filesystem::exists(cwd / "res" / "g4.igm.exact"));
+  const Run enough = in_folder(cwd, igm_cmd + " run g4.obj -o res --memory-limit-mb 4096");
+  CHECK(enough.code == 0);
+  CHECK(has(enough.out, "certified: VALID"));
+  for (const char* a : {" run g4.obj --memory-limit-mb 0", " run g4.obj --memory-limit-mb x", " run g4.obj --memory-limit-mb"}) {
+    CAPTURE(a);
+    CHECK(in_folder(cwd, igm_cmd + a).code == 2);
+  }
+  std::filesystem::remove_all(cwd);
+}
+
 TEST_CASE("help and usage errors") {
   for (const char* a : {"--help", "help", "-h"}) {
     const Run r = igm(a);

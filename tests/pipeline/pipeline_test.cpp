@@ -200,6 +200,28 @@ TEST_CASE("bad options give typed errors") {
   }
 }
 
+TEST_CASE("the memory limit: an arrangement needing more than it stops after the arrange stage") {
+  const ValidMesh mesh = igm_test::generated_mesh(2, 600, 3);
+  PipelineOptions o;
+  const PipelineResult r = compute_igm(mesh, o);  // the default limit: this machine's memory
+  REQUIRE(r.certified());
+  const auto need = static_cast<std::uint64_t>(kBytesPerIgmTriangle * r.stats.output_triangles);
+  o.memory_limit_bytes = need;  // exactly what the rate asks for
+  CHECK(compute_igm(mesh, o).certified());
+  std::vector<std::string> stages;
+  o.progress = [&](const StageEvent& e) { stages.push_back(e.stage); };
+  o.memory_limit_bytes = need - 1;
+  try {
+    compute_igm(mesh, o);
+    FAIL("ran past a memory limit one byte short");
+  } catch (const Error& e) {
+    CHECK(e.kind() == ErrorKind::Unsupported);
+    CHECK(std::string(e.what()).find(std::to_string(r.stats.output_triangles) + " triangles") != std::string::npos);
+    CHECK(std::string(e.what()).find("memory limit") != std::string::npos);
+  }
+  CHECK(stages == std::vector<std::string>{"topology", "embed", "arrange"});
+}
+
 TEST_CASE("shared clean meshes of genus >= 1 are certified") {
   IGM_REQUIRE_DATA(dir);
   for (const char* name : {"mpi_triang.off", "pipe.off", "knot.off", "eight.off", "joint.off", "helmet.off",

@@ -2,6 +2,7 @@
 // The whole pipeline on a validated mesh: topology -> embed -> arrange -> igm -> extract ->
 // certify (design.md). Returns the IGM, the quad mesh and the certifier's reports on both.
 #include <array>
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -15,6 +16,12 @@
 #include "igm/topology/cut_to_canonical_disk.h"
 
 namespace igm {
+
+/// Peak resident memory per IGM triangle of the genus >= 1 pipeline after its arrangement, as
+/// measured by `igm run` (couplingdown with the normal form: 22k triangles, 51 MB; cheese: 423k
+/// triangles, 875 MB; a generated 1M-face torus: 1.0M triangles, 2065 MB): the basis of
+/// PipelineOptions::memory_limit_bytes.
+inline constexpr double kBytesPerIgmTriangle = 2048;
 
 /// Reported after each stage through PipelineOptions::progress (the library never prints).
 struct StageEvent {
@@ -43,6 +50,12 @@ struct PipelineOptions {
   /// Refinement bounds of the embedding (Tutte for g >= 1, orbifold Tutte for g = 0).
   TutteOptions tutte;
   std::size_t max_witnesses = 20;
+  /// Genus >= 1: the memory the stages after the arrangement may need, in bytes (0: this machine's
+  /// physical memory; no check where that is unknown). They need about kBytesPerIgmTriangle per
+  /// IGM triangle (exact locations, UVs, charts, quads, the certifier's copy); an arrangement
+  /// that would need more is igm::Error(Unsupported) at once, instead of running out of memory
+  /// minutes later (cheese with the normal form: 17.0M triangles, ~32 GB).
+  std::uint64_t memory_limit_bytes = 0;
   std::function<void(const StageEvent&)> progress;  // optional
 };
 
