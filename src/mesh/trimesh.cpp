@@ -25,18 +25,27 @@ TriMesh TriMesh::from_triangles(int num_vertices, const std::vector<std::array<i
       m.out_[v] = static_cast<int>(3 * f + i);
     }
   // Pair half-edges by sorting (min, max, h): each undirected edge must appear exactly twice,
-  // once in each direction.
+  // once in each direction. A counting sort by min (h ascending within each vertex), then each
+  // vertex's bucket by (max, h): O(nh + sum of b log b) for buckets of b <= 2 x valence, not
+  // O(nh log nh).
   struct Key {
     int a, b, h;
   };
+  std::vector<int> start(static_cast<std::size_t>(num_vertices) + 1, 0);
+  for (std::size_t h = 0; h < nh; ++h)
+    ++start[std::min(m.origin_[h], m.origin_[next(static_cast<int>(h))]) + 1];
+  for (int v = 0; v < num_vertices; ++v) start[v + 1] += start[v];
   std::vector<Key> keys(nh);
-  for (std::size_t h = 0; h < nh; ++h) {
-    int a = m.origin_[h], b = m.origin_[next(static_cast<int>(h))];
-    keys[h] = {std::min(a, b), std::max(a, b), static_cast<int>(h)};
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (std::size_t h = 0; h < nh; ++h) {
+      const int a = m.origin_[h], b = m.origin_[next(static_cast<int>(h))];
+      keys[fill[std::min(a, b)]++] = {std::min(a, b), std::max(a, b), static_cast<int>(h)};
+    }
   }
-  std::sort(keys.begin(), keys.end(), [](const Key& x, const Key& y) {
-    return x.a != y.a ? x.a < y.a : (x.b != y.b ? x.b < y.b : x.h < y.h);
-  });
+  for (int v = 0; v < num_vertices; ++v)
+    std::sort(keys.begin() + start[v], keys.begin() + start[v + 1],
+              [](const Key& x, const Key& y) { return x.b != y.b ? x.b < y.b : x.h < y.h; });
   for (std::size_t i = 0; i < nh;) {
     std::size_t j = i;
     while (j < nh && keys[j].a == keys[i].a && keys[j].b == keys[i].b) ++j;
