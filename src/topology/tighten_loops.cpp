@@ -221,7 +221,10 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
     }
     head[i] = L[1], tail[i] = L.back();
   }
+  // The vertices whose loop state or incident faces a move changed (see the passes below).
+  std::vector<int> touched;
   auto set_next = [&](int L, int a, int b) {  // a -> b along L (either may be the root)
+    touched.push_back(a), touched.push_back(b);
     if (a == root) head[L] = b;
     else nxt[a] = b;
     if (b == root) tail[L] = a;
@@ -252,6 +255,8 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
       for (int u : fl.nc)
         if (u != y && !adjacency_ok(y, loop_of[y], u)) ok = false;
       if (!ok) continue;
+      touched.insert(touched.end(), fl.nc.begin(), fl.nc.end());
+      touched.push_back(v);
       fl.collapse(v, y, shared);
       ++out.stats.collapsed;
       return true;
@@ -268,6 +273,7 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
     if (u == root || t == root || !fl.face_with(v, u, t)) return false;
     set_next(L, u, t);
     loop_of[v] = -1, prv[v] = nxt[v] = -1;
+    touched.push_back(v);
     ++out.stats.shortcuts;
     remove_free(v);
     return true;
@@ -289,6 +295,8 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
       else if (u == pp && pp != root && via < 0 && (fl.face_with(w, p, pp) || fl.face_with(c, p, pp))) via = p;
       else return false;
     }
+    touched.insert(touched.end(), fl.nc.begin(), fl.nc.end());
+    touched.push_back(c);
     fl.collapse(c, w, shared);
     loop_of[w] = L, prv[w] = p, nxt[w] = n;
     set_next(L, p, w);
@@ -368,6 +376,7 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
     save(n);
     set_next(B, before, n);
     loop_of[w] = -1, prv[w] = nxt[w] = -1;
+    touched.push_back(w);
     std::vector<int> nz;
     for (int z : arc) {
       fl.neighbours(z, nz);
@@ -401,8 +410,34 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
 
   // Passes until one changes nothing. Each change lowers (alive vertices) * (V + 1) + (total loop
   // length), V the vertices at the start: M1, M3 and M4 remove a vertex and lengthen the loops by
-  // less than V + 1, M2 shortens one. So at most V (V + 2) + 1 passes (in practice 3 to 6); a pass
-  // visits every loop vertex and every free constructed vertex once.
+  // less than V + 1, M2 shortens one. So at most V (V + 2) + 1 passes (in practice 3 to 9); a pass
+  // visits every loop vertex and every free constructed vertex once, in the same order, but checks
+  // only the dirty ones: a check reads the loop state of the vertices within three edges of its
+  // vertex and the faces at those within two, so a vertex whose check failed is clean until a move
+  // changes that state within kReach edges of it (each move marks the kReach-ring of the vertices
+  // it touched, in the surface after it). A clean vertex's check would fail again, so the moves
+  // and the result are those of checking every vertex in every pass; on cheese's normal form
+  // (9 passes) 1.4 s -> 0.2 s.
+  constexpr int kReach = 4;  // one more than the reads need
+  std::vector<char> dirty(nv, 1);
+  std::vector<int> seen(nv, 0), frontier, next_frontier, nb;
+  int seen_clock = 0;
+  auto mark_touched = [&] {
+    ++seen_clock;
+    frontier.clear();
+    for (int x : touched)
+      if (x >= 0 && fl.alive[x] && seen[x] != seen_clock) seen[x] = seen_clock, dirty[x] = 1, frontier.push_back(x);
+    for (int r = 0; r < kReach && !frontier.empty(); ++r) {
+      next_frontier.clear();
+      for (int x : frontier) {
+        fl.neighbours(x, nb);
+        for (int u : nb)
+          if (seen[u] != seen_clock) seen[u] = seen_clock, dirty[u] = 1, next_frontier.push_back(u);
+      }
+      frontier.swap(next_frontier);
+    }
+    touched.clear();
+  };
   const long long max_passes = static_cast<long long>(nv) * (nv + 2) + 1;
   for (bool changed = true; changed;) {
     changed = false;
@@ -411,18 +446,29 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
     for (int L = 0; L < nloops; ++L)
       for (int v = head[L], guard = 0; v != root; ++guard) {
         if (guard > nv) internal("loop list does not end at the root");
+        if (!dirty[v]) {
+          v = nxt[v];
+          continue;
+        }
+        touched.clear();
         const int before = prv[v];
         if (shortcut(v)) {
           changed = true;
+          mark_touched();
           v = before == root ? head[L] : nxt[before];
           continue;
         }
         const int w = pull(v);
-        if (w >= 0) changed = true;
+        if (w >= 0) changed = true, mark_touched();
+        else dirty[v] = 0;
         v = nxt[w >= 0 ? w : v];
       }
-    for (int v = nin; v < nv; ++v)
-      if (fl.alive[v] && loop_of[v] == -1 && remove_free(v)) changed = true;
+    for (int v = nin; v < nv; ++v) {
+      if (!dirty[v] || !fl.alive[v] || loop_of[v] != -1) continue;
+      touched.clear();
+      if (remove_free(v)) changed = true, mark_touched();
+      else dirty[v] = 0;
+    }
   }
 
   // Compact: input vertices keep their ids, surviving constructed ones are renumbered in order.
