@@ -96,7 +96,9 @@
 //     path neighbour when the tightening's exact checks allow (straighten_paths, tighten_loops.h),
 //     so the path runs straight across the face and later rounds do not meet the fan the midpoint
 //     made: cheese g133 gets 148k vertices, 17x (373k, 43x, without; measured against 2.5M for the
-//     prototype), generated genus 200 on 30k faces 151k instead of 191k.
+//     prototype), generated genus 200 on 30k faces 151k instead of 191k, each the best of 11 and 6
+//     roots. Since stop 23 they get one root by default (CutOptions::normal_form_roots, hop counts):
+//     160.8k in 2-3.5 s instead of 31 s, and 195k in 3 s instead of 14 s.
 //     Measured and rejected before: handle slides on the detached greedy loops (plan_handle_slides,
 //     handle_slides.h): the slides' paths double in length per handle on cheese; rounds that
 //     detached their loops before the next round (stop 13): every later round had to squeeze
@@ -150,9 +152,11 @@
 //     surface's vertices plus the planned detaching's crossings): each candidate is planned, not
 //     drawn, and only the one kept is realized; candidates go in fixed pairs, side by side on two
 //     threads (CutOptions::parallel), each pair bounded by the best of the pairs before it and
-//     merged in order, so the result does not depend on the threads. Loops are
-//     renumbered and reoriented so that the word is exactly L0 L1 L0^-1 L1^-1 L2 L3 ... Off, the
-//     word is whatever step 2 gives.
+//     merged in order, so the result does not depend on the threads; a lone candidate (a given
+//     root, or one root: CutOptions::normal_form_roots, which gives cheese one since stop 23) runs
+//     its rounds and its crosses side by side instead, the crosses stopped once the rounds succeed.
+//     Loops are renumbered and reoriented so that the word is exactly L0 L1 L0^-1 L1^-1 L2 L3 ...
+//     Off, the word is whatever step 2 gives.
 //  4. embedding pre-conditions (embed/tutte.h): every interior disk edge joining two vertices of
 //     one polygon side (a root copy lies on its two sides) is split at its midpoint; then no
 //     triangle has three vertices on one side. O(n).
@@ -172,10 +176,10 @@ namespace igm {
 struct CutOptions {
   /// Root vertex (the basis then uses 3D edge lengths); -1 picks, among a few deterministic
   /// candidates (the vertex of maximum valence, then evenly spaced ids; without the normal form
-  /// the least ring deficit of a spread sample, step 1) and two metrics (3D
-  /// lengths, hop counts), the pair whose detaching crosses the fewest edges, then the best of
-  /// those after the congestion reweighting (with normal_form: whose planned construction ends
-  /// with the fewest vertices).
+  /// the least ring deficit of a spread sample, step 1; with it normal_form_roots of them) and two
+  /// metrics (3D lengths, hop counts), the pair whose detaching crosses the fewest edges, then the
+  /// best of those after the congestion reweighting (with normal_form: whose planned construction
+  /// ends with the fewest vertices).
   int root = -1;
   /// Bring the word into a1 b1 a1^-1 b1^-1 ... (step 3, <= g rounds). Off: the word is whatever the
   /// detached greedy loops give (still 4g sides, paired). The pipeline runs with it off by default
@@ -193,15 +197,22 @@ struct CutOptions {
   /// compound on coarse meshes of high genus); with Best, after two roots that did so it is not
   /// tried again, and the crosses construction runs instead.
   double max_rounds_growth = 4.0;
-  /// Evaluate root candidates two at a time on two threads (root = -1). The result is the same
-  /// either way: candidates go in fixed pairs, merged in order.
+  /// Evaluate root candidates two at a time on two threads (root = -1; a lone candidate: its two
+  /// constructions side by side). The result is the same either way: candidates go in fixed
+  /// pairs, merged in order.
   bool parallel = true;
+  /// With the normal form and root = -1: how many roots are tried (each with 3D lengths and hop
+  /// counts; one root: hop counts only). -1 picks clamp(min(2e5 / F, 4e6 / (F g)), 1, 12): a
+  /// candidate costs about its output, which grows with g (cheese, g133: one root, 2-3 s and
+  /// 160.8k vertices; 11 roots: 31 s and 148.4k). >= 1: that many (at most V); 0 or < -1 is
+  /// InvalidArgument.
+  int normal_form_roots = -1;
   /// After the root and metric are chosen, the basis (with the normal form: the rounds of step
   /// 3a; not the crosses) is recomputed up to this many times with the metric raised at the
   /// vertices that several strands pass, the basis stopping 10 rounds after its last new best
   /// (step 1c; the plan with the fewest planned vertices wins, so it never plans more than the
   /// first). -1 picks clamp(1e6 / F, 1, 40) (with the normal form
-  /// clamp(2e5 / F, 1, 40)), 0 turns it off, < -1 is InvalidArgument.
+  /// clamp(2e5 / F, 0, 40): none past 2e5 faces), 0 turns it off, < -1 is InvalidArgument.
   int congestion_rounds = -1;
   /// Without the normal form and with root = -1: how many of the best ranked root candidates
   /// (by their first plan) are reweighted; the fewest vertices once drawn and tightened win (even
@@ -276,8 +287,8 @@ struct CutResult {
 /// root candidates (2K plans, K = clamp(1e6 / F, 1, 24); one plan if the root is given), C of
 /// them reweighted in R rounds (CutOptions::congestion_candidates,
 /// congestion_rounds) and, on at most 2e5 faces, drawn to compare; with it
-/// O((K' + R') g log g n log n + crossings) for K' = clamp(2e5 / F, 1, 12) roots (x2 metrics if
-/// K' > 1; 1 if the root is given) and R' reweighting rounds, n the refined size; with
+/// O((K' + R') g log g n log n + crossings) for K' = CutOptions::normal_form_roots roots (x2
+/// metrics if K' > 1; 1 if the root is given) and R' reweighting rounds, n the refined size; with
 /// CutOptions::parallel the candidates take about half that time on two cores.
 CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& positions,
                                 const CutOptions& options = {});
