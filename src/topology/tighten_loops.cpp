@@ -108,6 +108,12 @@ struct FaceList {
       l.pop_back();
     }
   }
+  // v's exact point: a constructed vertex's own, an input vertex's made in `scratch`.
+  const SurfacePoint& point(int v, SurfacePoint& scratch) const {
+    if (v >= rs.num_input_vertices) return rs.constructed[v - rs.num_input_vertices];
+    scratch = SurfacePoint::vertex(v);
+    return scratch;
+  }
   bool face_with(int a, int b, int c) {
     for (int f : faces_at(a))
       if (has(tri[f], b) && has(tri[f], c)) return true;
@@ -139,12 +145,13 @@ struct FaceList {
       if (u != c && stamp[u] == clock) ++common;
     if (common != 2) return false;
     if (faces_at(apex[0]).size() < 4 || faces_at(apex[1]).size() < 4 || faces_at(c).size() + faces_at(w).size() < 7) return false;
-    const SurfacePoint pc = rs.point(c), pw = rs.point(w);
+    SurfacePoint sc, sw, sa, sb;  // input vertices' points (constructed ones are not copied)
+    const SurfacePoint &pc = point(c, sc), &pw = point(w, sw);
     for (int f : faces_at(c)) {
       if (f == shared[0] || f == shared[1]) continue;
       const auto& t = tri[f];
       const int k = t[0] == c ? 0 : (t[1] == c ? 1 : 2);
-      const SurfacePoint pa = rs.point(t[(k + 1) % 3]), pb = rs.point(t[(k + 2) % 3]);
+      const SurfacePoint &pa = point(t[(k + 1) % 3], sa), &pb = point(t[(k + 2) % 3], sb);
       std::array<int, 3> U{-1, -1, -1};
       if (!face_support(pc, pa, pb, U) || !supported_in(pw, U)) return false;
       const Point2q a = chart(pa, U), b = chart(pb, U);
@@ -507,7 +514,8 @@ StraightenedPaths straighten_paths(RefinedSurface surface, const std::vector<std
   StraightenedPaths out;
   for (int v = first; v < n; ++v) {  // each candidate once: O(candidates x valence) checks
     if (degree[v] != 2 || kept[v]) continue;
-    const SurfacePoint pv = rs.point(v);
+    SurfacePoint scratch;
+    const SurfacePoint& pv = fl.point(v, scratch);
     int support = 0;
     for (int i = 0; i < 3; ++i) support += pv.v[i] >= 0 && sgn(pv.w[i]) > 0;
     if (support != 3) continue;  // on an input edge: where the path crosses it
