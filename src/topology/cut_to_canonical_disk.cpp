@@ -21,6 +21,7 @@
 
 #include "igm/core/error.h"
 #include "igm/core/union_find.h"
+#include "igm/core/weight_sort.h"
 #include "igm/topology/ring_bound.h"
 #include "igm/topology/handle_slides.h"
 #include "igm/topology/tighten_loops.h"
@@ -352,9 +353,7 @@ DetachPlan plan_detach(const TriMesh& mesh, const std::vector<Vec3d>& positions,
       int a = mesh.origin(h), b = mesh.target(h);
       cand.push_back({dist[a] + dist[b] + edge_length(a, b), h});
     }
-    std::sort(cand.begin(), cand.end(), [](const auto& x, const auto& y) {
-      return x.first != y.first ? x.first > y.first : x.second < y.second;
-    });
+    sort_by_weight_descending(cand);  // heaviest first, ties by half-edge
     UnionFind dsu(mesh.num_faces());
     for (const auto& [w, h] : cand) {
       (void)w;
@@ -1230,9 +1229,7 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
         const bool forced = (K.on_g[a] && K.on_g[b]) || la < 0 || la != lb || !(dd(a) < INFINITY) || !(dd(b) < INFINITY);
         cand.push_back({forced ? INFINITY : dd(a) + dd(b) + len(a, b), h});
       }
-      std::sort(cand.begin(), cand.end(), [](const auto& x, const auto& y) {
-        return x.first != y.first ? x.first > y.first : x.second < y.second;
-      });
+      sort_by_weight_descending(cand);  // forced ones (inf) first, then heaviest first; ties by half-edge
       UnionFind dsu(M.num_faces());
       for (const auto& [w, h] : cand)
         if (!dsu.unite(TriMesh::face(h), TriMesh::face(M.twin(h)))) {
@@ -1549,9 +1546,7 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
         if (!reached || label[a] != label[b]) cand.push_back({INFINITY, h});
         else weighted.push_back({dist[a] + dist[b] + len(a, b), h});
       }
-      std::sort(weighted.begin(), weighted.end(), [](const auto& x, const auto& y) {
-        return x.first != y.first ? x.first > y.first : x.second < y.second;
-      });
+      sort_by_weight_descending(weighted);  // heaviest first, ties by half-edge
       cand.insert(cand.end(), weighted.begin(), weighted.end());
       UnionFind dsu(M.num_faces());
       long left = 0;
