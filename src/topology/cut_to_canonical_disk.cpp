@@ -2119,13 +2119,21 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     // 1.7 s instead of 2.8 s).
     auto race = [&](int c, bool hops, long best, Outcome& out) {
       Outcome crossed;
-      std::atomic<bool> rounds_ok{false};
+      std::atomic<bool> stop_crosses{false};
       std::exception_ptr crosses_error;
       run_pair(
-          true, [&] { rounds_ok = attempt(c, hops, false, std::min(best, rounds_limit), out); },
+          true,
           [&] {
             try {
-              attempt(c, hops, true, best, crossed, &rounds_ok);
+              stop_crosses = attempt(c, hops, false, std::min(best, rounds_limit), out);
+            } catch (...) {
+              stop_crosses = true;  // the error wins: the crosses stop at their next round
+              throw;
+            }
+          },
+          [&] {
+            try {
+              attempt(c, hops, true, best, crossed, &stop_crosses);
             } catch (...) {
               crosses_error = std::current_exception();
             }
