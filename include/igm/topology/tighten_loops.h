@@ -85,9 +85,10 @@ StraightenedPaths straighten_paths(RefinedSurface surface, const std::vector<std
 /// at the root) as described above. Pre: surface is a valid refinement (closed manifold mesh,
 /// constructed points in step with it), the loops as stated (else igm::Error(Internal) naming the
 /// vertex). Post: a valid refinement with at most as many vertices, the same loops up to isotopy,
-/// in the same order at the root. Cost: O(F) to set up and rebuild, plus per pass O(sum over loop
-/// and free constructed vertices of valence^2) with O(valence) exact orientations per tried
-/// collapse; at most V (V + 2) + 1 passes (see the .cpp), in practice 3 to 6.
+/// in the same order at the root. Cost: O(F) to set up and rebuild, plus for the first pass
+/// O(sum over loop and free constructed vertices of valence^2) with O(valence) exact orientations
+/// per tried collapse; later passes check only the vertices near the last pass's moves (the same
+/// moves as checking all: see the .cpp); at most V (V + 2) + 1 passes, in practice 3 to 9.
 TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int>> loops, int root);
 
 }  // namespace igm
