@@ -376,6 +376,17 @@ OverlayResult overlay_segments(const PlanarTriangulation& mesh, const std::vecto
     }
   }
 
+  // The cap (OverlayOptions::max_triangles): each new point adds at least one output triangle (an
+  // interior point two, a boundary point one, by Euler's formula for a triangulated polygon).
+  auto check_cap = [&](std::size_t triangles_at_least, const char* when) {
+    if (options.max_triangles > 0 && triangles_at_least > options.max_triangles)
+      throw Error(ErrorKind::Unsupported, "overlay: the arrangement would have " + std::string(when) +
+                                              std::to_string(triangles_at_least) + " triangles, more than max_triangles = " +
+                                              std::to_string(options.max_triangles));
+  };
+  auto new_points = [&] { return tris.size() + res.stats.endpoint_vertices + res.stats.crossings; };
+  check_cap(new_points(), "at least ");
+
   // 2. Walk every segment through the (unchanged) input triangulation.
   res.chains.resize(segments.size());
   std::vector<WalkStep> steps;
@@ -404,6 +415,7 @@ OverlayResult overlay_segments(const PlanarTriangulation& mesh, const std::vecto
         den -= d.y * (hi.x - lo.x);
         nxt = edge_vertex(st.cross_triangle, st.cross_edge, Rational(num / den));
         ++res.stats.crossings;
+        check_cap(new_points(), "at least ");
       }
       const int cur = chain.back();
       if (st.medium == WalkStep::Medium::Face) {
@@ -582,6 +594,7 @@ OverlayResult overlay_segments(const PlanarTriangulation& mesh, const std::vecto
     for (const Piece& pc : pieces[t]) lt.insert_constraint(lt.local_of(pc.a), lt.local_of(pc.b), pc.seg, owner, res.stats.local_flips);
     lt.emit(t, out, res.input_triangle);
   }
+  check_cap(out.size(), "");
   for (const Point2q& x : P) res.stats.max_coordinate_bits = std::max({res.stats.max_coordinate_bits, bit_size(x.x), bit_size(x.y)});
   return res;
 }

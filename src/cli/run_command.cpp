@@ -36,7 +36,7 @@ int usage(const std::string& message) {
                "  writes DIR/NAME.igm.obj, NAME.igm.exact, NAME.quad.obj, NAME.cert.json, NAME.schema.svg\n"
                "  --resolution N  quads per layout quad edge: 3..1024 for genus >= 1, 1..1024 for genus 0\n"
                "  --cones A,B,C,D genus 0: the four cone vertices (0-based input ids) in path order\n"
-               "  --memory-limit-mb M  genus >= 1: stop with exit 2 after the arrangement if the rest would\n"
+               "  --memory-limit-mb M  genus >= 1: stop with exit 2 in the arrangement once the rest would\n"
                "                  need more than M MB (default: this machine's memory)\n",
                message.c_str());
   return kExitInput;

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -37,20 +38,44 @@ std::uint64_t physical_memory() {
   return pages > 0 && page > 0 ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) : 0;
 }
 
+// The memory limit in bytes (PipelineOptions::memory_limit_bytes, or this machine's memory; 0 if
+// unknown).
+std::uint64_t memory_limit(const PipelineOptions& options) {
+  return options.memory_limit_bytes > 0 ? options.memory_limit_bytes : physical_memory();
+}
+
+// The most arrangement triangles the memory limit allows the stages after it (kBytesPerIgmTriangle
+// each); 0 (no cap) if the limit is unknown.
+std::size_t triangle_cap(const PipelineOptions& options) {
+  const std::uint64_t limit = memory_limit(options);
+  return limit == 0 ? 0 : std::max<std::size_t>(1, static_cast<std::size_t>(static_cast<double>(limit) / kBytesPerIgmTriangle));
+}
+
+// The error for an arrangement of `triangles` triangles (`at_least`: a lower bound, the overlay
+// stopped early) past the memory limit.
+[[noreturn]] void memory_error(std::size_t triangles, bool at_least, const PipelineOptions& options) {
+  const double gb = 1024.0 * 1024.0 * 1024.0, limit_gb = static_cast<double>(memory_limit(options)) / gb;
+  const std::string limit_name = options.memory_limit_bytes > 0 ? "memory limit" : "of this machine's memory";
+  const std::string what =
+      at_least ? format("the arrangement would have more than %.0f triangles, the most that the %.1f GB ",
+                        static_cast<double>(triangles), limit_gb) +
+                     limit_name +
+                     format(" allows the IGM, its quads and its certificate (%.0f bytes per triangle)", kBytesPerIgmTriangle)
+               : format("the arrangement has %.0f triangles: the IGM, its quads and its certificate would need about "
+                        "%.1f GB (%.0f bytes per triangle), more than the %.1f GB ",
+                        static_cast<double>(triangles), kBytesPerIgmTriangle * static_cast<double>(triangles) / gb,
+                        kBytesPerIgmTriangle, limit_gb) +
+                     limit_name;
+  throw Error(ErrorKind::Unsupported,
+              what + (options.normal_form ? "; without the normal form the topology stage grows the mesh far less" : ""));
+}
+
 // Throws Unsupported if the stages after an arrangement of `triangles` triangles would need more
 // than the memory limit (PipelineOptions::memory_limit_bytes, kBytesPerIgmTriangle each).
 void check_memory(std::size_t triangles, const PipelineOptions& options) {
-  const bool own = options.memory_limit_bytes > 0;
-  const std::uint64_t limit = own ? options.memory_limit_bytes : physical_memory();
-  const double need = kBytesPerIgmTriangle * static_cast<double>(triangles);
-  if (limit == 0 || need <= static_cast<double>(limit)) return;
-  const double gb = 1024.0 * 1024.0 * 1024.0;
-  throw Error(ErrorKind::Unsupported,
-              format("the arrangement has %.0f triangles: the IGM, its quads and its certificate would need about "
-                     "%.1f GB (%.0f bytes per triangle), more than the %.1f GB ",
-                     static_cast<double>(triangles), need / gb, kBytesPerIgmTriangle, static_cast<double>(limit) / gb) +
-                  (own ? "memory limit" : "of this machine's memory") +
-                  (options.normal_form ? "; without the normal form the topology stage grows the mesh far less" : ""));
+  const std::uint64_t limit = memory_limit(options);
+  if (limit == 0 || kBytesPerIgmTriangle * static_cast<double>(triangles) <= static_cast<double>(limit)) return;
+  memory_error(triangles, false, options);
 }
 
 }  // namespace
@@ -150,7 +175,18 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
   const std::vector<TemplateSegment> layout_segments = template_segments(layout);
   const std::vector<Segment2> segments = template_geometry(layout, layout_segments);
   PlanarTriangulation disk{std::move(tutte.uv), cut.disk_triangles};
-  OverlayResult overlay = overlay_segments(disk, segments);
+  // The overlay stops as soon as it would pass what the memory allows the stages after it (its own
+  // lower bound: a triangle per new point), instead of building all of it first (cheese with the
+  // normal form: 36.7M triangles, 5.6 min and 14.5 GB before the check below).
+  OverlayOptions overlay_options;
+  overlay_options.max_triangles = triangle_cap(options);
+  OverlayResult overlay;
+  try {
+    overlay = overlay_segments(disk, segments, overlay_options);
+  } catch (const Error& e) {
+    if (e.kind() != ErrorKind::Unsupported || overlay_options.max_triangles == 0) throw;
+    memory_error(overlay_options.max_triangles, true, options);
+  }
   stage.done("arrange", t0,
              format("%.0f layout quads, %.0f crossings, %.0f -> %.0f triangles", static_cast<double>(layout.quads.size()),
                     static_cast<double>(overlay.stats.crossings), static_cast<double>(disk.triangles.size()),

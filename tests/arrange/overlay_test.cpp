@@ -194,3 +194,38 @@ TEST_CASE("overlay: the edges of another triangulation of the same polygon (mass
     }
   }
 }
+
+TEST_CASE("overlay: max_triangles caps the output, stopping the walk as soon as its lower bound passes") {
+  // A 6 x 6 grid crossed by two disjoint segments that meet no vertex: T output triangles.
+  const PlanarTriangulation g = grid(6);
+  const std::vector<Segment2> s = {{Point2q{Rational(1, 3), Rational(1, 7)}, Point2q{Rational(17, 3), Rational(40, 7)}},
+                                   {Point2q{Rational(1, 5), Rational(3, 2)}, Point2q{Rational(3, 2), Rational(29, 5)}}};
+  const OverlayResult full = checked(g, s);
+  const std::size_t T = full.mesh.triangles.size();
+  const std::size_t points = full.stats.crossings + full.stats.endpoint_vertices;
+  REQUIRE(points > 2);
+  REQUIRE(T > g.triangles.size() + points);  // the bound is a bound, not the count
+  auto capped = [&](std::size_t cap) {
+    OverlayOptions o;
+    o.max_triangles = cap;
+    try {
+      const OverlayResult r = overlay_segments(g, s, o);
+      if (cap > 0) CHECK(r.mesh.triangles.size() <= cap);
+      CHECK(check_overlay(g, s, r) == "");
+      return std::string("ok");
+    } catch (const Error& e) {
+      CHECK(e.kind() == ErrorKind::Unsupported);
+      CHECK(std::string(e.what()).find("max_triangles = " + std::to_string(cap)) != std::string::npos);
+      return std::string(e.what());
+    }
+  };
+  CHECK(capped(T) == "ok");
+  CHECK(capped(0) == "ok");  // 0: no cap
+  // One short: the walk passes (its bound is below the cap), the output does not.
+  CHECK(capped(T - 1).find("would have " + std::to_string(T) + " triangles") != std::string::npos);
+  // Below input triangles + points: the walk stops at a lower bound ("at least").
+  const std::string early = capped(g.triangles.size() + points - 1);
+  CHECK(early.find("at least " + std::to_string(g.triangles.size() + points) + " triangles") != std::string::npos);
+  CHECK(capped(1).find("at least " + std::to_string(g.triangles.size() + full.stats.endpoint_vertices)) !=
+        std::string::npos);  // before any crossing
+}

@@ -27,6 +27,11 @@ struct VertexOrigin {
 
 struct OverlayOptions {
   bool validate_input = true;  // check positivity, manifoldness and a convex simple boundary: O(F log F)
+  /// A cap on the output's triangles (0: none). Every new point adds at least one triangle, so
+  /// the walk stops with igm::Error(Unsupported) as soon as input triangles + new points pass it,
+  /// before the retriangulation, and the output is checked against it at the end: the result has
+  /// at most max_triangles triangles or there is none. (The pipeline's memory limit.)
+  std::size_t max_triangles = 0;
 };
 
 struct OverlayStats {
@@ -70,6 +75,7 @@ struct OverlayResult {
 ///  - otherwise: end points by face/edge splits, edge points by edge splits (most-used piece
 ///    ends first), pieces by exact edge flips (Sloan 1993); O(k_T^2) flips worst case.
 ///
+/// Past OverlayOptions::max_triangles: igm::Error(Unsupported) with the count reached.
 /// Post: every output triangle strictly positive; a manifold triangulation of the same polygon
 /// (same area, Euler characteristic 1, same boundary vertices plus segment end points lying on
 /// the boundary); each segment's chain consists of output edges, in order.

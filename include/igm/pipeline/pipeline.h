@@ -53,8 +53,9 @@ struct PipelineOptions {
   /// Genus >= 1: the memory the stages after the arrangement may need, in bytes (0: this machine's
   /// physical memory; no check where that is unknown). They need about kBytesPerIgmTriangle per
   /// IGM triangle (exact locations, UVs, charts, quads, the certifier's copy); an arrangement
-  /// that would need more is igm::Error(Unsupported) at once, instead of running out of memory
-  /// minutes later (cheese with the normal form: 17.0M triangles, ~32 GB).
+  /// that would need more is igm::Error(Unsupported), raised by the overlay itself as soon as its
+  /// lower bound passes the limit (OverlayOptions::max_triangles), instead of running out of
+  /// memory minutes later (cheese with the normal form: 36.7M triangles, ~70 GB).
   std::uint64_t memory_limit_bytes = 0;
   std::function<void(const StageEvent&)> progress;  // optional
 };
