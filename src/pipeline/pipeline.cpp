@@ -51,31 +51,15 @@ std::size_t triangle_cap(const PipelineOptions& options) {
   return limit == 0 ? 0 : std::max<std::size_t>(1, static_cast<std::size_t>(static_cast<double>(limit) / kBytesPerIgmTriangle));
 }
 
-// The error for an arrangement of `triangles` triangles (`at_least`: a lower bound, the overlay
-// stopped early) past the memory limit.
-[[noreturn]] void memory_error(std::size_t triangles, bool at_least, const PipelineOptions& options) {
-  const double gb = 1024.0 * 1024.0 * 1024.0, limit_gb = static_cast<double>(memory_limit(options)) / gb;
-  const std::string limit_name = options.memory_limit_bytes > 0 ? "memory limit" : "of this machine's memory";
-  const std::string what =
-      at_least ? format("the arrangement would have more than %.0f triangles, the most that the %.1f GB ",
-                        static_cast<double>(triangles), limit_gb) +
-                     limit_name +
-                     format(" allows the IGM, its quads and its certificate (%.0f bytes per triangle)", kBytesPerIgmTriangle)
-               : format("the arrangement has %.0f triangles: the IGM, its quads and its certificate would need about "
-                        "%.1f GB (%.0f bytes per triangle), more than the %.1f GB ",
-                        static_cast<double>(triangles), kBytesPerIgmTriangle * static_cast<double>(triangles) / gb,
-                        kBytesPerIgmTriangle, limit_gb) +
-                     limit_name;
+// The error for an arrangement stopped by the overlay at `cap` triangles (triangle_cap).
+[[noreturn]] void memory_error(std::size_t cap, const PipelineOptions& options) {
+  const double mb = static_cast<double>(memory_limit(options)) / (1024.0 * 1024.0);
   throw Error(ErrorKind::Unsupported,
-              what + (options.normal_form ? "; without the normal form the topology stage grows the mesh far less" : ""));
-}
-
-// Throws Unsupported if the stages after an arrangement of `triangles` triangles would need more
-// than the memory limit (PipelineOptions::memory_limit_bytes, kBytesPerIgmTriangle each).
-void check_memory(std::size_t triangles, const PipelineOptions& options) {
-  const std::uint64_t limit = memory_limit(options);
-  if (limit == 0 || kBytesPerIgmTriangle * static_cast<double>(triangles) <= static_cast<double>(limit)) return;
-  memory_error(triangles, false, options);
+              format("the arrangement would have more than %.0f triangles, the most that the ", static_cast<double>(cap)) +
+                  (mb >= 1024 ? format("%.1f GB ", mb / 1024) : format("%.0f MB ", mb)) +
+                  (options.memory_limit_bytes > 0 ? "memory limit" : "of this machine's memory") +
+                  format(" allows the IGM, its quads and its certificate (%.0f bytes per triangle)", kBytesPerIgmTriangle) +
+                  (options.normal_form ? "; without the normal form the topology stage grows the mesh far less" : ""));
 }
 
 }  // namespace
@@ -176,8 +160,8 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
   const std::vector<Segment2> segments = template_geometry(layout, layout_segments);
   PlanarTriangulation disk{std::move(tutte.uv), cut.disk_triangles};
   // The overlay stops as soon as it would pass what the memory allows the stages after it (its own
-  // lower bound: a triangle per new point), instead of building all of it first (cheese with the
-  // normal form: 36.7M triangles, 5.6 min and 14.5 GB before the check below).
+  // lower bound: a triangle per new point; its output at the end), instead of building all of it
+  // first (cheese with the normal form: 36.7M triangles, 5.6 min and 14.5 GB).
   OverlayOptions overlay_options;
   overlay_options.max_triangles = triangle_cap(options);
   OverlayResult overlay;
@@ -185,13 +169,12 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
     overlay = overlay_segments(disk, segments, overlay_options);
   } catch (const Error& e) {
     if (e.kind() != ErrorKind::Unsupported || overlay_options.max_triangles == 0) throw;
-    memory_error(overlay_options.max_triangles, true, options);
+    memory_error(overlay_options.max_triangles, options);
   }
   stage.done("arrange", t0,
              format("%.0f layout quads, %.0f crossings, %.0f -> %.0f triangles", static_cast<double>(layout.quads.size()),
                     static_cast<double>(overlay.stats.crossings), static_cast<double>(disk.triangles.size()),
                     static_cast<double>(overlay.mesh.triangles.size())));
-  check_memory(overlay.mesh.triangles.size(), options);
 
   // --- igm: piecewise-affine map of every layout quad onto the unit square ---
   t0 = Clock::now();
