@@ -201,7 +201,8 @@ struct FaceList {
 
 }  // namespace
 
-TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int>> loops, int root) {
+TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int>> loops, int root,
+                             bool every_vertex_every_pass) {
   TightenedLoops out;
   RefinedSurface& rs = surface;
   const int nv = rs.mesh.num_vertices();
@@ -453,7 +454,7 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
     for (int L = 0; L < nloops; ++L)
       for (int v = head[L], guard = 0; v != root; ++guard) {
         if (guard > nv) internal("loop list does not end at the root");
-        if (!dirty[v]) {
+        if (!dirty[v] && !every_vertex_every_pass) {
           v = nxt[v];
           continue;
         }
@@ -471,7 +472,7 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
         v = nxt[w >= 0 ? w : v];
       }
     for (int v = nin; v < nv; ++v) {
-      if (!dirty[v] || !fl.alive[v] || loop_of[v] != -1) continue;
+      if ((!dirty[v] && !every_vertex_every_pass) || !fl.alive[v] || loop_of[v] != -1) continue;
       touched.clear();
       if (remove_free(v)) changed = true, mark_touched();
       else dirty[v] = 0;

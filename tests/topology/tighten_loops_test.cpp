@@ -76,6 +76,20 @@ int check_tightening(const ValidMesh& in, bool normal_form) {
   const auto ends_before = ends_at_root(raw.surface.mesh, raw.loops, raw.root);
   REQUIRE(!ends_before.empty());
   TightenedLoops t = tighten_loops(raw.surface, raw.loops, raw.root);
+  // The dirty-vertex passes make exactly the moves of checking every vertex in every pass.
+  const TightenedLoops reference = tighten_loops(raw.surface, raw.loops, raw.root, true);
+  CHECK(t.loops == reference.loops);
+  CHECK(t.surface.mesh.num_vertices() == reference.surface.mesh.num_vertices());
+  CHECK(t.surface.mesh.num_faces() == reference.surface.mesh.num_faces());
+  for (int f = 0; f < t.surface.mesh.num_faces() && f < reference.surface.mesh.num_faces(); ++f)
+    if (t.surface.mesh.face_vertices(f) != reference.surface.mesh.face_vertices(f)) {
+      CHECK_MESSAGE(false, "face " << f << " differs from the reference's");
+      break;
+    }
+  CHECK(t.stats.collapsed == reference.stats.collapsed);
+  CHECK(t.stats.shortcuts == reference.stats.shortcuts);
+  CHECK(t.stats.pushes == reference.stats.pushes);
+  CHECK(t.stats.passes == reference.stats.passes);
   const TriMesh& M = t.surface.mesh;
   CHECK(M.check_invariants() == "");
   CHECK(M.num_vertices() - M.num_edges() + M.num_faces() == 2 - 2 * raw.genus);

@@ -89,6 +89,9 @@ StraightenedPaths straighten_paths(RefinedSurface surface, const std::vector<std
 /// O(sum over loop and free constructed vertices of valence^2) with O(valence) exact orientations
 /// per tried collapse; later passes check only the vertices near the last pass's moves (the same
 /// moves as checking all: see the .cpp); at most V (V + 2) + 1 passes, in practice 3 to 9.
-TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int>> loops, int root);
+/// every_vertex_every_pass checks every vertex in every pass instead: the reference the
+/// dirty-vertex passes must equal exactly (tests compare the two).
+TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int>> loops, int root,
+                             bool every_vertex_every_pass = false);
 
 }  // namespace igm
