@@ -2057,8 +2057,8 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     // counts only), the pair whose planned detaching ends with the fewest vertices
     // (planned_vertices; only that one is drawn); a candidate stops once it has more than the best
     // so far. Per candidate (Best): the rounds, bounded by max_rounds_growth; if they pass it, the
-    // crosses (a lone candidate: both at once, see race). After two candidates whose rounds passed
-    // it, only the crosses.
+    // crosses (a lone candidate: both at once, see run_candidate). After two candidates whose
+    // rounds passed it, only the crosses.
     const long limit = nv0 + static_cast<long>(options.max_normal_form_growth * nv0);
     const long rounds_limit = std::min(limit, nv0 + static_cast<long>(options.max_rounds_growth * nv0));
     std::vector<std::pair<int, bool>> candidates;
@@ -2104,41 +2104,43 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
       if (ok) out.ok = true, out.crosses = crosses, out.hops = hops, out.stats = trial.stats, out.plan = std::move(plan);
       return ok;
     };
-    auto run_candidate = [&](int c, bool hops, bool crosses_only, long best, Outcome& out) {
-      bool crosses = crosses_only;
-      // Failed with the rounds' own bound binding (not only the best so far): they passed it.
-      if (!crosses && !attempt(c, hops, false, std::min(best, rounds_limit), out) && rounds_limit <= best &&
-          options.construction == C::Best)
-        out.rounds_passed = crosses = true;
-      if (crosses) attempt(c, hops, true, best, out);
-    };
-    // A lone candidate (Best, two threads): its rounds and its crosses side by side, the crosses
-    // stopped at their next round once the rounds succeed. The outcome is run_candidate's (the
-    // crosses count, and so does an error from them, only where the rounds passed
-    // max_rounds_growth), in the time of the longer of the two instead of their sum (cheese, whose
-    // rounds pass it after 1.6 s: 2.8-3.1 s instead of 3.9-4.6 s on one thread).
-    auto race = [&](int c, bool hops, long best, Outcome& out) {
+    // One candidate: the rounds, bounded by max_rounds_growth; where they pass it (their own bound
+    // binding, not only the best so far; Best) the crosses, whose outcome (or error) then counts.
+    // side_by_side (a lone candidate on two threads): the crosses run alongside the rounds from the
+    // start, stopped at their next round once the rounds succeed or throw; the outcome is the same,
+    // in the time of the longer of the two instead of their sum (cheese, whose rounds pass it after
+    // 1.6 s: 2.8-3.1 s instead of 3.9-4.6 s on one thread).
+    auto run_candidate = [&](int c, bool hops, bool crosses_only, long best, Outcome& out, bool side_by_side) {
+      if (crosses_only) {
+        attempt(c, hops, true, best, out);
+        return;
+      }
+      const bool crosses_may_count = options.construction == C::Best && rounds_limit <= best;
       Outcome crossed;
       std::atomic<bool> stop_crosses{false};
       std::exception_ptr crosses_error;
-      run_pair(
-          true,
-          [&] {
-            try {
-              stop_crosses = attempt(c, hops, false, std::min(best, rounds_limit), out);
-            } catch (...) {
-              stop_crosses = true;  // the error wins: the crosses stop at their next round
-              throw;
-            }
-          },
-          [&] {
-            try {
-              attempt(c, hops, true, best, crossed, &stop_crosses);
-            } catch (...) {
-              crosses_error = std::current_exception();
-            }
-          });
-      if (out.ok || rounds_limit > best) return;
+      auto rounds = [&] {
+        try {
+          stop_crosses = attempt(c, hops, false, std::min(best, rounds_limit), out);
+        } catch (...) {
+          stop_crosses = true;  // the error wins: the crosses stop at their next round
+          throw;
+        }
+      };
+      auto crosses = [&] {
+        try {
+          attempt(c, hops, true, best, crossed, &stop_crosses);
+        } catch (...) {
+          crosses_error = std::current_exception();
+        }
+      };
+      if (side_by_side && crosses_may_count) {
+        run_pair(true, rounds, crosses);
+      } else {
+        rounds();
+        if (!out.ok && crosses_may_count) crosses();
+      }
+      if (out.ok || !crosses_may_count) return;
       if (crosses_error) std::rethrow_exception(crosses_error);
       out = std::move(crossed);
       out.rounds_passed = true;
@@ -2153,12 +2155,12 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
           options.construction == C::Crosses || (options.construction == C::Best && rounds_passed >= 2);
       Outcome out[2];
       auto run = [&](std::size_t j) {
-        return [&, j] { run_candidate(candidates[i + j].first, candidates[i + j].second, crosses_only, best, out[j]); };
+        return [&, j] {
+          run_candidate(candidates[i + j].first, candidates[i + j].second, crosses_only, best, out[j], false);
+        };
       };
       if (n == 2) run_pair(options.parallel, run(0), run(1));
-      else if (options.parallel && options.construction == C::Best && !crosses_only)
-        race(candidates[i].first, candidates[i].second, best, out[0]);
-      else run(0)();
+      else run_candidate(candidates[i].first, candidates[i].second, crosses_only, best, out[0], options.parallel);
       for (std::size_t j = 0; j < n; ++j) {
         ++tried;
         rounds_passed += out[j].rounds_passed;
