@@ -231,6 +231,13 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
   }
   // The vertices whose loop state or incident faces a move changed (see the passes below).
   std::vector<int> touched;
+  // fl.collapse(c, w) right after fl.collapse_ok(c, w): the faces change at c and at fl.nc, c's
+  // neighbours, which collapse_ok left there.
+  auto collapse = [&](int c, int w, const int shared[2]) {
+    touched.insert(touched.end(), fl.nc.begin(), fl.nc.end());
+    touched.push_back(c);
+    fl.collapse(c, w, shared);
+  };
   auto set_next = [&](int L, int a, int b) {  // a -> b along L (either may be the root)
     touched.push_back(a), touched.push_back(b);
     if (a == root) head[L] = b;
@@ -263,9 +270,7 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
       for (int u : fl.nc)
         if (u != y && !adjacency_ok(y, loop_of[y], u)) ok = false;
       if (!ok) continue;
-      touched.insert(touched.end(), fl.nc.begin(), fl.nc.end());
-      touched.push_back(v);
-      fl.collapse(v, y, shared);
+      collapse(v, y, shared);
       ++out.stats.collapsed;
       return true;
     }
@@ -303,9 +308,7 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
       else if (u == pp && pp != root && via < 0 && (fl.face_with(w, p, pp) || fl.face_with(c, p, pp))) via = p;
       else return false;
     }
-    touched.insert(touched.end(), fl.nc.begin(), fl.nc.end());
-    touched.push_back(c);
-    fl.collapse(c, w, shared);
+    collapse(c, w, shared);
     loop_of[w] = L, prv[w] = p, nxt[w] = n;
     set_next(L, p, w);
     set_next(L, w, n);
@@ -515,8 +518,7 @@ StraightenedPaths straighten_paths(RefinedSurface surface, const std::vector<std
   StraightenedPaths out;
   for (int v = first; v < n; ++v) {  // each candidate once: O(candidates x valence) checks
     if (degree[v] != 2 || kept[v]) continue;
-    SurfacePoint scratch;
-    const SurfacePoint& pv = fl.point(v, scratch);
+    const SurfacePoint& pv = rs.constructed[v - nin];  // v >= first >= nin: constructed
     int support = 0;
     for (int i = 0; i < 3; ++i) support += pv.v[i] >= 0 && sgn(pv.w[i]) > 0;
     if (support != 3) continue;  // on an input edge: where the path crosses it
