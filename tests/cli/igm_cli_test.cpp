@@ -113,7 +113,7 @@ TEST_CASE("igm run: shared torus certified, invalid mesh and bad options exit 2"
   }
 }
 
-TEST_CASE("igm run: a memory limit too small for the arrangement exits 2 after the arrange stage") {
+TEST_CASE("igm run: a memory limit too small for the arrangement exits 2 in the arrange stage") {
   const auto cwd = tmp_dir() / "memory";
   const std::string igm_cmd = quote(IGM_CLI_PATH);
   REQUIRE(in_folder(cwd, igm_cmd + " generate --genus 4 --faces 2000 --seed 3 g4.obj").code == 0);
