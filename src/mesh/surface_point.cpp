@@ -45,16 +45,69 @@ void accumulate(SurfacePoint& acc, const SurfacePoint& p, const Rational& weight
 }
 }  // namespace
 
+void combine_into(SurfacePoint& r, const SurfacePoint& a, const Rational& ta, const SurfacePoint& b,
+                  const Rational& tb) {
+  // The two ascending supports merged, each weight written in its slot (a shared vertex adds its
+  // second term through one scratch value): the weights of adding the terms one by one
+  // (accumulate), canonical, without its temporaries; every edge split comes through here.
+  const bool use_a = sgn(ta) != 0, use_b = sgn(tb) != 0;
+  // x * t, with t = 1/2 (every midpoint split) as a shift of the denominator: no gcd. Both give
+  // the canonical product.
+  const bool half_a = mpq_cmp_ui(ta.get_mpq_t(), 1, 2) == 0, half_b = mpq_cmp_ui(tb.get_mpq_t(), 1, 2) == 0;
+  auto times = [](mpq_ptr out, mpq_srcptr x, const Rational& t, bool half) {
+    if (half) mpq_div_2exp(out, x, 1);
+    else mpq_mul(out, x, t.get_mpq_t());
+  };
+  int i = 0, j = 0, n = 0;
+  auto has_a = [&] {  // skips a's zero weights; true while a has a term left
+    while (use_a && i < 3 && a.v[i] >= 0 && sgn(a.w[i]) == 0) ++i;
+    return use_a && i < 3 && a.v[i] >= 0;
+  };
+  auto has_b = [&] {
+    while (use_b && j < 3 && b.v[j] >= 0 && sgn(b.w[j]) == 0) ++j;
+    return use_b && j < 3 && b.v[j] >= 0;
+  };
+  for (bool ha = has_a(), hb = has_b(); ha || hb; ha = has_a(), hb = has_b()) {  // <= 6 steps
+    const int id = !hb || (ha && a.v[i] < b.v[j]) ? a.v[i] : b.v[j];
+    if (n == 3)
+      throw Error(ErrorKind::Internal, "surface point combination spans more than three input vertices", {id});
+    r.v[n] = id;
+    mpq_ptr w = r.w[n].get_mpq_t();
+    if (ha && a.v[i] == id) {
+      times(w, a.w[i].get_mpq_t(), ta, half_a);
+      ++i;
+      if (hb && b.v[j] == id) {
+        thread_local Rational term;
+        times(term.get_mpq_t(), b.w[j].get_mpq_t(), tb, half_b);
+        mpq_add(w, w, term.get_mpq_t());
+        ++j;
+      }
+    } else {
+      times(w, b.w[j].get_mpq_t(), tb, half_b);
+      ++j;
+    }
+    ++n;
+  }
+  for (; n < 3; ++n) r.v[n] = -1, r.w[n] = 0;
+}
+
 SurfacePoint combine(const SurfacePoint& a, const Rational& ta, const SurfacePoint& b, const Rational& tb) {
   SurfacePoint r;
-  accumulate(r, a, ta);
-  accumulate(r, b, tb);
+  combine_into(r, a, ta, b, tb);
   return r;
 }
 
+void lerp_into(SurfacePoint& r, const SurfacePoint& a, const SurfacePoint& b, const Rational& t) {
+  thread_local Rational s;  // 1 - t, its limbs kept from call to call
+  s = 1;
+  s -= t;
+  combine_into(r, a, s, b, t);
+}
+
 SurfacePoint lerp(const SurfacePoint& a, const SurfacePoint& b, const Rational& t) {
-  Rational s = 1 - t;
-  return combine(a, s, b, t);
+  SurfacePoint r;
+  lerp_into(r, a, b, t);
+  return r;
 }
 
 SurfacePoint average(const std::vector<SurfacePoint>& points) {
@@ -90,11 +143,22 @@ Vec3d evaluate(const SurfacePoint& p, const std::vector<Vec3d>& pos) {
 }
 
 int RefinedSurface::split_edge(int h, const Rational& t) {
-  SurfacePoint p = lerp(point(mesh.origin(h)), point(mesh.target(h)), t);
+  // The ends are read in place (point() would copy a constructed one).
+  const int a = mesh.origin(h), b = mesh.target(h);
+  // The point is made in scratch values kept from call to call (their limbs stay allocated) and
+  // copied into its new slot: no temporaries to allocate, move and free per split.
+  thread_local SurfacePoint ia = SurfacePoint::vertex(0), ib = SurfacePoint::vertex(0), p;
+  ia.v[0] = a, ib.v[0] = b;  // an input end's weight-1 point
+  lerp_into(p, a < num_input_vertices ? ia : constructed[a - num_input_vertices],
+            b < num_input_vertices ? ib : constructed[b - num_input_vertices], t);
   int v = mesh.split_edge(h);
   if (v != num_input_vertices + static_cast<int>(constructed.size()))
     throw Error(ErrorKind::Internal, "refined surface out of step with its mesh", {v});
-  constructed.push_back(std::move(p));
+  constructed.emplace_back();
+  SurfacePoint& q = constructed.back();
+  q.v = p.v;
+  for (int i = 0; i < 3; ++i)
+    if (p.v[i] >= 0) q.w[i] = p.w[i];
   return v;
 }
 

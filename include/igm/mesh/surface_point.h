@@ -40,8 +40,13 @@ struct SurfacePoint {
 /// b together hold at most three vertices (else igm::Error(Internal)). O(1) GMP operations.
 SurfacePoint combine(const SurfacePoint& a, const Rational& ta, const SurfacePoint& b, const Rational& tb);
 
+/// The same into r (its weights' limbs reused; r must be neither a nor b), for callers that make many.
+void combine_into(SurfacePoint& r, const SurfacePoint& a, const Rational& ta, const SurfacePoint& b,
+                  const Rational& tb);
 /// (1 - t) a + t b, exactly (t in [0, 1]).
 SurfacePoint lerp(const SurfacePoint& a, const SurfacePoint& b, const Rational& t);
+/// The same into r (r must be neither a nor b).
+void lerp_into(SurfacePoint& r, const SurfacePoint& a, const SurfacePoint& b, const Rational& t);
 
 /// The unweighted average of the points (exact). Pre: non-empty, joint support <= 3 vertices.
 SurfacePoint average(const std::vector<SurfacePoint>& points);
