@@ -17,17 +17,24 @@ namespace {
   throw Error(ErrorKind::Internal, "loop tightening: " + what, std::move(ids));
 }
 
-// The weight of input vertex u in p (0 if u is not in its support).
-Rational weight_of(const SurfacePoint& p, int u) {
+// out = the weight of input vertex u in p (0 if u is not in its support). An assignment: out's
+// limbs are reused.
+void set_weight_of(const SurfacePoint& p, int u, Rational& out) {
   for (int i = 0; i < 3; ++i)
-    if (p.v[i] == u) return p.w[i];
-  return 0;
+    if (p.v[i] == u) {
+      out = p.w[i];
+      return;
+    }
+  out = 0;
 }
 
-// The point p in the barycentric chart of the input face with vertices U (sorted): the weights of
-// U[1] and U[2]. An affine chart: the orientations of all triangles of the face in it differ from
-// those on the surface by one common sign.
-Point2q chart(const SurfacePoint& p, const std::array<int, 3>& U) { return {weight_of(p, U[1]), weight_of(p, U[2])}; }
+// q = the point p in the barycentric chart of the input face with vertices U (sorted): the weights
+// of U[1] and U[2]. An affine chart: the orientations of all triangles of the face in it differ
+// from those on the surface by one common sign.
+void set_chart(const SurfacePoint& p, const std::array<int, 3>& U, Point2q& q) {
+  set_weight_of(p, U[1], q.x);
+  set_weight_of(p, U[2], q.y);
+}
 
 // The input vertices with positive weight in the three points, sorted, without repeats, into U;
 // false if they are not exactly three (then the points do not span one input face).
@@ -69,12 +76,17 @@ struct FaceList {
   std::vector<int> stamp;
   int clock = 0;
   std::vector<int> nc, nw;  // the neighbours of c and of w found by the last collapse_ok
+  // collapse_ok's scratch, kept so that its exact checks allocate nothing once warm: an input
+  // vertex's weight-1 point per role (only the id changes), and the four chart points.
+  std::array<SurfacePoint, 4> unit_point;
+  Point2q qc, qw, qa, qb;
 
   explicit FaceList(const RefinedSurface& s)
       : rs(s), tri(s.mesh.num_faces()), face_alive(tri.size(), 1), alive(s.mesh.num_vertices(), 1),
         built(s.mesh.num_vertices(), 0), inc(s.mesh.num_vertices()), stamp(s.mesh.num_vertices(), 0) {
     if (static_cast<int>(rs.constructed.size()) != rs.mesh.num_vertices() - rs.num_input_vertices)
       internal("constructed points out of step with the mesh");
+    for (SurfacePoint& p : unit_point) p = SurfacePoint::vertex(0);
     for (int f = 0; f < rs.mesh.num_faces(); ++f) tri[f] = rs.mesh.face_vertices(f);
   }
   std::vector<int>& faces_at(int v) {
@@ -108,11 +120,11 @@ struct FaceList {
       l.pop_back();
     }
   }
-  // v's exact point: a constructed vertex's own, an input vertex's made in `scratch`.
-  const SurfacePoint& point(int v, SurfacePoint& scratch) const {
+  // v's exact point: a constructed vertex's own, an input vertex's in unit_point[role] (weight 1).
+  const SurfacePoint& point(int v, int role) {
     if (v >= rs.num_input_vertices) return rs.constructed[v - rs.num_input_vertices];
-    scratch = SurfacePoint::vertex(v);
-    return scratch;
+    unit_point[role].v[0] = v;
+    return unit_point[role];
   }
   bool face_with(int a, int b, int c) {
     for (int f : faces_at(a))
@@ -145,19 +157,18 @@ struct FaceList {
       if (u != c && stamp[u] == clock) ++common;
     if (common != 2) return false;
     if (faces_at(apex[0]).size() < 4 || faces_at(apex[1]).size() < 4 || faces_at(c).size() + faces_at(w).size() < 7) return false;
-    SurfacePoint sc, sw, sa, sb;  // input vertices' points (constructed ones are not copied)
-    const SurfacePoint &pc = point(c, sc), &pw = point(w, sw);
+    const SurfacePoint &pc = point(c, 0), &pw = point(w, 1);
     for (int f : faces_at(c)) {
       if (f == shared[0] || f == shared[1]) continue;
       const auto& t = tri[f];
       const int k = t[0] == c ? 0 : (t[1] == c ? 1 : 2);
-      const SurfacePoint &pa = point(t[(k + 1) % 3], sa), &pb = point(t[(k + 2) % 3], sb);
+      const SurfacePoint &pa = point(t[(k + 1) % 3], 2), &pb = point(t[(k + 2) % 3], 3);
       std::array<int, 3> U{-1, -1, -1};
       if (!face_support(pc, pa, pb, U) || !supported_in(pw, U)) return false;
-      const Point2q a = chart(pa, U), b = chart(pb, U);
-      const Sign before = orient2d(chart(pc, U), a, b);
+      set_chart(pa, U, qa), set_chart(pb, U, qb), set_chart(pc, U, qc), set_chart(pw, U, qw);
+      const Sign before = orient2d(qc, qa, qb);
       if (before == Sign::Zero) internal("a refined face is flat in its input face", {c});
-      if (orient2d(chart(pw, U), a, b) != before) return false;
+      if (orient2d(qw, qa, qb) != before) return false;
     }
     return true;
   }
@@ -186,8 +197,15 @@ struct FaceList {
     std::iota(new_id.begin(), new_id.begin() + nin, 0);
     int next_id = nin;
     RefinedSurface out;
+    // The survivors move down in place (a move swaps the weights: no allocation), the rest go.
+    std::vector<SurfacePoint>& pts = old.constructed;
     for (int v = nin; v < nv; ++v)
-      if (alive[v]) new_id[v] = next_id++, out.constructed.push_back(std::move(old.constructed[v - nin]));
+      if (alive[v]) {
+        if (next_id != v) pts[next_id - nin] = std::move(pts[v - nin]);
+        new_id[v] = next_id++;
+      }
+    pts.erase(pts.begin() + (next_id - nin), pts.end());
+    out.constructed = std::move(pts);
     std::vector<std::array<int, 3>> tris;
     tris.reserve(tri.size());
     for (std::size_t f = 0; f < tri.size(); ++f)
@@ -231,6 +249,9 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
   }
   // The vertices whose loop state or incident faces a move changed (see the passes below).
   std::vector<int> touched;
+  // Scratch lists of the moves, kept across calls so that a pass allocates nothing once warm; each
+  // has one user (pull's candidates stay intact through the M1 -> M2 -> M3 calls it makes).
+  std::vector<int> free_cand, pull_cand, arc, np, pn, nz;
   // fl.collapse(c, w) right after fl.collapse_ok(c, w): the faces change at c and at fl.nc, c's
   // neighbours, which collapse_ok left there.
   auto collapse = [&](int c, int w, const int shared[2]) {
@@ -259,7 +280,7 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
   // that passes), if y gains no forbidden adjacency.
   auto remove_free = [&](int v) {
     if (v < nin || !fl.alive[v] || loop_of[v] != -1) return false;
-    std::vector<int> cand;
+    std::vector<int>& cand = free_cand;
     fl.neighbours(v, cand);
     std::sort(cand.begin(), cand.end());
     for (int y : cand) {
@@ -334,7 +355,7 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
   };
   std::vector<std::pair<int, int>> fan;  // (a, b) per face (w, a, b) at w: b follows a ccw
   // The neighbours of w strictly between its loop neighbours p and n on the side without `from`,
-  // in order from p. Empty if none (or `from` is on neither side).
+  // in order from p, into arc. Empty if none (or `from` is on neither side).
   auto far_arc = [&](int w, int from, int p, int n) {
     fan.clear();
     for (int f : fl.faces_at(w)) {
@@ -356,21 +377,18 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
       }
       return met;
     };
-    std::vector<int> np, pn;
+    np.clear(), pn.clear(), arc.clear();
     const bool in_np = walk(n, p, np), in_pn = walk(p, n, pn);
-    if (in_np == in_pn) return std::vector<int>{};
-    if (in_pn) {
-      std::reverse(np.begin(), np.end());  // from p's side
-      return np;
-    }
-    return pn;
+    if (in_np == in_pn) return;
+    if (in_pn) arc.assign(np.rbegin(), np.rend());  // from p's side
+    else arc.assign(pn.begin(), pn.end());
   };
   auto push_off = [&](int w, int from) {
     const int B = loop_of[w];
     if (B < 0 || w == root) return false;
     const int p = prv[w], n = nxt[w];
     if (p == root || n == root) return false;
-    const std::vector<int> arc = far_arc(w, from, p, n);
+    far_arc(w, from, p, n);
     if (arc.empty()) return false;
     for (int z : arc)
       if (z == root || loop_of[z] != -1) return false;
@@ -388,7 +406,6 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
     set_next(B, before, n);
     loop_of[w] = -1, prv[w] = nxt[w] = -1;
     touched.push_back(w);
-    std::vector<int> nz;
     for (int z : arc) {
       fl.neighbours(z, nz);
       for (int u : nz)
@@ -409,7 +426,7 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
   };
   auto pull = [&](int c) {
     if (c < nin || loop_of[c] < 0) return -1;
-    std::vector<int> cand;
+    std::vector<int>& cand = pull_cand;
     fl.neighbours(c, cand);
     std::sort(cand.begin(), cand.end());
     for (int w : cand)
