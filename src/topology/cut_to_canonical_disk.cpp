@@ -278,9 +278,6 @@ struct DetachPlan {
   bool hops = false;  // the metric of the basis
 };
 
-// Dijkstra from the entries already in pq (their dist set): each vertex is settled once (stale
-// entries are skipped) and relax(v, w, d) is called for every half-edge v->w of a settled v at
-// distance d; relax updates dist[w] and pushes w itself. O(E log E).
 // The min-heap order of (distance, vertex) entries: smaller distance first, then smaller vertex
 // (std::greater's order, without the three-way comparison of std::pair).
 struct LaterEntry {
@@ -289,8 +286,14 @@ struct LaterEntry {
   }
 };
 using MinQueue = std::priority_queue<std::pair<double, int>, std::vector<std::pair<double, int>>, LaterEntry>;
-template <class Relax>
-void settle_all(const TriMesh& M, const std::vector<double>& dist, MinQueue& pq, Relax&& relax) {
+
+// Dijkstra from the entries already in pq (their dist set): each vertex is settled once (stale
+// entries are skipped) and relax(v, w, d) is called for every half-edge v->w of a settled v at
+// distance d; relax updates dist[w] and pushes w itself. Stops once done() holds after a vertex
+// is settled: every vertex settled so far has its final distance and parent (a later entry is
+// never nearer), so whatever the caller reads off them is as after a full run. O(E log E).
+template <class Relax, class Done>
+void settle_until(const TriMesh& M, const std::vector<double>& dist, MinQueue& pq, Relax&& relax, Done&& done) {
   while (!pq.empty()) {  // each vertex is pushed at most once per half-edge into it
     auto [d, v] = pq.top();
     pq.pop();
@@ -301,7 +304,13 @@ void settle_all(const TriMesh& M, const std::vector<double>& dist, MinQueue& pq,
       relax(v, M.target(h), d);
       h = M.next_around_origin(h);
     } while (h != h0);
+    if (done()) return;
   }
+}
+// The same to the end.
+template <class Relax>
+void settle_all(const TriMesh& M, const std::vector<double>& dist, MinQueue& pq, Relax&& relax) {
+  settle_until(M, dist, pq, relax, [] { return false; });
 }
 
 void plan_strands(DetachPlan& P, const std::vector<std::pair<int, int>>& bands);
@@ -766,7 +775,8 @@ std::vector<std::vector<int>> realize_strands(DetachPlan& P, CutStats& stats) {
       SurfacePoint pa = rs.point(M.origin(e)), pb = rs.point(M.target(e));
       for (std::size_t k = i; k < j; ++k) {
         crossings[order[k]].vertex = next_vertex++;
-        rs.constructed.push_back(lerp(pa, pb, make_rational(static_cast<long>(k - i + 1), n + 1)));
+        rs.constructed.emplace_back();  // made in place (reserved above): no temporary point
+        lerp_into(rs.constructed.back(), pa, pb, make_rational(static_cast<long>(k - i + 1), n + 1));
       }
       i = j;
     }
@@ -1046,19 +1056,54 @@ bool plan_along_tree(CutResult& res, const GammaTree& G, int root_start, const s
   return true;
 }
 
+// Splits chords (sorted vertex pairs (a, b), a < b, edges of the mesh M that split(k, h) splits)
+// in order, the k-th (where need is null or need[k]) through split(k, h) with h its half-edge a -> b.
+// Each a's half-edges are read once, when its first chord comes: a split of (a, b) gives new
+// half-edges to the edges at b opposite a only, so the half-edges out of a found before it stay
+// those of their edges (a find per chord walked a's fan every time). O(n + chords).
+template <class Split>
+void split_sorted_chords(const TriMesh& M, const std::vector<std::pair<int, int>>& chords, const std::vector<char>* need,
+                         Split&& split) {
+  std::vector<std::pair<int, int>> out_of_a;  // (target, half-edge)
+  for (std::size_t k = 0, end = 0; k < chords.size(); k = end) {
+    const int a = chords[k].first;
+    bool any = false;
+    for (end = k; end < chords.size() && chords[end].first == a; ++end) any = any || !need || (*need)[end];
+    if (!any) continue;
+    out_of_a.clear();
+    const int h0 = M.vertex_halfedge(a);
+    int h = h0;
+    do {
+      out_of_a.push_back({M.target(h), h});
+      h = M.next_around_origin(h);
+    } while (h != h0);
+    for (std::size_t j = k; j < end; ++j) {
+      if (need && !(*need)[j]) continue;
+      const int b = chords[j].second;
+      const auto it = std::find_if(out_of_a.begin(), out_of_a.end(), [b](const auto& e) { return e.first == b; });
+      if (it == out_of_a.end()) internal("missing edge", {a, b});
+      split(j, it->second);
+    }
+  }
+}
+
 // A copy of M with every chord (sorted vertex pairs of M) split at its midpoint: combinatorics
 // and double positions only, to guide a search. mid[k] is chord k's midpoint (ids from
 // M.num_vertices() on, in chord order). O(n + chords).
 TriMesh split_copy(const TriMesh& M, const std::vector<Vec3d>& pos, const std::vector<std::pair<int, int>>& chords,
                    std::vector<int>& mid, std::vector<Vec3d>& pos_copy) {
-  TriMesh copy = M;
-  pos_copy = pos;
+  TriMesh copy;
+  const int splits = static_cast<int>(chords.size());
+  copy.reserve(M.num_vertices() + splits, M.num_faces() + 2 * splits);  // one copy of the arrays, no regrowth
+  copy = M;
+  pos_copy.reserve(pos.size() + chords.size());
+  pos_copy.assign(pos.begin(), pos.end());
   mid.resize(chords.size());
-  for (std::size_t k = 0; k < chords.size(); ++k) {
+  split_sorted_chords(copy, chords, nullptr, [&](std::size_t k, int h) {
     const auto [a, b] = chords[k];
-    mid[k] = copy.split_edge(find_he(copy, a, b));
+    mid[k] = copy.split_edge(h);
     pos_copy.push_back({(pos[a].x + pos[b].x) / 2, (pos[a].y + pos[b].y) / 2, (pos[a].z + pos[b].z) / 2});
-  }
+  });
   return copy;
 }
 
@@ -1111,11 +1156,11 @@ std::vector<int> split_like_copy(RefinedSurface& rs, const std::vector<std::pair
   }
   std::vector<int> to_surface(copy_nv, -1);
   std::iota(to_surface.begin(), to_surface.begin() + nv, 0);
-  for (std::size_t k = 0; k < chords.size(); ++k)
-    if (need[k]) {
-      to_surface[mid[k]] = rs.split_edge(find_he(rs.mesh, chords[k].first, chords[k].second), make_rational(1, 2));
-      ++splits;
-    }
+  const Rational half = make_rational(1, 2);
+  split_sorted_chords(rs.mesh, chords, &need, [&](std::size_t k, int h) {
+    to_surface[mid[k]] = rs.split_edge(h, half);
+    ++splits;
+  });
   return to_surface;
 }
 
@@ -1535,25 +1580,26 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
     std::vector<std::pair<int, int>> bands;
     std::vector<double> band_len;
     {
-      std::vector<std::pair<double, int>> cand, weighted;  // forced ones first, in half-edge order
+      // The forced edges go into the dual tree first, in half-edge order, then the others heaviest
+      // first (ties by half-edge); a leftover of the latter is a band.
+      std::vector<std::pair<double, int>> weighted;
       long outside = 0;
       for (int v = 0; v < nv; ++v) outside += blocked(v) || !(dist[v] < INFINITY);
+      UnionFind dsu(M.num_faces());
+      long left = 0;
       for (int h = 0; h < nh; ++h) {
         if (h > M.twin(h)) continue;
         const int a = M.origin(h), b = M.target(h);
         const bool reached = !blocked(a) && !blocked(b) && dist[a] < INFINITY && dist[b] < INFINITY;
         if (reached && (par[b] == a || par[a] == b)) continue;
-        if (!reached || label[a] != label[b]) cand.push_back({INFINITY, h});
+        if (!reached || label[a] != label[b]) left += !dsu.unite(TriMesh::face(h), TriMesh::face(M.twin(h)));
         else weighted.push_back({dist[a] + dist[b] + len(a, b), h});
       }
-      sort_by_weight_descending(weighted);  // heaviest first, ties by half-edge
-      cand.insert(cand.end(), weighted.begin(), weighted.end());
-      UnionFind dsu(M.num_faces());
-      long left = 0;
-      for (const auto& [w, h] : cand)
+      sort_by_weight_descending(weighted);
+      for (const auto& [w, h] : weighted)
         if (!dsu.unite(TriMesh::face(h), TriMesh::face(M.twin(h)))) {
           ++left;
-          if (w < INFINITY) bands.push_back({M.origin(h), M.target(h)}), band_len.push_back(w);
+          bands.push_back({M.origin(h), M.target(h)}), band_len.push_back(w);
         }
       // E - (reached - seeds) - (F - 1) leftovers, with E = V + F - 2 + 2g.
       if (left != 2L * genus + outside + static_cast<long>(seeds.size()) - 1)
@@ -1652,15 +1698,25 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
     return out.size() > before;
   };
 
-  // The chords of M (edges joining two vertices of `is_wall` that are no cross's edge), sorted.
+  // The chords of M (edges joining two vertices of `is_wall` that are no cross's edge), sorted:
+  // made in order, each wall vertex a's higher neighbours sorted in turn. O(n + sum of valence
+  // log valence).
   auto chords_of = [&](const TriMesh& M, auto&& is_wall) {
     std::vector<std::pair<int, int>> chords;
-    for (int h = 0; h < M.num_halfedges(); ++h) {
-      const int a = M.origin(h), b = M.target(h);
-      if (h < M.twin(h) && is_wall(a) && is_wall(b) && !is_cross_edge(a, b))
-        chords.push_back({std::min(a, b), std::max(a, b)});
+    std::vector<int> higher;
+    for (int a = 0; a < M.num_vertices(); ++a) {
+      if (!is_wall(a)) continue;
+      higher.clear();
+      const int h0 = M.vertex_halfedge(a);
+      int h = h0;
+      do {
+        const int b = M.target(h);
+        if (b > a && is_wall(b) && !is_cross_edge(a, b)) higher.push_back(b);
+        h = M.next_around_origin(h);
+      } while (h != h0);
+      std::sort(higher.begin(), higher.end());
+      for (int b : higher) chords.push_back({a, b});
     }
-    std::sort(chords.begin(), chords.end());
     return chords;
   };
   auto map_ids = [&](const std::vector<int>& to_surface, int& v) {
@@ -1679,27 +1735,57 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
     std::vector<char> source(nv, 0);
     MinQueue pq;
     auto free_v = [&](int v) { return v != root && cof[v] == -1; };
+    // The first pass: every vertex off the free ones is a source at 0; only those beside a vertex
+    // that `through` admits can relax anything, so only they are queued, once each, found from
+    // the admitted side (late rounds: most of the surface is crosses and P, the free part small).
+    auto first_pass = [&](auto&& through) {
+      std::fill(d.begin(), d.end(), INFINITY);
+      std::fill(source.begin(), source.end(), 0);
+      for (int v = 0; v < nv; ++v)
+        if (!free_v(v)) d[v] = 0, source[v] = 1;
+      for (int w = 0; w < nv; ++w) {
+        if (!through(w)) continue;
+        const int h0 = M.vertex_halfedge(w);
+        int h = h0;
+        do {
+          const int v = M.target(h);
+          if (source[v] == 1) source[v] = 2, pq.push({0.0, v});  // 2: a source queued
+          h = M.next_around_origin(h);
+        } while (h != h0);
+      }
+      settle_all(M, d, pq, [&](int v, int w, double dv) {
+        if (through(w) && dv + len(v, w) < d[w]) d[w] = dv + len(v, w), pq.push({d[w], w});
+      });
+    };
+    // On a copy the pass first goes over the free surface vertices only, and each midpoint then
+    // takes the least of d(x) + len(x, m) over its surface neighbours x: the same distances as a
+    // pass over all free vertices whenever the surface vertices end at most 2 kMidpointCost and
+    // the midpoints at most 3 kMidpointCost (a path through a midpoint costs at least 2
+    // kMidpointCost after it, and reaches a midpoint from another at least 3; additions round
+    // monotonically). Else the full pass. The late rounds' copies are mostly midpoints, every one of
+    // which the full pass would queue: O(n) instead of O(n log n) there.
+    bool exact = false;
+    if (first_mid < nv) {
+      first_pass([&](int w) { return w < first_mid && free_v(w); });
+      exact = true;
+      for (int v = 0; v < first_mid && exact; ++v) exact = d[v] <= 2 * kMidpointCost;
+      for (int m = first_mid; m < nv && exact; ++m) {
+        const int h0 = M.vertex_halfedge(m);
+        int h = h0;
+        do {
+          const int x = M.target(h);
+          if (x < first_mid && d[x] + len(x, m) < d[m]) d[m] = d[x] + len(x, m);
+          h = M.next_around_origin(h);
+        } while (h != h0);
+        exact = d[m] <= 3 * kMidpointCost;
+      }
+    }
+    if (!exact) first_pass(free_v);
     auto run = [&] {
       settle_all(M, d, pq, [&](int v, int w, double dv) {
         if (free_v(w) && dv + len(v, w) < d[w]) d[w] = dv + len(v, w), pq.push({d[w], w});
       });
     };
-    // Every vertex off the free ones is a source at 0; only those beside a free vertex can relax
-    // anything, so only they are queued (late rounds: most of the surface is crosses and P).
-    for (int v = 0; v < nv; ++v) {
-      if (free_v(v)) continue;
-      d[v] = 0, source[v] = 1;
-      const int h0 = M.vertex_halfedge(v);
-      int h = h0;
-      do {
-        if (free_v(M.target(h))) {
-          pq.push({0.0, v});
-          break;
-        }
-        h = M.next_around_origin(h);
-      } while (h != h0);
-    }
-    run();
     std::vector<int> seeds;
     while (seeds.size() < k) {
       int best = -1;
@@ -1746,15 +1832,20 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
       MinQueue pq;
       for (int v = 0; v < static_cast<int>(pdepth.size()); ++v)
         if (cof[v] == -2) dist[v] = pdepth[v], pq.push({dist[v], v});
+      // Stops once every new cross hangs: their hang points and the paths up from them are final.
       std::size_t hung = 0;
-      settle_all(M, dist, pq, [&](int v, int w, double d) {
-        const int c = cof[w];
-        if (c >= static_cast<int>(first)) {
-          if (hang[c] < 0) hang[c] = w, hang_from[c] = v, ++hung;
-        } else if (c == -1 && d + len(v, w) < dist[w]) {
-          dist[w] = d + len(v, w), par[w] = v, pq.push({dist[w], w});
-        }
-      });
+      const std::size_t want = crosses.size() - first;
+      settle_until(
+          M, dist, pq,
+          [&](int v, int w, double d) {
+            const int c = cof[w];
+            if (c >= static_cast<int>(first)) {
+              if (hang[c] < 0) hang[c] = w, hang_from[c] = v, ++hung;
+            } else if (c == -1 && d + len(v, w) < dist[w]) {
+              dist[w] = d + len(v, w), par[w] = v, pq.push({dist[w], w});
+            }
+          },
+          [&] { return hung == want; });
       return hung;
     };
     // The path from x (reached) up to P, as (vertex, parent) pairs.

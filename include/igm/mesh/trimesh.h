@@ -54,6 +54,14 @@ class TriMesh {
   /// Splits face f into three around a new vertex; returns the new vertex id. Amortized O(1).
   int split_face(int f);
 
+  /// Room for `vertices` vertices and `faces` faces in all, so that splits up to those counts do
+  /// not reallocate. O(the new capacity) when it grows.
+  void reserve(int vertices, int faces) {
+    out_.reserve(static_cast<std::size_t>(vertices));
+    origin_.reserve(3 * static_cast<std::size_t>(faces));
+    twin_.reserve(3 * static_cast<std::size_t>(faces));
+  }
+
   /// Appends an isolated vertex (used by builders); returns its id.
   int add_vertex() {
     out_.push_back(-1);
