@@ -2015,8 +2015,8 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
 // How many root candidates the normal form tries (root = -1, CutOptions::normal_form_roots = -1):
 // clamp(min(2e5 / F, 4e6 / (F g)), 1, 12). A candidate's construction costs about its output,
 // which grows with g as well as F (the crosses on cheese, g133 on 17.8k faces: 1.7-3.5 s each, 31 s
-// for the 11 roots that 2e5 / F alone gives, 148.4k vertices; one root: 2-3.5 s, 160.8k). Up to
-// g = 20 it is 2e5 / F as before.
+// for the 11 roots that 2e5 / F alone gives, 148.4k vertices; one root: 160.8k, 2-3.5 s, since
+// stop 24 1.6-1.9 s). Up to g = 20 it is 2e5 / F as before.
 long normal_form_root_count(const TriMesh& mesh, int genus) {
   const long long f = std::max(1, mesh.num_faces());
   return std::clamp<long>(static_cast<long>(std::min(200000LL / f, 4000000LL / (f * std::max(genus, 1)))), 1L, 12L);

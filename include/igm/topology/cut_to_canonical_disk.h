@@ -98,7 +98,9 @@
 //     made: cheese g133 gets 148k vertices, 17x (373k, 43x, without; measured against 2.5M for the
 //     prototype), generated genus 200 on 30k faces 151k instead of 191k, each the best of 11 and 6
 //     roots. Since stop 23 they get one root by default (CutOptions::normal_form_roots, hop counts):
-//     160.8k in 2-3.5 s instead of 31 s, and 195k in 3 s instead of 14 s.
+//     160.8k in 2-3.5 s instead of 31 s, and 195k in 3 s instead of 14 s; since stop 24, with the
+//     same outputs, cheese in 1.6-1.9 s (exact points built in place, a copy's seeds without its
+//     full Dijkstra, the hanging's Dijkstra stopped once all hang, chords split per vertex).
 //     Measured and rejected before: handle slides on the detached greedy loops (plan_handle_slides,
 //     handle_slides.h): the slides' paths double in length per handle on cheese; rounds that
 //     detached their loops before the next round (stop 13): every later round had to squeeze
@@ -203,7 +205,7 @@ struct CutOptions {
   bool parallel = true;
   /// With the normal form and root = -1: how many roots are tried (each with 3D lengths and hop
   /// counts; one root: hop counts only). -1 picks clamp(min(2e5 / F, 4e6 / (F g)), 1, 12): a
-  /// candidate costs about its output, which grows with g (cheese, g133: one root, 2-3 s and
+  /// candidate costs about its output, which grows with g (cheese, g133: one root, 1.6-1.9 s and
   /// 160.8k vertices; 11 roots: 31 s and 148.4k). >= 1: that many (at most V); 0 or < -1 is
   /// InvalidArgument.
   int normal_form_roots = -1;
