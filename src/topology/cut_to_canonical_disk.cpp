@@ -1265,23 +1265,29 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
     std::vector<double> band_len;
     std::vector<char> band_ok;
     {
-      std::vector<std::pair<double, int>> cand;
+      // The forced edges go into the dual tree first, in half-edge order, as they are found (a
+      // leftover among them is a band that is not ok), then the others heaviest first (ties by
+      // half-edge).
+      std::vector<std::pair<double, int>> weighted;
+      UnionFind dsu(M.num_faces());
+      auto take = [&](double w, int h) {
+        if (!dsu.unite(TriMesh::face(h), TriMesh::face(M.twin(h)))) {
+          bands.push_back({M.origin(h), M.target(h)});
+          band_len.push_back(w);
+          band_ok.push_back(w < INFINITY);
+        }
+      };
       for (int h = 0; h < nh; ++h) {
         if (h > M.twin(h) || is_g(M, K, band_of, h)) continue;
         const int a = M.origin(h), b = M.target(h);
         if (t_edge(a, b)) continue;
         const int la = end_label(h), lb = end_label(M.twin(h));
         const bool forced = (K.on_g[a] && K.on_g[b]) || la < 0 || la != lb || !(dd(a) < INFINITY) || !(dd(b) < INFINITY);
-        cand.push_back({forced ? INFINITY : dd(a) + dd(b) + len(a, b), h});
+        if (forced) take(INFINITY, h);
+        else weighted.push_back({dd(a) + dd(b) + len(a, b), h});
       }
-      sort_by_weight_descending(cand);  // forced ones (inf) first, then heaviest first; ties by half-edge
-      UnionFind dsu(M.num_faces());
-      for (const auto& [w, h] : cand)
-        if (!dsu.unite(TriMesh::face(h), TriMesh::face(M.twin(h)))) {
-          bands.push_back({M.origin(h), M.target(h)});
-          band_len.push_back(w);
-          band_ok.push_back(w < INFINITY);
-        }
+      sort_by_weight_descending(weighted);
+      for (const auto& [w, h] : weighted) take(w, h);
       // A vertex off Gamma that T does not reach (cut off by chords) adds one edge.
       int dead = 0;
       for (int v = 0; v < nv; ++v) dead += !K.on_g[v] && !(dist[v] < INFINITY);
