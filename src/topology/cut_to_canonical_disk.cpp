@@ -1058,9 +1058,10 @@ bool plan_along_tree(CutResult& res, const GammaTree& G, int root_start, const s
 
 // Splits chords (sorted vertex pairs (a, b), a < b, edges of the mesh M that split(k, h) splits)
 // in order, the k-th (where need is null or need[k]) through split(k, h) with h its half-edge a -> b.
-// Each a's half-edges are read once, when its first chord comes: a split of (a, b) gives new
-// half-edges to the edges at b opposite a only, so the half-edges out of a found before it stay
-// those of their edges (a find per chord walked a's fan every time). O(n + chords).
+// Each a's half-edges are read once, when its first chord comes: a split of (a, b) (TriMesh::
+// split_edge) renumbers only the half-edges of the two edges at b that its faces have off a, so
+// the half-edges out of a read before it stay those of their edges (a find per chord walked a's
+// fan every time). O(n + chords).
 template <class Split>
 void split_sorted_chords(const TriMesh& M, const std::vector<std::pair<int, int>>& chords, const std::vector<char>* need,
                          Split&& split) {
@@ -1764,12 +1765,13 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
       });
     };
     // On a copy the pass first goes over the free surface vertices only, and each midpoint then
-    // takes the least of d(x) + len(x, m) over its surface neighbours x: the same distances as a
-    // pass over all free vertices whenever the surface vertices end at most 2 kMidpointCost and
-    // the midpoints at most 3 kMidpointCost (a path through a midpoint costs at least 2
-    // kMidpointCost after it, and reaches a midpoint from another at least 3; additions round
-    // monotonically). Else the full pass. The late rounds' copies are mostly midpoints, every one of
-    // which the full pass would queue: O(n) instead of O(n log n) there.
+    // takes the least of d(x) + len(x, m) over its surface neighbours x. These are the distances
+    // of a pass over all free vertices whenever the surface vertices end at most 2 kMidpointCost
+    // away and the midpoints at most 3: a path that passes a midpoint pays kMidpointCost to enter
+    // it and again to leave it, one that reaches a midpoint from another midpoint at least 3
+    // times (additions round monotonically, so the bounds hold in doubles). Else the full pass.
+    // The late rounds' copies are mostly midpoints, every one of which the full pass would queue:
+    // O(n) instead of O(n log n) there.
     bool exact = false;
     if (first_mid < nv) {
       first_pass([&](int w) { return w < first_mid && free_v(w); });
