@@ -2208,7 +2208,10 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     // side_by_side (a lone candidate on two threads): the crosses run alongside the rounds from the
     // start, stopped at their next round once the rounds succeed or throw; the outcome is the same,
     // in the time of the longer of the two instead of their sum (cheese, whose rounds pass it after
-    // 1.6 s: 2.8-3.1 s instead of 3.9-4.6 s on one thread).
+    // 1.6 s: 2.8-3.1 s instead of 3.9-4.6 s on one thread). Only where the rounds are likely to pass
+    // their bound (kRaceFacesPerHandle): elsewhere the crosses would be thrown away, and beside the
+    // rounds they cost the rounds memory bandwidth (the generated 1M-face genus 20: 9.0-10.8 s
+    // for its rounds alone, 9.8-11.7 s with the crosses beside them, 4 runs each).
     auto run_candidate = [&](int c, bool hops, bool crosses_only, long best, Outcome& out, bool side_by_side) {
       if (crosses_only) {
         attempt(c, hops, true, best, out);
@@ -2244,6 +2247,12 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
       out = std::move(crossed);
       out.rounds_passed = true;
     };
+    // The rounds pass max_rounds_growth on coarse meshes of high genus (cheese: 134 faces per
+    // handle, a generated genus 200 on 30k faces: 150) and stay well within it on fine ones
+    // (couplingdown: 413, the 1M-face genus 20: 49.5k); a lone candidate races its crosses against
+    // its rounds below this.
+    constexpr long kRaceFacesPerHandle = 2000;
+    const bool race = mesh.num_faces() < kRaceFacesPerHandle * static_cast<long>(genus);
     bool found = false, kept_hops = false;
     int tried = 0, rounds_passed = 0;
     DetachPlan kept;
@@ -2259,7 +2268,7 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
         };
       };
       if (n == 2) run_pair(options.parallel, run(0), run(1));
-      else run_candidate(candidates[i].first, candidates[i].second, crosses_only, best, out[0], options.parallel);
+      else run_candidate(candidates[i].first, candidates[i].second, crosses_only, best, out[0], options.parallel && race);
       for (std::size_t j = 0; j < n; ++j) {
         ++tried;
         rounds_passed += out[j].rounds_passed;

@@ -156,7 +156,10 @@
 //     threads (CutOptions::parallel), each pair bounded by the best of the pairs before it and
 //     merged in order, so the result does not depend on the threads; a lone candidate (a given
 //     root, or one root: CutOptions::normal_form_roots, which gives cheese one since stop 23) runs
-//     its rounds and its crosses side by side instead, the crosses stopped once the rounds succeed.
+//     its rounds and its crosses side by side instead, the crosses stopped once the rounds succeed,
+//     where the mesh has fewer than 2000 faces per handle (there the rounds tend to pass their
+//     bound: cheese 134; elsewhere the crosses would only take memory bandwidth from the rounds:
+//     the 1M-face genus 20, 49.5k, 8.1-9.2 s instead of 9.5-12.1 s).
 //     Loops are renumbered and reoriented so that the word is exactly L0 L1 L0^-1 L1^-1 L2 L3 ...
 //     Off, the word is whatever step 2 gives.
 //  4. embedding pre-conditions (embed/tutte.h): every interior disk edge joining two vertices of
@@ -199,9 +202,9 @@ struct CutOptions {
   /// compound on coarse meshes of high genus); with Best, after two roots that did so it is not
   /// tried again, and the crosses construction runs instead.
   double max_rounds_growth = 4.0;
-  /// Evaluate root candidates two at a time on two threads (root = -1; a lone candidate: its two
-  /// constructions side by side). The result is the same either way: candidates go in fixed
-  /// pairs, merged in order.
+  /// Evaluate root candidates two at a time on two threads (root = -1; a lone candidate on a mesh
+  /// of fewer than 2000 faces per handle: its two constructions side by side). The result is the
+  /// same either way: candidates go in fixed pairs, merged in order.
   bool parallel = true;
   /// With the normal form and root = -1: how many roots are tried (each with 3D lengths and hop
   /// counts; one root: hop counts only). -1 picks clamp(min(2e5 / F, 4e6 / (F g)), 1, 12): a
