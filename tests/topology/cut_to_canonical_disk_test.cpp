@@ -471,8 +471,9 @@ TEST_CASE("the normal form's root candidates give the same cut on two threads as
 TEST_CASE("a lone root candidate runs its rounds and its crosses side by side: the same cut as one after the other") {
   // CutOptions::normal_form_roots = 1 (what cheese gets by default) or a given root: one candidate,
   // whose two constructions run at once on two threads, the crosses stopped once the rounds
-  // succeed. Genus 10 on 3000 faces keeps the rounds; genus 20 on 1000 faces passes their bound
-  // and keeps the crosses. Serial and parallel must agree in everything.
+  // succeed (on meshes of fewer than 2000 faces per handle, as both here). Genus 10 on 3000 faces
+  // keeps the rounds; genus 20 on 1000 faces passes their bound and keeps the crosses. Serial and
+  // parallel must agree in everything.
   for (const auto& [g, faces, seed, crosses] : {std::tuple{10, 3000L, 7u, false}, std::tuple{20, 1000L, 3u, true}}) {
     CAPTURE(g);
     Input in = generated(g, faces, seed);
