@@ -1056,6 +1056,29 @@ bool plan_along_tree(CutResult& res, const GammaTree& G, int root_start, const s
   return true;
 }
 
+// The chords of M: its edges between two vertices of is_wall but for those skip(a, b, h) names (h:
+// a -> b), as pairs (a, b) with a < b, sorted: made in order, each wall vertex's higher neighbours
+// sorted in turn. Both constructions' copies split these. O(n + sum of valence log valence).
+template <class IsWall, class Skip>
+std::vector<std::pair<int, int>> sorted_chords(const TriMesh& M, IsWall&& is_wall, Skip&& skip) {
+  std::vector<std::pair<int, int>> chords;
+  std::vector<int> higher;
+  for (int a = 0; a < M.num_vertices(); ++a) {
+    if (!is_wall(a)) continue;
+    higher.clear();
+    const int h0 = M.vertex_halfedge(a);
+    int h = h0;
+    do {
+      const int b = M.target(h);
+      if (b > a && is_wall(b) && !skip(a, b, h)) higher.push_back(b);
+      h = M.next_around_origin(h);
+    } while (h != h0);
+    std::sort(higher.begin(), higher.end());
+    for (int b : higher) chords.push_back({a, b});
+  }
+  return chords;
+}
+
 // Splits chords (sorted vertex pairs (a, b), a < b, edges of the mesh M that split(k, h) splits)
 // in order, the k-th (where need is null or need[k]) through split(k, h) with h its half-edge a -> b.
 // Each a's half-edges are read once, when its first chord comes: a split of (a, b) (TriMesh::
@@ -1464,11 +1487,9 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
     };
     ok = try_prefixes(rs.mesh, G, pos, INT32_MAX);
     if (!ok) {
-      std::vector<std::pair<int, int>> chords;  // sorted: the copy's split order
-      for (int h = 0; h < nh; ++h)
-        if (h < M.twin(h) && G.on_g[M.origin(h)] && G.on_g[M.target(h)] && !is_g(M, G, band_of, h))
-          chords.push_back({std::min(M.origin(h), M.target(h)), std::max(M.origin(h), M.target(h))});
-      std::sort(chords.begin(), chords.end());
+      // Sorted: the copy's split order. is_g reads both half-edges of an edge alike.
+      const auto chords = sorted_chords(
+          M, [&](int v) { return G.on_g[v] != 0; }, [&](int, int, int h) { return is_g(M, G, band_of, h); });
       if (chords.empty()) internal("normal form: round " + std::to_string(round) + " found no linked pair of loops");
       std::vector<int> mid;
       std::vector<Vec3d> pos_copy;
@@ -1705,26 +1726,9 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
     return out.size() > before;
   };
 
-  // The chords of M (edges joining two vertices of `is_wall` that are no cross's edge), sorted:
-  // made in order, each wall vertex a's higher neighbours sorted in turn. O(n + sum of valence
-  // log valence).
+  // The chords of M: edges joining two vertices of `is_wall` that are no cross's edge, sorted.
   auto chords_of = [&](const TriMesh& M, auto&& is_wall) {
-    std::vector<std::pair<int, int>> chords;
-    std::vector<int> higher;
-    for (int a = 0; a < M.num_vertices(); ++a) {
-      if (!is_wall(a)) continue;
-      higher.clear();
-      const int h0 = M.vertex_halfedge(a);
-      int h = h0;
-      do {
-        const int b = M.target(h);
-        if (b > a && is_wall(b) && !is_cross_edge(a, b)) higher.push_back(b);
-        h = M.next_around_origin(h);
-      } while (h != h0);
-      std::sort(higher.begin(), higher.end());
-      for (int b : higher) chords.push_back({a, b});
-    }
-    return chords;
+    return sorted_chords(M, is_wall, [&](int a, int b, int) { return is_cross_edge(a, b); });
   };
   auto map_ids = [&](const std::vector<int>& to_surface, int& v) {
     if (to_surface[v] < 0) internal("normal form: a found path uses a chord midpoint that was not split");
