@@ -1588,61 +1588,138 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
              (b >= first_mid ? kMidpointCost : 0.0);
     };
   };
+  // The search's per-vertex, per-face and per-half-edge state, kept across searches and reset
+  // where the last search touched it (its reached vertices, faces and band half-edges), so that a
+  // search whose seeds reach few vertices costs about what it reaches: the surface's searches in
+  // the late rounds reach a few hundred of its 30k-65k vertices before the copy is needed.
+  struct SearchState {
+    std::vector<double> dist;
+    std::vector<int> par, label, depth, face_node, cand_of;
+    std::vector<char> above, mark;
+    std::vector<int> reached, faces, halfedges;  // what the last search set
+    void prepare(int nv, int nf, int nh) {
+      for (int v : reached) dist[v] = INFINITY, par[v] = -1, label[v] = -1, depth[v] = 0, above[v] = 0, mark[v] = 0;
+      for (int f : faces) face_node[f] = -1;
+      for (int h : halfedges) cand_of[h] = -1;
+      reached.clear(), faces.clear(), halfedges.clear();
+      if (static_cast<int>(dist.size()) < nv) {
+        dist.resize(nv, INFINITY), par.resize(nv, -1), label.resize(nv, -1), depth.resize(nv, 0);
+        above.resize(nv, 0), mark.resize(nv, 0);
+      }
+      if (static_cast<int>(face_node.size()) < nf) face_node.resize(nf, -1);
+      if (static_cast<int>(cand_of.size()) < nh) cand_of.resize(nh, -1);
+    }
+  } st;
   // One round's search on M (the surface or a copy; cof = cross_of sized for M) from `seeds`.
-  // Appends the crosses found (vertex ids of M). O(E log E + L^2 log L + the paths), L leftovers.
+  // Appends the crosses found (vertex ids of M). O(E log E + L^2 log L + the paths), L leftovers;
+  // O(R log R + L^2 log L + the paths) where the seeds reach R < n / 8 vertices.
   auto search = [&](const TriMesh& M, const std::vector<int>& cof, const std::vector<Vec3d>& P,
                     const std::vector<int>& seeds, int first_mid, int round, std::vector<Cross>& out) {
     const int nv = M.num_vertices(), nh = M.num_halfedges();
     const auto len = lenf(P, first_mid);
     auto blocked = [&](int v) { return v == root || cof[v] != -1; };
-    std::vector<double> dist(nv, INFINITY);
-    std::vector<int> par(nv, -1), label(nv, -1), depth(nv, 0);
+    st.prepare(nv, M.num_faces(), nh);
+    std::vector<double>& dist = st.dist;
+    std::vector<int> &par = st.par, &label = st.label, &depth = st.depth, &reached = st.reached;
     {
       MinQueue pq;
-      for (std::size_t k = 0; k < seeds.size(); ++k) dist[seeds[k]] = 0, label[seeds[k]] = static_cast<int>(k), pq.push({0.0, seeds[k]});
+      for (std::size_t k = 0; k < seeds.size(); ++k) {
+        dist[seeds[k]] = 0, label[seeds[k]] = static_cast<int>(k), pq.push({0.0, seeds[k]});
+        reached.push_back(seeds[k]);
+      }
       settle_all(M, dist, pq, [&](int v, int w, double d) {
-        if (!blocked(w) && d + len(v, w) < dist[w])
+        if (!blocked(w) && d + len(v, w) < dist[w]) {
+          if (dist[w] == INFINITY) reached.push_back(w);
           dist[w] = d + len(v, w), par[w] = v, label[w] = label[v], depth[w] = depth[v] + 1, pq.push({dist[w], w});
+        }
       });
     }
     std::vector<std::pair<int, int>> bands;
     std::vector<double> band_len;
     {
-      // The forced edges go into the dual tree first, in half-edge order, then the others heaviest
-      // first (ties by half-edge); a leftover of the latter is a band.
+      // The forced edges (at a vertex not reached, between two seeds' parts) go into the dual tree
+      // first, then the others heaviest first (ties by half-edge); a leftover of the latter is a
+      // band.
       std::vector<std::pair<double, int>> weighted;
-      long outside = 0;
-      for (int v = 0; v < nv; ++v) outside += blocked(v) || !(dist[v] < INFINITY);
-      UnionFind dsu(M.num_faces());
-      long left = 0;
-      for (int h = 0; h < nh; ++h) {
-        if (h > M.twin(h)) continue;
-        const int a = M.origin(h), b = M.target(h);
-        const bool reached = !blocked(a) && !blocked(b) && dist[a] < INFINITY && dist[b] < INFINITY;
-        if (reached && (par[b] == a || par[a] == b)) continue;
-        if (!reached || label[a] != label[b]) left += !dsu.unite(TriMesh::face(h), TriMesh::face(M.twin(h)));
-        else weighted.push_back({dist[a] + dist[b] + len(a, b), h});
-      }
-      sort_by_weight_descending(weighted);
-      for (const auto& [w, h] : weighted)
-        if (!dsu.unite(TriMesh::face(h), TriMesh::face(M.twin(h)))) {
-          ++left;
-          bands.push_back({M.origin(h), M.target(h)}), band_len.push_back(w);
+      const long outside = nv - static_cast<long>(reached.size());
+      if (8 * static_cast<long>(reached.size()) < nv) {
+        // Few reached: the faces at a vertex not reached are one part of the dual forest once the
+        // forced edges are in (the fan around such a vertex is joined by its edges, two such
+        // vertices on an edge share its faces, and they are connected on the mesh: the root, the
+        // crosses and P form one tree of edges, and every part of the free vertices the seeds do
+        // not reach borders it). So that part is one node (0), every face of three reached
+        // vertices another, and only the edges between reached vertices are read: the same
+        // leftovers as the pass over all edges below. The dual forest must end connected.
+        std::vector<int>& face_node = st.face_node;
+        int nodes = 1;
+        auto node = [&](int h) {
+          const int f = TriMesh::face(h);
+          if (face_node[f] < 0) {
+            const bool inner = dist[M.origin(h)] < INFINITY && dist[M.origin(TriMesh::next(h))] < INFINITY &&
+                               dist[M.origin(TriMesh::prev(h))] < INFINITY;
+            face_node[f] = inner ? nodes++ : 0;
+            st.faces.push_back(f);
+          }
+          return face_node[f];
+        };
+        std::vector<std::array<int, 2>> forced;
+        for (int a : reached) {
+          const int h0 = M.vertex_halfedge(a);
+          int h = h0;
+          do {  // valence(a) steps
+            const int b = M.target(h), t = M.twin(h);
+            if (h < t && dist[b] < INFINITY && par[b] != a && par[a] != b) {
+              const int x = node(h), y = node(t);  // every node exists before the forest is sized
+              if (label[a] != label[b]) forced.push_back({x, y});
+              else weighted.push_back({dist[a] + dist[b] + len(a, b), h});
+            }
+            h = M.next_around_origin(h);
+          } while (h != h0);
         }
-      // E - (reached - seeds) - (F - 1) leftovers, with E = V + F - 2 + 2g.
-      if (left != 2L * genus + outside + static_cast<long>(seeds.size()) - 1)
-        internal("normal form: cross round " + std::to_string(round) + " left " + std::to_string(left) + " edges");
+        UnionFind dsu(static_cast<std::size_t>(nodes));
+        long joined = 0;
+        for (const auto& [x, y] : forced) joined += dsu.unite(x, y);
+        sort_by_weight_descending(weighted);
+        for (const auto& [w, h] : weighted) {
+          if (dsu.unite(node(h), node(M.twin(h)))) ++joined;
+          else bands.push_back({M.origin(h), M.target(h)}), band_len.push_back(w);
+        }
+        if (joined != nodes - 1)
+          internal("normal form: cross round " + std::to_string(round) + " left the dual forest in " +
+                   std::to_string(nodes - joined) + " parts");
+      } else {
+        UnionFind dsu(M.num_faces());
+        long left = 0;
+        for (int h = 0; h < nh; ++h) {
+          if (h > M.twin(h)) continue;
+          const int a = M.origin(h), b = M.target(h);
+          const bool both = !blocked(a) && !blocked(b) && dist[a] < INFINITY && dist[b] < INFINITY;
+          if (both && (par[b] == a || par[a] == b)) continue;
+          if (!both || label[a] != label[b]) left += !dsu.unite(TriMesh::face(h), TriMesh::face(M.twin(h)));
+          else weighted.push_back({dist[a] + dist[b] + len(a, b), h});
+        }
+        sort_by_weight_descending(weighted);
+        for (const auto& [w, h] : weighted)
+          if (!dsu.unite(TriMesh::face(h), TriMesh::face(M.twin(h)))) {
+            ++left;
+            bands.push_back({M.origin(h), M.target(h)}), band_len.push_back(w);
+          }
+        // E - (reached - seeds) - (F - 1) leftovers, with E = V + F - 2 + 2g.
+        if (left != 2L * genus + outside + static_cast<long>(seeds.size()) - 1)
+          internal("normal form: cross round " + std::to_string(round) + " left " + std::to_string(left) + " edges");
+      }
     }
     const int nb = static_cast<int>(bands.size());
     if (nb < 2) return false;
     // The leftover ends in the tours of the seeds' trees (descending only above an end: O(n)).
     std::vector<std::array<long, 2>> end_pos(nb, {-1, -1});
     {
-      std::vector<int> cand_of(nh, -1);
-      std::vector<char> above(nv, 0);
+      std::vector<int>& cand_of = st.cand_of;
+      std::vector<char>& above = st.above;
       for (int i = 0; i < nb; ++i) {
         const int h = find_he(M, bands[i].first, bands[i].second);
         cand_of[h] = cand_of[M.twin(h)] = i;
+        st.halfedges.push_back(h), st.halfedges.push_back(M.twin(h));
         for (int x : {bands[i].first, bands[i].second})
           for (; x >= 0 && !above[x]; x = par[x]) above[x] = 1;
       }
@@ -1690,7 +1767,8 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
     std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
       return a.cost != b.cost ? a.cost < b.cost : a.i != b.i ? a.i < b.i : a.j < b.j;
     });
-    std::vector<char> mark(nv, 0), blocked_band(nb, 0);  // a band whose path meets a taken cross
+    std::vector<char>& mark = st.mark;
+    std::vector<char> blocked_band(nb, 0);  // a band whose path meets a taken cross
     std::vector<std::size_t> free_at(nb, SIZE_MAX);       // out.size() when its path was last found free
     const std::size_t before = out.size();
     // A band's path is scanned again only after a cross was taken, and never once blocked:

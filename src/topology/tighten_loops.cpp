@@ -92,6 +92,7 @@ struct FaceList {
   std::vector<int>& faces_at(int v) {
     if (!built[v]) {
       built[v] = 1;
+      inc[v].reserve(static_cast<std::size_t>(rs.mesh.valence(v)) + 2);  // one allocation: a collapse adds a few
       const int h0 = rs.mesh.vertex_halfedge(v);
       int h = h0;
       do {  // valence steps
