@@ -2289,8 +2289,8 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     // binding, not only the best so far; Best) the crosses, whose outcome (or error) then counts.
     // side_by_side (a lone candidate on two threads): the crosses run alongside the rounds from the
     // start, stopped at their next round once the rounds succeed or throw; the outcome is the same,
-    // in the time of the longer of the two instead of their sum (cheese, whose rounds pass it after
-    // 1.6 s: 2.8-3.1 s instead of 3.9-4.6 s on one thread). Only where the rounds are likely to pass
+    // in the time of the longer of the two instead of their sum (cheese, whose rounds passed 4x
+    // after 1.6 s: 2.8-3.1 s instead of 3.9-4.6 s on one thread; since stop 25 the bound is 2x). Only where the rounds are likely to pass
     // their bound (kRaceFacesPerHandle): elsewhere the crosses would be thrown away, and beside the
     // rounds they cost the rounds memory bandwidth (the generated 1M-face genus 20: 9.0-10.8 s
     // for its rounds alone, 9.8-11.7 s with the crosses beside them, 4 runs each).

@@ -437,6 +437,21 @@ TEST_CASE("the rounds construction alone stops at its own bound with a typed err
   CHECK(verify_cut(in, r) == "");
 }
 
+TEST_CASE("the rounds' default bound (2x) hands a coarse genus 8 mesh to the crosses, which add fewer vertices") {
+  // Generated genus 8 on 314 vertices and 1000 faces: with the bound at 4x (before stop 25) Best
+  // kept the rounds (634 vertices); at 2x they pass it and the crosses win (579).
+  Input in = generated(8, 1000, 3);
+  CutResult now = cut_to_canonical_disk(in.mesh, in.positions, CutOptions{});
+  CHECK(verify_cut(in, now) == "");
+  CutOptions old;
+  old.max_rounds_growth = 4.0;
+  CutResult before = cut_to_canonical_disk(in.mesh, in.positions, old);
+  CHECK(verify_cut(in, before) == "");
+  CHECK(now.stats.crosses);
+  CHECK_FALSE(before.stats.crosses);
+  CHECK(now.surface.mesh.num_vertices() < before.surface.mesh.num_vertices());
+}
+
 TEST_CASE("the normal form's root candidates give the same cut on two threads as on one") {
   // Candidates go in fixed chunks of two, each bounded by the chunks before it and merged in
   // order, and only the kept plan is drawn: the threads change nothing. Genus 10 on 3000 faces
