@@ -1611,8 +1611,8 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
     }
   } st;
   // One round's search on M (the surface or a copy; cof = cross_of sized for M) from `seeds`.
-  // Appends the crosses found (vertex ids of M). O(E log E + L^2 log L + the paths), L leftovers;
-  // O(R log R + L^2 log L + the paths) where the seeds reach R < n / 8 vertices.
+  // Appends the crosses found (vertex ids of M). O(R log R + L^2 log L + the paths) for R vertices
+  // reached (with their edges) and L leftovers.
   auto search = [&](const TriMesh& M, const std::vector<int>& cof, const std::vector<Vec3d>& P,
                     const std::vector<int>& seeds, int first_mid, int round, std::vector<Cross>& out) {
     const int nv = M.num_vertices(), nh = M.num_halfedges();
@@ -1639,75 +1639,53 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
     {
       // The forced edges (at a vertex not reached, between two seeds' parts) go into the dual tree
       // first, then the others heaviest first (ties by half-edge); a leftover of the latter is a
-      // band.
+      // band. The faces at the vertices not reached are one part of the dual forest once the
+      // forced edges are in: the fan around such a vertex is joined by its edges, two such vertices
+      // on an edge share its faces, and they are connected on the mesh (the root, the crosses and
+      // P form one tree of edges, and every part of the free vertices the seeds do not reach
+      // borders it). So that part is one node (0), every face of three reached vertices another,
+      // and only the edges between reached vertices are read: the same leftovers as Kruskal over
+      // all faces and edges, at the cost of what the seeds reach (the late rounds' searches on the
+      // surface reach a few hundred of its 30k-65k vertices). The dual forest must end connected
+      // (over all faces: E - (reached - seeds) - (F - 1) leftovers, E = V + F - 2 + 2g).
       std::vector<std::pair<double, int>> weighted;
-      const long outside = nv - static_cast<long>(reached.size());
-      if (8 * static_cast<long>(reached.size()) < nv) {
-        // Few reached: the faces at a vertex not reached are one part of the dual forest once the
-        // forced edges are in (the fan around such a vertex is joined by its edges, two such
-        // vertices on an edge share its faces, and they are connected on the mesh: the root, the
-        // crosses and P form one tree of edges, and every part of the free vertices the seeds do
-        // not reach borders it). So that part is one node (0), every face of three reached
-        // vertices another, and only the edges between reached vertices are read: the same
-        // leftovers as the pass over all edges below. The dual forest must end connected.
-        std::vector<int>& face_node = st.face_node;
-        int nodes = 1;
-        auto node = [&](int h) {
-          const int f = TriMesh::face(h);
-          if (face_node[f] < 0) {
-            const bool inner = dist[M.origin(h)] < INFINITY && dist[M.origin(TriMesh::next(h))] < INFINITY &&
-                               dist[M.origin(TriMesh::prev(h))] < INFINITY;
-            face_node[f] = inner ? nodes++ : 0;
-            st.faces.push_back(f);
+      std::vector<int>& face_node = st.face_node;
+      int nodes = 1;
+      auto node = [&](int h) {
+        const int f = TriMesh::face(h);
+        if (face_node[f] < 0) {
+          const bool inner = dist[M.origin(h)] < INFINITY && dist[M.origin(TriMesh::next(h))] < INFINITY &&
+                             dist[M.origin(TriMesh::prev(h))] < INFINITY;
+          face_node[f] = inner ? nodes++ : 0;
+          st.faces.push_back(f);
+        }
+        return face_node[f];
+      };
+      std::vector<std::array<int, 2>> forced;
+      for (int a : reached) {
+        const int h0 = M.vertex_halfedge(a);
+        int h = h0;
+        do {  // valence(a) steps
+          const int b = M.target(h), t = M.twin(h);
+          if (h < t && dist[b] < INFINITY && par[b] != a && par[a] != b) {
+            const int x = node(h), y = node(t);  // every node exists before the forest is sized
+            if (label[a] != label[b]) forced.push_back({x, y});
+            else weighted.push_back({dist[a] + dist[b] + len(a, b), h});
           }
-          return face_node[f];
-        };
-        std::vector<std::array<int, 2>> forced;
-        for (int a : reached) {
-          const int h0 = M.vertex_halfedge(a);
-          int h = h0;
-          do {  // valence(a) steps
-            const int b = M.target(h), t = M.twin(h);
-            if (h < t && dist[b] < INFINITY && par[b] != a && par[a] != b) {
-              const int x = node(h), y = node(t);  // every node exists before the forest is sized
-              if (label[a] != label[b]) forced.push_back({x, y});
-              else weighted.push_back({dist[a] + dist[b] + len(a, b), h});
-            }
-            h = M.next_around_origin(h);
-          } while (h != h0);
-        }
-        UnionFind dsu(static_cast<std::size_t>(nodes));
-        long joined = 0;
-        for (const auto& [x, y] : forced) joined += dsu.unite(x, y);
-        sort_by_weight_descending(weighted);
-        for (const auto& [w, h] : weighted) {
-          if (dsu.unite(node(h), node(M.twin(h)))) ++joined;
-          else bands.push_back({M.origin(h), M.target(h)}), band_len.push_back(w);
-        }
-        if (joined != nodes - 1)
-          internal("normal form: cross round " + std::to_string(round) + " left the dual forest in " +
-                   std::to_string(nodes - joined) + " parts");
-      } else {
-        UnionFind dsu(M.num_faces());
-        long left = 0;
-        for (int h = 0; h < nh; ++h) {
-          if (h > M.twin(h)) continue;
-          const int a = M.origin(h), b = M.target(h);
-          const bool both = !blocked(a) && !blocked(b) && dist[a] < INFINITY && dist[b] < INFINITY;
-          if (both && (par[b] == a || par[a] == b)) continue;
-          if (!both || label[a] != label[b]) left += !dsu.unite(TriMesh::face(h), TriMesh::face(M.twin(h)));
-          else weighted.push_back({dist[a] + dist[b] + len(a, b), h});
-        }
-        sort_by_weight_descending(weighted);
-        for (const auto& [w, h] : weighted)
-          if (!dsu.unite(TriMesh::face(h), TriMesh::face(M.twin(h)))) {
-            ++left;
-            bands.push_back({M.origin(h), M.target(h)}), band_len.push_back(w);
-          }
-        // E - (reached - seeds) - (F - 1) leftovers, with E = V + F - 2 + 2g.
-        if (left != 2L * genus + outside + static_cast<long>(seeds.size()) - 1)
-          internal("normal form: cross round " + std::to_string(round) + " left " + std::to_string(left) + " edges");
+          h = M.next_around_origin(h);
+        } while (h != h0);
       }
+      UnionFind dsu(static_cast<std::size_t>(nodes));
+      long joined = 0;
+      for (const auto& [x, y] : forced) joined += dsu.unite(x, y);
+      sort_by_weight_descending(weighted);
+      for (const auto& [w, h] : weighted) {
+        if (dsu.unite(node(h), node(M.twin(h)))) ++joined;
+        else bands.push_back({M.origin(h), M.target(h)}), band_len.push_back(w);
+      }
+      if (joined != nodes - 1)
+        internal("normal form: cross round " + std::to_string(round) + " left the dual forest in " +
+                 std::to_string(nodes - joined) + " parts");
     }
     const int nb = static_cast<int>(bands.size());
     if (nb < 2) return false;
