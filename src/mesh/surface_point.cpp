@@ -98,6 +98,10 @@ SurfacePoint combine(const SurfacePoint& a, const Rational& ta, const SurfacePoi
 }
 
 void lerp_into(SurfacePoint& r, const SurfacePoint& a, const SurfacePoint& b, const Rational& t) {
+  if (mpq_cmp_ui(t.get_mpq_t(), 1, 2) == 0) {  // a midpoint (most splits): 1 - t is t
+    combine_into(r, a, t, b, t);
+    return;
+  }
   thread_local Rational s;  // 1 - t, its limbs kept from call to call
   s = 1;
   s -= t;

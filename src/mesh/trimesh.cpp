@@ -67,6 +67,43 @@ TriMesh TriMesh::from_triangles(int num_vertices, const std::vector<std::array<i
   return m;
 }
 
+TriMesh TriMesh::from_halfedges(int num_vertices, std::vector<int> origin, std::vector<int> twin) {
+  const std::size_t nh = origin.size();
+  auto broken = [](const std::string& what, std::size_t h) {
+    return Error(ErrorKind::Internal, "half-edge arrays: " + what + " at half-edge " + std::to_string(h),
+                 {static_cast<std::int64_t>(h)});
+  };
+  if (nh % 3 != 0 || twin.size() != nh)
+    throw Error(ErrorKind::Internal, "half-edge arrays: " + std::to_string(nh) + " origins and " +
+                                         std::to_string(twin.size()) + " twins do not make whole triangles");
+  if (nh > static_cast<std::size_t>(INT32_MAX))
+    throw Error(ErrorKind::TooLarge, "too many faces for 32-bit half-edge indices");
+  TriMesh m;
+  m.out_.assign(num_vertices, -1);
+  for (std::size_t h = 0; h < nh; ++h) {
+    const int v = origin[h];
+    if (v < 0 || v >= num_vertices)
+      throw Error(ErrorKind::IndexOutOfRange, "face " + std::to_string(h / 3) + " uses vertex " + std::to_string(v),
+                  {static_cast<std::int64_t>(h / 3)});
+    m.out_[v] = static_cast<int>(h);  // the last one, as from_triangles
+  }
+  // Each half-edge h = 3f + i against its twin t = 3g + j: t's twin is h, t starts where h ends
+  // (at corner i + 1 of f), and h starts where t ends.
+  for (std::size_t f3 = 0; f3 < nh; f3 += 3)
+    for (std::size_t i = 0; i < 3; ++i) {
+      const std::size_t h = f3 + i;
+      const int t = twin[h];
+      if (t < 0 || static_cast<std::size_t>(t) >= nh || static_cast<std::size_t>(t) == h) throw broken("no twin", h);
+      const int g3 = t - t % 3, tn = t + 1 == g3 + 3 ? g3 : t + 1;
+      if (twin[t] != static_cast<int>(h)) throw broken("twin not an involution", h);
+      if (origin[t] != origin[i == 2 ? f3 : h + 1] || origin[tn] != origin[h])
+        throw broken("twins not between the same vertices in opposite directions", h);
+    }
+  m.origin_ = std::move(origin);
+  m.twin_ = std::move(twin);
+  return m;
+}
+
 int TriMesh::valence(int v) const {
   int h0 = out_[v];
   if (h0 < 0) return 0;

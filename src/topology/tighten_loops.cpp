@@ -67,10 +67,13 @@ bool has(const std::array<int, 3>& t, int v) { return t[0] == v || t[1] == v || 
 // is O(valence). A vertex's list is read off rs.mesh (which is not changed here) the first time it
 // is needed: a collapse changes the lists of c, w and the two apexes only, and checks all four
 // before it does, so a list built later is still right (face ids are stable; the faces' corners
-// are in tri).
+// are in tri). The pairing of half-edges (3f + i runs from tri[f][i] to tri[f][(i + 1) % 3]) is
+// kept in twin through the collapses, so that the compaction renumbers it instead of pairing the
+// faces' edges again by sorting.
 struct FaceList {
   const RefinedSurface& rs;
   std::vector<std::array<int, 3>> tri;
+  std::vector<int> twin;
   std::vector<char> face_alive, alive, built;
   std::vector<std::vector<int>> inc;
   std::vector<int> stamp;
@@ -82,7 +85,7 @@ struct FaceList {
   Point2q qc, qw, qa, qb;
 
   explicit FaceList(const RefinedSurface& s)
-      : rs(s), tri(s.mesh.num_faces()), face_alive(tri.size(), 1), alive(s.mesh.num_vertices(), 1),
+      : rs(s), tri(s.mesh.num_faces()), twin(s.mesh.twins()), face_alive(tri.size(), 1), alive(s.mesh.num_vertices(), 1),
         built(s.mesh.num_vertices(), 0), inc(s.mesh.num_vertices()), stamp(s.mesh.num_vertices(), 0) {
     if (static_cast<int>(rs.constructed.size()) != rs.mesh.num_vertices() - rs.num_input_vertices)
       internal("constructed points out of step with the mesh");
@@ -174,6 +177,16 @@ struct FaceList {
     return true;
   }
   void collapse(int c, int w, const int shared[2]) {
+    // A face (c, w, a) at the edge goes; the faces beyond its edges wa and ac become neighbours.
+    for (int k = 0; k < 2; ++k) {
+      const int f = shared[k];
+      int outer[2], n = 0;
+      for (int i = 0; i < 3; ++i) {
+        const int a = tri[f][i], b = tri[f][(i + 1) % 3];
+        if (!((a == c && b == w) || (a == w && b == c))) outer[n++] = twin[3 * f + i];
+      }
+      twin[outer[0]] = outer[1], twin[outer[1]] = outer[0];
+    }
     for (int k = 0; k < 2; ++k) unlink_face(shared[k], c);
     for (int f : faces_at(c)) {
       if (!face_alive[f]) continue;
@@ -186,7 +199,7 @@ struct FaceList {
   }
   // The surface without the collapsed vertices: input vertices keep their ids, the surviving
   // constructed ones are renumbered in order (new_id; -1 for a collapsed one). With none collapsed
-  // the surface is returned as it is (only loops on it may have moved). O(n + F log F).
+  // the surface is returned as it is (only loops on it may have moved). O(n + F).
   RefinedSurface compacted(RefinedSurface&& old, std::vector<int>& new_id) const {
     const int nv = old.mesh.num_vertices(), nin = old.num_input_vertices;
     if (std::find(alive.begin(), alive.end(), 0) == alive.end()) {
@@ -207,11 +220,24 @@ struct FaceList {
       }
     pts.erase(pts.begin() + (next_id - nin), pts.end());
     out.constructed = std::move(pts);
-    std::vector<std::array<int, 3>> tris;
-    tris.reserve(tri.size());
+    // The surviving faces in order, their half-edges paired through the kept twins: the mesh that
+    // from_triangles would build from their corners.
+    std::vector<int> new_face(tri.size(), -1);
+    int nf = 0;
     for (std::size_t f = 0; f < tri.size(); ++f)
-      if (face_alive[f]) tris.push_back({new_id[tri[f][0]], new_id[tri[f][1]], new_id[tri[f][2]]});
-    out.mesh = TriMesh::from_triangles(next_id, tris);
+      if (face_alive[f]) new_face[f] = nf++;
+    std::vector<int> origin(3 * static_cast<std::size_t>(nf)), tw(3 * static_cast<std::size_t>(nf));
+    for (std::size_t f = 0; f < tri.size(); ++f) {
+      if (!face_alive[f]) continue;
+      const std::size_t h = 3 * static_cast<std::size_t>(new_face[f]);
+      for (int i = 0; i < 3; ++i) {
+        const int t = twin[3 * f + i], g = new_face[TriMesh::face(t)];
+        if (g < 0) internal("a kept half-edge is paired with a collapsed face", {static_cast<std::int64_t>(f)});
+        origin[h + i] = new_id[tri[f][i]];
+        tw[h + i] = 3 * g + t % 3;
+      }
+    }
+    out.mesh = TriMesh::from_halfedges(next_id, std::move(origin), std::move(tw));
     out.num_input_vertices = nin;
     out.input_positions = std::move(old.input_positions);
     return out;

@@ -56,6 +56,67 @@ TEST_CASE("from_triangles rejects boundary, non-manifold and inconsistent orient
   }
 }
 
+TEST_CASE("from_halfedges builds the mesh from_triangles builds from the same faces") {
+  // A split mesh (its vertex half-edges and twins are the splits', not from_triangles') rebuilt
+  // both ways: the same arrays, vertex half-edges included.
+  TriMesh m = TriMesh::from_triangles(4, kTetra);
+  std::mt19937 rng(3);
+  for (int step = 0; step < 300; ++step) {
+    if (rng() % 2) m.split_edge(int(rng() % m.num_halfedges()));
+    else m.split_face(int(rng() % m.num_faces()));
+  }
+  std::vector<std::array<int, 3>> faces;
+  for (int f = 0; f < m.num_faces(); ++f) faces.push_back(m.face_vertices(f));
+  const TriMesh a = TriMesh::from_triangles(m.num_vertices(), faces);
+  const TriMesh b = TriMesh::from_halfedges(m.num_vertices(), m.origins(), m.twins());
+  CHECK(b.check_invariants() == "");
+  CHECK(b.origins() == a.origins());
+  CHECK(b.twins() == a.twins());
+  int differ = 0;  // the splits leave other vertex half-edges than the last one
+  for (int v = 0; v < m.num_vertices(); ++v) {
+    CHECK(b.vertex_halfedge(v) == a.vertex_halfedge(v));
+    differ += m.vertex_halfedge(v) != a.vertex_halfedge(v);
+  }
+  CHECK(differ > 0);
+}
+
+TEST_CASE("from_halfedges rejects broken pairings and origins out of range, naming the half-edge") {
+  const TriMesh m = TriMesh::from_triangles(4, kTetra);
+  auto kind_of = [](int nv, std::vector<int> origin, std::vector<int> twin, std::int64_t* element = nullptr) {
+    try {
+      TriMesh::from_halfedges(nv, std::move(origin), std::move(twin));
+    } catch (const Error& e) {
+      if (element && !e.elements().empty()) *element = e.elements()[0];
+      return e.kind();
+    }
+    FAIL("accepted broken half-edge arrays");
+    return ErrorKind::Io;
+  };
+  CHECK(kind_of(3, m.origins(), m.twins()) == ErrorKind::IndexOutOfRange);
+  {  // two half-edges of different edges swapped as twins: no involution, or wrong ends
+    std::vector<int> twin = m.twins();
+    const int h = 0, g = m.twin(h), k = m.twin(1);
+    twin[h] = k;
+    std::int64_t at = -1;
+    CHECK(kind_of(4, m.origins(), twin, &at) == ErrorKind::Internal);
+    CHECK(at == h);
+    twin[k] = h, twin[1] = g, twin[g] = 1;  // an involution again, between the wrong vertices
+    at = -1;
+    CHECK(kind_of(4, m.origins(), twin, &at) == ErrorKind::Internal);
+    CHECK(at == 0);
+  }
+  {
+    std::vector<int> twin = m.twins();
+    twin[5] = 5;  // its own twin
+    CHECK(kind_of(4, m.origins(), twin) == ErrorKind::Internal);
+    twin[5] = -1;
+    CHECK(kind_of(4, m.origins(), twin) == ErrorKind::Internal);
+  }
+  std::vector<int> short_twin = m.twins();
+  short_twin.pop_back();
+  CHECK(kind_of(4, m.origins(), short_twin) == ErrorKind::Internal);
+}
+
 TEST_CASE("random edge and face splits keep every invariant and the Euler characteristic") {
   TriMesh m = TriMesh::from_triangles(4, kTetra);
   std::mt19937 rng(7);

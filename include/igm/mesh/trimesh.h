@@ -20,6 +20,17 @@ class TriMesh {
   /// Vertices used by no face are allowed (they get vertex_halfedge = -1). Cost O(F log F).
   static TriMesh from_triangles(int num_vertices, const std::vector<std::array<int, 3>>& triangles);
 
+  /// Builds from half-edge arrays (face f owns 3f, 3f+1, 3f+2): origin per half-edge over
+  /// 0..num_vertices-1 and twin per half-edge, for a builder that has kept the pairing (edge
+  /// collapses), where from_triangles would find it again by sorting. Each vertex's
+  /// vertex_halfedge is its last outgoing half-edge, as from_triangles sets it, so that both give
+  /// the same mesh for the same triangles. Checks that twin is an involution without fixed points
+  /// and that twins run between the same two vertices in opposite directions; throws
+  /// igm::Error(Internal) naming the half-edge if not (the caller's bookkeeping is broken), or
+  /// igm::Error(IndexOutOfRange) for an origin out of range. Does not look for an edge with
+  /// more than two faces paired as two edges. Cost O(F).
+  static TriMesh from_halfedges(int num_vertices, std::vector<int> origin, std::vector<int> twin);
+
   int num_vertices() const { return static_cast<int>(out_.size()); }
   int num_faces() const { return static_cast<int>(origin_.size() / 3); }
   int num_halfedges() const { return static_cast<int>(origin_.size()); }
