@@ -645,11 +645,66 @@ int reweight_for_congestion(DetachPlan& best, int nv0, double raise, int rounds,
   return best_round;
 }
 
+// Runs a() here and b() on a second thread when `parallel` (and a thread can be had), else after
+// a(); returns once both are done, true if b() ran on a thread. An exception from a() is rethrown
+// first, then one from b(): the same one whether or not b() ran on a thread.
+template <class A, class B>
+bool run_pair(bool parallel, A&& a, B&& b) {
+  std::exception_ptr ea, eb;
+  auto guarded_b = [&] {
+    try {
+      b();
+    } catch (...) {
+      eb = std::current_exception();
+    }
+  };
+  std::thread helper;
+  if (parallel) {
+    try {
+      helper = std::thread(guarded_b);
+    } catch (const std::system_error&) {
+      // no thread to be had: b runs here after a
+    }
+  }
+  try {
+    a();
+  } catch (...) {
+    ea = std::current_exception();
+  }
+  const bool threaded = helper.joinable();
+  if (threaded) helper.join();
+  else if (!ea) guarded_b();
+  if (ea) std::rethrow_exception(ea);
+  if (eb) std::rethrow_exception(eb);
+  return threaded;
+}
+
+// v's exact point without a copy: a constructed vertex's own, an input vertex's (weight 1) set in
+// `scratch` (its limbs reused).
+const SurfacePoint& point_of(const RefinedSurface& rs, int v, SurfacePoint& scratch) {
+  if (v >= rs.num_input_vertices) return rs.constructed[v - rs.num_input_vertices];
+  scratch.v = {v, -1, -1};
+  scratch.w[0] = 1, scratch.w[1] = 0, scratch.w[2] = 0;
+  return scratch;
+}
+
+// make(begin, end) over [0, n): in two halves, the second on a thread of its own when `parallel`
+// and n is at least kPointsPerThread (below that a thread costs more than it saves); adds n to
+// stats.points_on_two_threads if it ran so. For the exact points of new vertices, each made from
+// points made before: no two calls write the same point.
+constexpr std::size_t kPointsPerThread = 1024;
+template <class Make>
+void make_in_halves(bool parallel, std::size_t n, CutStats& stats, Make&& make) {
+  const std::size_t half = n / 2;
+  if (run_pair(parallel && n >= kPointsPerThread, [&] { make(0, half); }, [&] { make(half, n); }))
+    stats.points_on_two_threads += static_cast<long long>(n);
+}
+
 // Step 2 realized: draws the strands planned in P as pairwise disjoint normal curves around the
 // pruned tree and re-triangulates the faces they cross (on P.rs; vertex ids are kept, new ones are
 // appended). Returns the loops, one per band in band order, each from the root. Adds to
 // stats.crossings, steiner_vertices and chord_splits. Cost O(n + total crossings).
-std::vector<std::vector<int>> realize_strands(DetachPlan& P, CutStats& stats) {
+std::vector<std::vector<int>> realize_strands(DetachPlan& P, CutStats& stats, bool parallel) {
   RefinedSurface& rs = P.rs;
   auto& M = rs.mesh;
   const int root = P.root;
@@ -766,20 +821,27 @@ std::vector<std::vector<int>> realize_strands(DetachPlan& P, CutStats& stats) {
       const int da = std::abs(a.strand - owner[a.side]), db = std::abs(b.strand - owner[b.side]);
       return a_first ? da < db : da > db;
     });
-    rs.constructed.reserve(rs.constructed.size() + crossings.size());
+    // The k-th of an edge's n crossings (in order) is at k / (n + 1) from its origin: group[p] is
+    // (k, n) for the p-th in order. The points are made in place, each from its edge's ends only.
+    std::vector<std::pair<long, long>> group(order.size());
     for (std::size_t i = 0; i < order.size();) {
       std::size_t j = i;
       const int e = crossings[order[i]].edge;
       while (j < order.size() && crossings[order[j]].edge == e) ++j;
-      const long n = static_cast<long>(j - i);
-      SurfacePoint pa = rs.point(M.origin(e)), pb = rs.point(M.target(e));
-      for (std::size_t k = i; k < j; ++k) {
-        crossings[order[k]].vertex = next_vertex++;
-        rs.constructed.emplace_back();  // made in place (reserved above): no temporary point
-        lerp_into(rs.constructed.back(), pa, pb, make_rational(static_cast<long>(k - i + 1), n + 1));
-      }
+      for (std::size_t k = i; k < j; ++k)
+        crossings[order[k]].vertex = next_vertex++, group[k] = {static_cast<long>(k - i + 1), static_cast<long>(j - i)};
       i = j;
     }
+    const std::size_t made = rs.constructed.size();
+    rs.constructed.resize(made + order.size());
+    make_in_halves(parallel, order.size(), stats, [&](std::size_t begin, std::size_t end) {
+      SurfacePoint sa, sb;
+      for (std::size_t p = begin; p < end; ++p) {
+        const int e = crossings[order[p]].edge;
+        lerp_into(rs.constructed[made + p], point_of(rs, M.origin(e), sa), point_of(rs, M.target(e), sb),
+                  make_rational(group[p].first, group[p].second + 1));
+      }
+    });
   }
   stats.crossings += static_cast<int>(crossings.size());
   auto vid = [&](int code) { return code >= 0 ? code : crossings[-1 - code].vertex; };
@@ -978,7 +1040,6 @@ void gamma_tour(const TriMesh& M, const GammaTree& K, const std::vector<std::pai
   }
   gap_of.assign(nh, -1);
   rot.clear();
-  if (gap_halfedges) gap_halfedges->clear();
   tour_tree(
       M, root_h0,
       [&](int h) {
@@ -988,10 +1049,14 @@ void gamma_tour(const TriMesh& M, const GammaTree& K, const std::vector<std::pai
       [&](int h) {
         const int i = band_of[h];
         if (i >= 0) rot.push_back(Letter{i, M.origin(h) != taken[i].first});
-        else if (gap_of[h] = static_cast<int>(rot.size()); gap_halfedges) gap_halfedges->push_back(h);
+        else gap_of[h] = static_cast<int>(rot.size());
       });
-  // Each visited once: ascending after the sort, O(tour log tour).
-  if (gap_halfedges) std::sort(gap_halfedges->begin(), gap_halfedges->end());
+  // Each visited once; in ascending order by a scan (sorting them cost the rounds on cheese 12 %).
+  if (gap_halfedges) {
+    gap_halfedges->clear();
+    for (int h = 0; h < nh; ++h)
+      if (gap_of[h] >= 0) gap_halfedges->push_back(h);
+  }
 }
 
 // Appends to p the (unit-scaled, double) positions of S's vertices from p.size() on, to guide the
@@ -1135,10 +1200,12 @@ TriMesh split_copy(const TriMesh& M, const std::vector<Vec3d>& pos, const std::v
 // in the copy's order, the chords that the copy's edges `used` cross, and every chord of a face
 // where a used edge meets two, so that those faces are triangulated as in the copy and the used
 // edges exist on rs. Returns the map from the copy's vertices to rs's (-1: a midpoint not split);
-// `splits` counts the splits. O(chords + used).
+// stats.round_chord_splits counts the splits. The exact midpoints are made after the splits, from
+// the chords' ends (which are older than every midpoint), on two threads when `parallel`.
+// O(chords + used).
 std::vector<int> split_like_copy(RefinedSurface& rs, const std::vector<std::pair<int, int>>& chords,
                                  const std::vector<int>& mid, int copy_nv,
-                                 const std::vector<std::pair<int, int>>& used, int& splits) {
+                                 const std::vector<std::pair<int, int>>& used, CutStats& stats, bool parallel) {
   const TriMesh& M = rs.mesh;
   const int nv = M.num_vertices();
   std::vector<char> need(chords.size(), 0);
@@ -1180,10 +1247,20 @@ std::vector<int> split_like_copy(RefinedSurface& rs, const std::vector<std::pair
   }
   std::vector<int> to_surface(copy_nv, -1);
   std::iota(to_surface.begin(), to_surface.begin() + nv, 0);
-  const Rational half = make_rational(1, 2);
+  std::vector<std::array<int, 2>> ends;  // of the k-th midpoint made here
   split_sorted_chords(rs.mesh, chords, &need, [&](std::size_t k, int h) {
-    to_surface[mid[k]] = rs.split_edge(h, half);
-    ++splits;
+    ends.push_back({rs.mesh.origin(h), rs.mesh.target(h)});
+    to_surface[mid[k]] = rs.mesh.split_edge(h);
+    if (to_surface[mid[k]] != nv + static_cast<int>(ends.size()) - 1) internal("normal form: a chord split out of order");
+  });
+  stats.round_chord_splits += static_cast<int>(ends.size());
+  const Rational half = make_rational(1, 2);
+  const std::size_t made = rs.constructed.size();
+  rs.constructed.resize(made + ends.size());
+  make_in_halves(parallel, ends.size(), stats, [&](std::size_t begin, std::size_t end) {
+    SurfacePoint sa, sb;
+    for (std::size_t i = begin; i < end; ++i)
+      lerp_into(rs.constructed[made + i], point_of(rs, ends[i][0], sa), point_of(rs, ends[i][1], sb), half);
   });
   return to_surface;
 }
@@ -1218,7 +1295,7 @@ std::vector<int> split_like_copy(RefinedSurface& rs, const std::vector<std::pair
 // commutator blocks (relabelled by the caller); res.stats has the counts. Cost O(g^2 n log n +
 // crossings) in the worst case, O(g n log n + crossings) when no gap is given up.
 bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops, long vertex_limit, DetachPlan& plan,
-                      const std::vector<double>* penalty = nullptr) {
+                      bool parallel, const std::vector<double>* penalty = nullptr) {
   const int root = res.root, genus = res.genus;
   RefinedSurface& rs = res.surface;
   std::vector<Vec3d> pos(unit.begin(), unit.begin() + rs.num_input_vertices);
@@ -1503,7 +1580,7 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
       for (const auto& [v, p, d] : found.verts) used.push_back({v, p});
       for (const auto& b : found.bands) used.push_back(b);
       const std::vector<int> to_surface =
-          split_like_copy(rs, chords, mid, copy.num_vertices(), used, res.stats.round_chord_splits);
+          split_like_copy(rs, chords, mid, copy.num_vertices(), used, res.stats, parallel);
       auto map = [&](int v) {
         if (v < 0) return v;
         if (to_surface[v] < 0) internal("normal form: a found path uses a chord midpoint that was not split");
@@ -1556,7 +1633,7 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
 // round once *stop (if given) is set. Post (true): as canonical_rounds. Cost O(g log g (E log E +
 // L^2 log L) + crossings), L <= 2g + k the leftover edges of a search.
 bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops, long vertex_limit, DetachPlan& plan,
-                       const std::atomic<bool>* stop) {
+                       const std::atomic<bool>& two_threads, const std::atomic<bool>* stop) {
   const int root = res.root, genus = res.genus;
   RefinedSurface& rs = res.surface;
   std::vector<Vec3d> pos(unit.begin(), unit.begin() + rs.num_input_vertices);
@@ -1956,7 +2033,7 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
       used.push_back({hang_from[i], hang[i]});
     }
     const std::vector<int> to_surface =
-        split_like_copy(rs, chords, mid, copy.num_vertices(), used, res.stats.round_chord_splits);
+        split_like_copy(rs, chords, mid, copy.num_vertices(), used, res.stats, two_threads.load());
     extend(rs, pos);
     cross_of.resize(rs.mesh.num_vertices(), -1);
     ppar.resize(rs.mesh.num_vertices(), -1);
@@ -2009,7 +2086,7 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
         used.insert(used.end(), c.bands.begin(), c.bands.end());
       }
       const std::vector<int> to_surface =
-          split_like_copy(rs, chords, mid, copy.num_vertices(), used, res.stats.round_chord_splits);
+          split_like_copy(rs, chords, mid, copy.num_vertices(), used, res.stats, two_threads.load());
       for (Cross& c : found) {
         for (auto& [x, y] : c.edges) map_ids(to_surface, x), map_ids(to_surface, y);
         for (auto& [x, y] : c.bands) map_ids(to_surface, x), map_ids(to_surface, y);
@@ -2138,38 +2215,6 @@ std::vector<int> root_candidates_by_ring_deficit(const TriMesh& mesh, long k, in
   return roots;
 }
 
-// Runs a() here and b() on a second thread when `parallel` (and a thread can be had), else after
-// a(); returns once both are done. An exception from a() is rethrown first, then one from b(): the
-// same one whether or not b() ran on a thread.
-template <class A, class B>
-void run_pair(bool parallel, A&& a, B&& b) {
-  std::exception_ptr ea, eb;
-  auto guarded_b = [&] {
-    try {
-      b();
-    } catch (...) {
-      eb = std::current_exception();
-    }
-  };
-  std::thread helper;
-  if (parallel) {
-    try {
-      helper = std::thread(guarded_b);
-    } catch (const std::system_error&) {
-      // no thread to be had: b runs here after a
-    }
-  }
-  try {
-    a();
-  } catch (...) {
-    ea = std::current_exception();
-  }
-  if (helper.joinable()) helper.join();
-  else if (!ea) guarded_b();
-  if (ea) std::rethrow_exception(ea);
-  if (eb) std::rethrow_exception(eb);
-}
-
 }  // namespace
 
 std::string CutResult::word() const { return to_string(word_of(*this)); }
@@ -2253,13 +2298,15 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
       trial.surface.input_positions = positions;
       return trial;
     };
-    // One construction at candidate (c, hops), into out if it succeeds within `bound`.
-    auto attempt = [&](int c, bool hops, bool crosses, long bound, Outcome& out,
+    // One construction at candidate (c, hops), into out if it succeeds within `bound`. It makes its
+    // exact points on two threads while `two_threads` holds (options.parallel, and no other
+    // construction running beside it).
+    auto attempt = [&](int c, bool hops, bool crosses, long bound, Outcome& out, const std::atomic<bool>& two_threads,
                        const std::atomic<bool>* stop = nullptr) {
       CutResult trial = new_trial(c);
       DetachPlan plan;
-      const bool ok = crosses ? canonical_crosses(trial, unit, hops, bound, plan, stop)
-                              : canonical_rounds(trial, unit, hops, bound, plan);
+      const bool ok = crosses ? canonical_crosses(trial, unit, hops, bound, plan, two_threads, stop)
+                              : canonical_rounds(trial, unit, hops, bound, plan, two_threads.load());
       if (ok) out.ok = true, out.crosses = crosses, out.hops = hops, out.stats = trial.stats, out.plan = std::move(plan);
       return ok;
     };
@@ -2272,35 +2319,41 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     // their bound (kRaceFacesPerHandle): elsewhere the crosses would be thrown away, and beside the
     // rounds they cost the rounds memory bandwidth (the generated 1M-face genus 20: 9.0-10.8 s
     // for its rounds alone, 9.8-11.7 s with the crosses beside them, 4 runs each).
-    auto run_candidate = [&](int c, bool hops, bool crosses_only, long best, Outcome& out, bool side_by_side) {
+    // lone: no other candidate runs beside this one.
+    auto run_candidate = [&](int c, bool hops, bool crosses_only, long best, Outcome& out, bool lone, bool side_by_side) {
+      const std::atomic<bool> alone{options.parallel && lone};
       if (crosses_only) {
-        attempt(c, hops, true, best, out);
+        attempt(c, hops, true, best, out, alone);
         return;
       }
       const bool crosses_may_count = options.construction == C::Best && rounds_limit <= best;
       Outcome crossed;
       std::atomic<bool> stop_crosses{false};
       std::exception_ptr crosses_error;
-      auto rounds = [&] {
-        try {
-          stop_crosses = attempt(c, hops, false, std::min(best, rounds_limit), out);
-        } catch (...) {
-          stop_crosses = true;  // the error wins: the crosses stop at their next round
-          throw;
-        }
-      };
-      auto crosses = [&] {
-        try {
-          attempt(c, hops, true, best, crossed, &stop_crosses);
-        } catch (...) {
-          crosses_error = std::current_exception();
-        }
-      };
       if (side_by_side && crosses_may_count) {
+        // Each takes one thread; the crosses take two once the rounds are over.
+        const std::atomic<bool> one{false};
+        std::atomic<bool> rounds_over{false};
+        auto rounds = [&] {
+          try {
+            stop_crosses = attempt(c, hops, false, std::min(best, rounds_limit), out, one);
+            rounds_over = options.parallel && lone;
+          } catch (...) {
+            stop_crosses = true;  // the error wins: the crosses stop at their next round
+            throw;
+          }
+        };
+        auto crosses = [&] {
+          try {
+            attempt(c, hops, true, best, crossed, rounds_over, &stop_crosses);
+          } catch (...) {
+            crosses_error = std::current_exception();
+          }
+        };
         run_pair(true, rounds, crosses);
       } else {
-        rounds();
-        if (!out.ok && crosses_may_count) crosses();
+        attempt(c, hops, false, std::min(best, rounds_limit), out, alone);
+        if (!out.ok && crosses_may_count) attempt(c, hops, true, best, crossed, alone);  // its error is the outcome
       }
       if (out.ok || !crosses_may_count) return;
       if (crosses_error) std::rethrow_exception(crosses_error);
@@ -2324,11 +2377,11 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
       Outcome out[2];
       auto run = [&](std::size_t j) {
         return [&, j] {
-          run_candidate(candidates[i + j].first, candidates[i + j].second, crosses_only, best, out[j], false);
+          run_candidate(candidates[i + j].first, candidates[i + j].second, crosses_only, best, out[j], false, false);
         };
       };
       if (n == 2) run_pair(options.parallel, run(0), run(1));
-      else run_candidate(candidates[i].first, candidates[i].second, crosses_only, best, out[0], options.parallel && race);
+      else run_candidate(candidates[i].first, candidates[i].second, crosses_only, best, out[0], true, options.parallel && race);
       for (std::size_t j = 0; j < n; ++j) {
         ++tried;
         rounds_passed += out[j].rounds_passed;
@@ -2356,7 +2409,7 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
           kept, nv0, options.congestion_step * metric_unit(mesh, unit, kept_hops), reweight_rounds, reweight_rounds,
           [&](const std::vector<double>& penalty, DetachPlan& plan) {
             CutResult trial = new_trial(res.root);
-            const bool ok = canonical_rounds(trial, unit, kept_hops, rounds_limit, plan, &penalty);
+            const bool ok = canonical_rounds(trial, unit, kept_hops, rounds_limit, plan, options.parallel, &penalty);
             latest = trial.stats;
             return ok;
           },
@@ -2366,7 +2419,7 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     }
     if (found) {
       res.stats.planned_vertices = planned_vertices(kept);
-      res.loops = realize_strands(kept, res.stats);
+      res.loops = realize_strands(kept, res.stats, options.parallel);
       rs = std::move(kept.rs);
       found = rs.mesh.num_vertices() <= limit;  // chord splits and face vertices come on top of the plan
     }
@@ -2454,7 +2507,7 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
           DetachPlan copy = top[j];
           CutStats scratch;
           copy.rs.input_positions = positions;
-          std::vector<std::vector<int>> loops = realize_strands(copy, scratch);
+          std::vector<std::vector<int>> loops = realize_strands(copy, scratch, options.parallel);
           TightenedLoops t = tighten_loops(std::move(copy.rs), std::move(loops), copy.root);
           const long drawn = t.surface.mesh.num_vertices();
           if (fewest < 0 || drawn < fewest) {
@@ -2486,7 +2539,7 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
       tightened = true;
     } else {
       P.rs.input_positions = positions;
-      res.loops = realize_strands(P, res.stats);
+      res.loops = realize_strands(P, res.stats, options.parallel);
       rs = std::move(P.rs);
     }
     res.stats.seconds_detach = seconds_since(t_detach);

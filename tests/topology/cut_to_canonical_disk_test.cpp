@@ -311,6 +311,15 @@ void check_same_cut(const CutResult& one, const CutResult& two) {
   CHECK(one.surface.mesh.num_vertices() == two.surface.mesh.num_vertices());
   CHECK(one.loops == two.loops);
   CHECK(one.word() == two.word());
+  // The same exact points (made on two threads in batches with CutOptions::parallel).
+  REQUIRE(one.surface.constructed.size() == two.surface.constructed.size());
+  long differ = 0;
+  for (std::size_t i = 0; i < one.surface.constructed.size(); ++i) {
+    const SurfacePoint &p = one.surface.constructed[i], &q = two.surface.constructed[i];
+    differ += p.v != q.v || p.w[0] != q.w[0] || p.w[1] != q.w[1] || p.w[2] != q.w[2];
+  }
+  CHECK(differ == 0);
+  CHECK(one.stats.points_on_two_threads == 0);
 }
 
 }  // namespace
@@ -467,6 +476,7 @@ TEST_CASE("the normal form's root candidates give the same cut on two threads as
     CHECK(one.stats.roots_tried > 2);
     CHECK(two.stats.crosses == crosses);
     check_same_cut(one, two);
+    if (crosses) CHECK(two.stats.points_on_two_threads >= 1024);  // at least the kept plan's crossings
     CHECK(verify_cut(in, two) == "");
     // The kept plan is drawn as planned: one new vertex per planned crossing.
     if (two.stats.chord_splits == 0) CHECK(two.stats.crossings == two.stats.predicted_crossings);
@@ -504,6 +514,7 @@ TEST_CASE("a lone root candidate runs its rounds and its crosses side by side: t
       CHECK(one.stats.roots_tried == 1);
       CHECK(two.stats.crosses == crosses);
       check_same_cut(one, two);
+      if (crosses) CHECK(two.stats.points_on_two_threads >= 1024);
       CHECK(verify_cut(in, two) == "");
     }
   }
