@@ -691,7 +691,9 @@ const SurfacePoint& point_of(const RefinedSurface& rs, int v, SurfacePoint& scra
 // make(begin, end) over [0, n): in two halves, the second on a thread of its own when `parallel`
 // and n is at least kPointsPerThread (below that a thread costs more than it saves); adds n to
 // stats.points_on_two_threads if it ran so. For the exact points of new vertices, each made from
-// points made before: no two calls write the same point.
+// points made before: no two calls write the same point. Used where the drawing of the kept plan
+// has both threads to itself (the crossings); the rounds' and the crosses' chord midpoints gained
+// nothing measurable on two threads (cheese: 0.057 s for all of them on one).
 constexpr std::size_t kPointsPerThread = 1024;
 template <class Make>
 void make_in_halves(bool parallel, std::size_t n, CutStats& stats, Make&& make) {
@@ -1200,12 +1202,11 @@ TriMesh split_copy(const TriMesh& M, const std::vector<Vec3d>& pos, const std::v
 // in the copy's order, the chords that the copy's edges `used` cross, and every chord of a face
 // where a used edge meets two, so that those faces are triangulated as in the copy and the used
 // edges exist on rs. Returns the map from the copy's vertices to rs's (-1: a midpoint not split);
-// stats.round_chord_splits counts the splits. The exact midpoints are made after the splits, from
-// the chords' ends (which are older than every midpoint), on two threads when `parallel`.
-// O(chords + used).
+// `splits` counts the splits. The exact midpoints are made after the splits, in place, from the
+// chords' ends (which are older than every midpoint). O(chords + used).
 std::vector<int> split_like_copy(RefinedSurface& rs, const std::vector<std::pair<int, int>>& chords,
                                  const std::vector<int>& mid, int copy_nv,
-                                 const std::vector<std::pair<int, int>>& used, CutStats& stats, bool parallel) {
+                                 const std::vector<std::pair<int, int>>& used, int& splits) {
   const TriMesh& M = rs.mesh;
   const int nv = M.num_vertices();
   std::vector<char> need(chords.size(), 0);
@@ -1253,15 +1254,13 @@ std::vector<int> split_like_copy(RefinedSurface& rs, const std::vector<std::pair
     to_surface[mid[k]] = rs.mesh.split_edge(h);
     if (to_surface[mid[k]] != nv + static_cast<int>(ends.size()) - 1) internal("normal form: a chord split out of order");
   });
-  stats.round_chord_splits += static_cast<int>(ends.size());
+  splits += static_cast<int>(ends.size());
   const Rational half = make_rational(1, 2);
   const std::size_t made = rs.constructed.size();
   rs.constructed.resize(made + ends.size());
-  make_in_halves(parallel, ends.size(), stats, [&](std::size_t begin, std::size_t end) {
-    SurfacePoint sa, sb;
-    for (std::size_t i = begin; i < end; ++i)
-      lerp_into(rs.constructed[made + i], point_of(rs, ends[i][0], sa), point_of(rs, ends[i][1], sb), half);
-  });
+  SurfacePoint sa, sb;
+  for (std::size_t i = 0; i < ends.size(); ++i)
+    lerp_into(rs.constructed[made + i], point_of(rs, ends[i][0], sa), point_of(rs, ends[i][1], sb), half);
   return to_surface;
 }
 
@@ -1295,7 +1294,7 @@ std::vector<int> split_like_copy(RefinedSurface& rs, const std::vector<std::pair
 // commutator blocks (relabelled by the caller); res.stats has the counts. Cost O(g^2 n log n +
 // crossings) in the worst case, O(g n log n + crossings) when no gap is given up.
 bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops, long vertex_limit, DetachPlan& plan,
-                      bool parallel, const std::vector<double>* penalty = nullptr) {
+                      const std::vector<double>* penalty = nullptr) {
   const int root = res.root, genus = res.genus;
   RefinedSurface& rs = res.surface;
   std::vector<Vec3d> pos(unit.begin(), unit.begin() + rs.num_input_vertices);
@@ -1580,7 +1579,7 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
       for (const auto& [v, p, d] : found.verts) used.push_back({v, p});
       for (const auto& b : found.bands) used.push_back(b);
       const std::vector<int> to_surface =
-          split_like_copy(rs, chords, mid, copy.num_vertices(), used, res.stats, parallel);
+          split_like_copy(rs, chords, mid, copy.num_vertices(), used, res.stats.round_chord_splits);
       auto map = [&](int v) {
         if (v < 0) return v;
         if (to_surface[v] < 0) internal("normal form: a found path uses a chord midpoint that was not split");
@@ -1633,7 +1632,7 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
 // round once *stop (if given) is set. Post (true): as canonical_rounds. Cost O(g log g (E log E +
 // L^2 log L) + crossings), L <= 2g + k the leftover edges of a search.
 bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops, long vertex_limit, DetachPlan& plan,
-                       const std::atomic<bool>& two_threads, const std::atomic<bool>* stop) {
+                       const std::atomic<bool>* stop) {
   const int root = res.root, genus = res.genus;
   RefinedSurface& rs = res.surface;
   std::vector<Vec3d> pos(unit.begin(), unit.begin() + rs.num_input_vertices);
@@ -2033,7 +2032,7 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
       used.push_back({hang_from[i], hang[i]});
     }
     const std::vector<int> to_surface =
-        split_like_copy(rs, chords, mid, copy.num_vertices(), used, res.stats, two_threads.load());
+        split_like_copy(rs, chords, mid, copy.num_vertices(), used, res.stats.round_chord_splits);
     extend(rs, pos);
     cross_of.resize(rs.mesh.num_vertices(), -1);
     ppar.resize(rs.mesh.num_vertices(), -1);
@@ -2086,7 +2085,7 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
         used.insert(used.end(), c.bands.begin(), c.bands.end());
       }
       const std::vector<int> to_surface =
-          split_like_copy(rs, chords, mid, copy.num_vertices(), used, res.stats, two_threads.load());
+          split_like_copy(rs, chords, mid, copy.num_vertices(), used, res.stats.round_chord_splits);
       for (Cross& c : found) {
         for (auto& [x, y] : c.edges) map_ids(to_surface, x), map_ids(to_surface, y);
         for (auto& [x, y] : c.bands) map_ids(to_surface, x), map_ids(to_surface, y);
@@ -2298,15 +2297,13 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
       trial.surface.input_positions = positions;
       return trial;
     };
-    // One construction at candidate (c, hops), into out if it succeeds within `bound`. It makes its
-    // exact points on two threads while `two_threads` holds (options.parallel, and no other
-    // construction running beside it).
-    auto attempt = [&](int c, bool hops, bool crosses, long bound, Outcome& out, const std::atomic<bool>& two_threads,
+    // One construction at candidate (c, hops), into out if it succeeds within `bound`.
+    auto attempt = [&](int c, bool hops, bool crosses, long bound, Outcome& out,
                        const std::atomic<bool>* stop = nullptr) {
       CutResult trial = new_trial(c);
       DetachPlan plan;
-      const bool ok = crosses ? canonical_crosses(trial, unit, hops, bound, plan, two_threads, stop)
-                              : canonical_rounds(trial, unit, hops, bound, plan, two_threads.load());
+      const bool ok = crosses ? canonical_crosses(trial, unit, hops, bound, plan, stop)
+                              : canonical_rounds(trial, unit, hops, bound, plan);
       if (ok) out.ok = true, out.crosses = crosses, out.hops = hops, out.stats = trial.stats, out.plan = std::move(plan);
       return ok;
     };
@@ -2319,41 +2316,35 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
     // their bound (kRaceFacesPerHandle): elsewhere the crosses would be thrown away, and beside the
     // rounds they cost the rounds memory bandwidth (the generated 1M-face genus 20: 9.0-10.8 s
     // for its rounds alone, 9.8-11.7 s with the crosses beside them, 4 runs each).
-    // lone: no other candidate runs beside this one.
-    auto run_candidate = [&](int c, bool hops, bool crosses_only, long best, Outcome& out, bool lone, bool side_by_side) {
-      const std::atomic<bool> alone{options.parallel && lone};
+    auto run_candidate = [&](int c, bool hops, bool crosses_only, long best, Outcome& out, bool side_by_side) {
       if (crosses_only) {
-        attempt(c, hops, true, best, out, alone);
+        attempt(c, hops, true, best, out);
         return;
       }
       const bool crosses_may_count = options.construction == C::Best && rounds_limit <= best;
       Outcome crossed;
       std::atomic<bool> stop_crosses{false};
       std::exception_ptr crosses_error;
+      auto rounds = [&] {
+        try {
+          stop_crosses = attempt(c, hops, false, std::min(best, rounds_limit), out);
+        } catch (...) {
+          stop_crosses = true;  // the error wins: the crosses stop at their next round
+          throw;
+        }
+      };
+      auto crosses = [&] {
+        try {
+          attempt(c, hops, true, best, crossed, &stop_crosses);
+        } catch (...) {
+          crosses_error = std::current_exception();
+        }
+      };
       if (side_by_side && crosses_may_count) {
-        // Each takes one thread; the crosses take two once the rounds are over.
-        const std::atomic<bool> one{false};
-        std::atomic<bool> rounds_over{false};
-        auto rounds = [&] {
-          try {
-            stop_crosses = attempt(c, hops, false, std::min(best, rounds_limit), out, one);
-            rounds_over = options.parallel && lone;
-          } catch (...) {
-            stop_crosses = true;  // the error wins: the crosses stop at their next round
-            throw;
-          }
-        };
-        auto crosses = [&] {
-          try {
-            attempt(c, hops, true, best, crossed, rounds_over, &stop_crosses);
-          } catch (...) {
-            crosses_error = std::current_exception();
-          }
-        };
         run_pair(true, rounds, crosses);
       } else {
-        attempt(c, hops, false, std::min(best, rounds_limit), out, alone);
-        if (!out.ok && crosses_may_count) attempt(c, hops, true, best, crossed, alone);  // its error is the outcome
+        rounds();
+        if (!out.ok && crosses_may_count) crosses();
       }
       if (out.ok || !crosses_may_count) return;
       if (crosses_error) std::rethrow_exception(crosses_error);
@@ -2377,11 +2368,11 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
       Outcome out[2];
       auto run = [&](std::size_t j) {
         return [&, j] {
-          run_candidate(candidates[i + j].first, candidates[i + j].second, crosses_only, best, out[j], false, false);
+          run_candidate(candidates[i + j].first, candidates[i + j].second, crosses_only, best, out[j], false);
         };
       };
       if (n == 2) run_pair(options.parallel, run(0), run(1));
-      else run_candidate(candidates[i].first, candidates[i].second, crosses_only, best, out[0], true, options.parallel && race);
+      else run_candidate(candidates[i].first, candidates[i].second, crosses_only, best, out[0], options.parallel && race);
       for (std::size_t j = 0; j < n; ++j) {
         ++tried;
         rounds_passed += out[j].rounds_passed;
@@ -2409,7 +2400,7 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
           kept, nv0, options.congestion_step * metric_unit(mesh, unit, kept_hops), reweight_rounds, reweight_rounds,
           [&](const std::vector<double>& penalty, DetachPlan& plan) {
             CutResult trial = new_trial(res.root);
-            const bool ok = canonical_rounds(trial, unit, kept_hops, rounds_limit, plan, options.parallel, &penalty);
+            const bool ok = canonical_rounds(trial, unit, kept_hops, rounds_limit, plan, &penalty);
             latest = trial.stats;
             return ok;
           },

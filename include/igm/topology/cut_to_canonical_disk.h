@@ -208,12 +208,10 @@ struct CutOptions {
   /// instead of 1.6 s.
   double max_rounds_growth = 2.0;
   /// Evaluate root candidates two at a time on two threads (root = -1; a lone candidate on a mesh
-  /// of fewer than 2000 faces per handle: its two constructions side by side). A construction
-  /// with no other beside it (a lone candidate, its crosses once its rounds are over, the drawing
-  /// of the kept plan) makes the exact points of its chord splits and crossings in two halves on
-  /// two threads (batches of at least 1024 points; each point from older ones only). The result
-  /// is the same either way: candidates go in fixed pairs, merged in order, and every point is the
-  /// same canonical rational.
+  /// of fewer than 2000 faces per handle: its two constructions side by side), and make the exact
+  /// points of the kept plan's crossings in two halves on two threads (at least 1024 of them;
+  /// each from older points only). The result is the same either way: candidates go in fixed
+  /// pairs, merged in order, and every point is the same canonical rational.
   bool parallel = true;
   /// With the normal form and root = -1: how many roots are tried (each with 3D lengths and hop
   /// counts; one root: hop counts only). -1 picks clamp(min(2e5 / F, 4e6 / (F g)), 1, 12): a
@@ -261,8 +259,8 @@ struct CutStats {
   int round_chord_splits = 0;   // chords split so that a round's (or the crosses' tree's) paths exist
   int straightened = 0;         // of those, split diagonals inside input faces removed again (step 3b)
   bool crosses = false;         // the normal form came from the crosses construction
-  // Exact points of chord splits and crossings made on two threads (CutOptions::parallel, batches
-  // of at least 1024 with no other construction running beside them); 0 on one thread.
+  // Exact points of crossings made on two threads (CutOptions::parallel, at least 1024 in one
+  // drawing); 0 on one thread.
   long long points_on_two_threads = 0;
   double seconds_basis = 0, seconds_detach = 0, seconds_cut = 0, seconds_total = 0;
 };
