@@ -100,7 +100,11 @@
 //     roots. Since stop 23 they get one root by default (CutOptions::normal_form_roots, hop counts):
 //     160.8k in 2-3.5 s instead of 31 s, and 195k in 3 s instead of 14 s; since stop 24, with the
 //     same outputs, cheese in 1.6-1.9 s (exact points built in place, a copy's seeds without its
-//     full Dijkstra, the hanging's Dijkstra stopped once all hang, chords split per vertex).
+//     full Dijkstra, the hanging's Dijkstra stopped once all hang, chords split per vertex); since
+//     stops 25-26, again with the same outputs, its crosses take 7.80G instructions instead of
+//     8.94G (searches that read only what they reach, compaction through the kept half-edge
+//     pairing, the drawing's crossings on two threads) and its raced rounds 3.71G instead of 4.23G
+//     (their gap half-edges scanned in order, not sorted).
 //     Measured and rejected before: handle slides on the detached greedy loops (plan_handle_slides,
 //     handle_slides.h): the slides' paths double in length per handle on cheese; rounds that
 //     detached their loops before the next round (stop 13): every later round had to squeeze
