@@ -1202,8 +1202,7 @@ TriMesh split_copy(const TriMesh& M, const std::vector<Vec3d>& pos, const std::v
 // in the copy's order, the chords that the copy's edges `used` cross, and every chord of a face
 // where a used edge meets two, so that those faces are triangulated as in the copy and the used
 // edges exist on rs. Returns the map from the copy's vertices to rs's (-1: a midpoint not split);
-// `splits` counts the splits. The exact midpoints are made after the splits, in place, from the
-// chords' ends (which are older than every midpoint). O(chords + used).
+// `splits` counts the splits. O(chords + used).
 std::vector<int> split_like_copy(RefinedSurface& rs, const std::vector<std::pair<int, int>>& chords,
                                  const std::vector<int>& mid, int copy_nv,
                                  const std::vector<std::pair<int, int>>& used, int& splits) {
@@ -1248,19 +1247,11 @@ std::vector<int> split_like_copy(RefinedSurface& rs, const std::vector<std::pair
   }
   std::vector<int> to_surface(copy_nv, -1);
   std::iota(to_surface.begin(), to_surface.begin() + nv, 0);
-  std::vector<std::array<int, 2>> ends;  // of the k-th midpoint made here
-  split_sorted_chords(rs.mesh, chords, &need, [&](std::size_t k, int h) {
-    ends.push_back({rs.mesh.origin(h), rs.mesh.target(h)});
-    to_surface[mid[k]] = rs.mesh.split_edge(h);
-    if (to_surface[mid[k]] != nv + static_cast<int>(ends.size()) - 1) internal("normal form: a chord split out of order");
-  });
-  splits += static_cast<int>(ends.size());
   const Rational half = make_rational(1, 2);
-  const std::size_t made = rs.constructed.size();
-  rs.constructed.resize(made + ends.size());
-  SurfacePoint sa, sb;
-  for (std::size_t i = 0; i < ends.size(); ++i)
-    lerp_into(rs.constructed[made + i], point_of(rs, ends[i][0], sa), point_of(rs, ends[i][1], sb), half);
+  split_sorted_chords(rs.mesh, chords, &need, [&](std::size_t k, int h) {
+    to_surface[mid[k]] = rs.split_edge(h, half);
+    ++splits;
+  });
   return to_surface;
 }
 
