@@ -2209,8 +2209,10 @@ std::vector<int> root_candidates_by_ring_deficit(const TriMesh& mesh, long k, in
 
 std::string CutResult::word() const { return to_string(word_of(*this)); }
 
-CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& positions,
-                                const CutOptions& options) {
+namespace {
+
+// Steps 1-5 on the mesh as numbered (cut_to_canonical_disk below may renumber it first).
+CutResult cut_in_given_order(const TriMesh& mesh, const std::vector<Vec3d>& positions, const CutOptions& options) {
   const auto t_start = Clock::now();
   const int nv0 = mesh.num_vertices();
   if (static_cast<int>(positions.size()) != nv0)
@@ -2546,6 +2548,106 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
   res.stats.seconds_cut = seconds_since(t_cut);
   res.stats.vertices_after = rs.mesh.num_vertices();
   res.stats.faces_after = rs.mesh.num_faces();
+  res.stats.seconds_total = seconds_since(t_start);
+  return res;
+}
+
+// Step 0: the locality order. Vertices renumbered breadth-first from vertex 0 (a vertex's
+// unnumbered neighbours in its rotation order from its vertex half-edge; a vertex no search reached
+// starts a new one), faces in the order in which the vertices, in the new order, first meet them
+// (around each in rotation order), every face's corners in their given rotation. O(V + F).
+struct LocalityOrder {
+  std::vector<int> old_of_new;  // vertex
+  TriMesh mesh;                 // the renumbered mesh
+};
+LocalityOrder locality_order(const TriMesh& mesh) {
+  const int nv = mesh.num_vertices(), nf = mesh.num_faces();
+  LocalityOrder out;
+  std::vector<int> new_of_old(nv, -1);
+  out.old_of_new.reserve(nv);
+  for (int s = 0; s < nv; ++s) {
+    if (new_of_old[s] >= 0) continue;
+    new_of_old[s] = static_cast<int>(out.old_of_new.size());
+    out.old_of_new.push_back(s);
+    for (std::size_t i = static_cast<std::size_t>(new_of_old[s]); i < out.old_of_new.size(); ++i) {  // each vertex once
+      const int v = out.old_of_new[i];
+      const int h0 = mesh.vertex_halfedge(v);
+      int h = h0;
+      do {  // valence(v) steps
+        const int w = mesh.target(h);
+        if (new_of_old[w] < 0) new_of_old[w] = static_cast<int>(out.old_of_new.size()), out.old_of_new.push_back(w);
+        h = mesh.next_around_origin(h);
+      } while (h != h0);
+    }
+  }
+  std::vector<int> new_face(nf, -1);
+  int placed = 0;
+  for (int v : out.old_of_new) {
+    const int h0 = mesh.vertex_halfedge(v);
+    int h = h0;
+    do {
+      if (new_face[TriMesh::face(h)] < 0) new_face[TriMesh::face(h)] = placed++;
+      h = mesh.next_around_origin(h);
+    } while (h != h0);
+  }
+  std::vector<int> origin(3 * static_cast<std::size_t>(nf)), twin(3 * static_cast<std::size_t>(nf));
+  for (int h = 0; h < 3 * nf; ++h) {
+    const int g = 3 * new_face[TriMesh::face(h)] + h % 3, t = mesh.twin(h);
+    origin[g] = new_of_old[mesh.origin(h)];
+    twin[g] = 3 * new_face[TriMesh::face(t)] + t % 3;
+  }
+  out.mesh = TriMesh::from_halfedges(nv, std::move(origin), std::move(twin));
+  return out;
+}
+
+// A result on the renumbered mesh in the caller's numbering: input vertices get their ids back
+// (constructed ones keep theirs, and their points' slots are sorted again), faces and disk
+// vertices stay as they are. O(V + F).
+void restore_order(CutResult& res, const std::vector<int>& old_of_new, const std::vector<Vec3d>& positions) {
+  RefinedSurface& rs = res.surface;
+  const int nin = rs.num_input_vertices;
+  auto old_id = [&](int v) { return v < nin ? old_of_new[v] : v; };
+  std::vector<int> origin = rs.mesh.origins();
+  for (int& v : origin) v = old_id(v);
+  std::vector<int> twin = rs.mesh.twins();
+  rs.mesh = TriMesh::from_halfedges(rs.mesh.num_vertices(), std::move(origin), std::move(twin));
+  for (SurfacePoint& p : rs.constructed) {
+    for (int i = 0; i < 3 && p.v[i] >= 0; ++i) p.v[i] = old_of_new[p.v[i]];
+    for (int i = 1; i < 3 && p.v[i] >= 0; ++i)  // insertion sort of the used slots
+      for (int j = i; j > 0 && p.v[j - 1] > p.v[j]; --j) {
+        std::swap(p.v[j - 1], p.v[j]);
+        mpq_swap(p.w[j - 1].get_mpq_t(), p.w[j].get_mpq_t());
+      }
+  }
+  rs.input_positions = positions;
+  res.root = old_id(res.root);
+  for (auto& loop : res.loops)
+    for (int& v : loop) v = old_id(v);
+  for (int& v : res.disk_to_surface) v = old_id(v);
+}
+
+}  // namespace
+
+CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& positions,
+                                const CutOptions& options) {
+  const auto t_start = Clock::now();
+  const int nv = mesh.num_vertices();
+  if (options.locality_order_min_vertices < -1)
+    throw Error(ErrorKind::InvalidArgument, "CutOptions::locality_order_min_vertices must be >= -1 (-1: never), got " +
+                                                std::to_string(options.locality_order_min_vertices));
+  // Bad input (and a small mesh) goes as it is, so that errors name the caller's ids.
+  bool reorder = options.locality_order_min_vertices >= 0 && nv >= options.locality_order_min_vertices &&
+                 nv > 0 && static_cast<int>(positions.size()) == nv && options.root >= -1 && options.root < nv;
+  for (int v = 0; reorder && v < nv; ++v) reorder = mesh.vertex_halfedge(v) >= 0;
+  if (!reorder) return cut_in_given_order(mesh, positions, options);
+  const LocalityOrder order = locality_order(mesh);
+  std::vector<Vec3d> renumbered(nv);
+  for (int v = 0; v < nv; ++v) renumbered[v] = positions[order.old_of_new[v]];
+  CutOptions o = options;
+  if (o.root >= 0) o.root = static_cast<int>(std::find(order.old_of_new.begin(), order.old_of_new.end(), o.root) - order.old_of_new.begin());
+  CutResult res = cut_in_given_order(order.mesh, renumbered, o);
+  restore_order(res, order.old_of_new, positions);
+  res.stats.locality_ordered = true;
   res.stats.seconds_total = seconds_since(t_start);
   return res;
 }

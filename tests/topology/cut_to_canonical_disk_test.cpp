@@ -392,6 +392,59 @@ TEST_CASE("generated meshes of genus 1 to 200 are cut into verified disks") {
   }
 }
 
+TEST_CASE("the locality order (step 0) gives a verified cut in the caller's vertex ids") {
+  // The generator shuffles vertex and face ids: forced here (0), the steps run on a breadth-first
+  // renumbering, and every id in the result must be the caller's again (verify_cut checks each
+  // constructed point's support against the caller's faces).
+  Input in = generated(3, 3000, 11);
+  for (bool normal_form : {false, true}) {
+    CAPTURE(normal_form);
+    CutOptions o;
+    o.normal_form = normal_form;
+    o.locality_order_min_vertices = 0;
+    const CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
+    CHECK(r.stats.locality_ordered);
+    CHECK(verify_cut(in, r, normal_form) == "");
+    REQUIRE(r.surface.input_positions.size() == in.positions.size());
+    int moved = 0;
+    for (std::size_t v = 0; v < in.positions.size(); ++v) {
+      const Vec3d &p = r.surface.input_positions[v], &q = in.positions[v];
+      moved += p.x != q.x || p.y != q.y || p.z != q.z;
+    }
+    CHECK(moved == 0);
+    int unsorted = 0;  // a point's used slots stay ascending (SurfacePoint's form)
+    for (const SurfacePoint& p : r.surface.constructed)
+      for (int k = 1; k < 3; ++k) unsorted += p.v[k] >= 0 && p.v[k - 1] >= p.v[k];
+    CHECK(unsorted == 0);
+    o.root = 1234;  // a given root keeps its id
+    const CutResult g = cut_to_canonical_disk(in.mesh, in.positions, o);
+    CHECK(g.root == 1234);
+    CHECK(verify_cut(in, g, normal_form) == "");
+  }
+  // Below the default bound nothing is renumbered: the same cut as never (-1).
+  CutOptions d;
+  const CutResult a = cut_to_canonical_disk(in.mesh, in.positions, d);
+  CHECK(!a.stats.locality_ordered);
+  CHECK(in.mesh.num_vertices() < d.locality_order_min_vertices);
+  d.locality_order_min_vertices = -1;
+  const CutResult b = cut_to_canonical_disk(in.mesh, in.positions, d);
+  CHECK(a.loops == b.loops);
+  CHECK(a.disk_triangles == b.disk_triangles);
+  d.locality_order_min_vertices = -2;
+  CHECK_THROWS_AS(cut_to_canonical_disk(in.mesh, in.positions, d), Error);
+  // Bad input is reported in the caller's ids whatever the bound: a root out of range.
+  CutOptions bad;
+  bad.locality_order_min_vertices = 0;
+  bad.root = in.mesh.num_vertices();
+  try {
+    cut_to_canonical_disk(in.mesh, in.positions, bad);
+    FAIL("accepted a root out of range");
+  } catch (const Error& e) {
+    CHECK(e.kind() == ErrorKind::InvalidArgument);
+    CHECK(std::string(e.what()).find(std::to_string(bad.root)) != std::string::npos);
+  }
+}
+
 TEST_CASE("the crosses construction alone cuts generated and shared meshes into verified canonical disks") {
   // Disjoint crosses first, then one tree from the root to them (cut_to_canonical_disk.h, step 3).
   struct Case {
