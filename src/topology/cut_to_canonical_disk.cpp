@@ -2563,12 +2563,15 @@ struct LocalityOrder {
 LocalityOrder locality_order(const TriMesh& mesh) {
   const int nv = mesh.num_vertices(), nf = mesh.num_faces();
   LocalityOrder out;
-  std::vector<int> new_of_old(nv, -1);
+  std::vector<int> new_of_old(nv, -1), new_face(nf, -1);
   out.old_of_new.reserve(nv);
+  int placed = 0;
   for (int s = 0; s < nv; ++s) {
     if (new_of_old[s] >= 0) continue;
     new_of_old[s] = static_cast<int>(out.old_of_new.size());
     out.old_of_new.push_back(s);
+    // The queue is old_of_new itself: vertices are taken in their new order, so the faces are met
+    // in the order stated above, in the same walk around each.
     for (std::size_t i = static_cast<std::size_t>(new_of_old[s]); i < out.old_of_new.size(); ++i) {  // each vertex once
       const int v = out.old_of_new[i];
       const int h0 = mesh.vertex_halfedge(v);
@@ -2576,19 +2579,10 @@ LocalityOrder locality_order(const TriMesh& mesh) {
       do {  // valence(v) steps
         const int w = mesh.target(h);
         if (new_of_old[w] < 0) new_of_old[w] = static_cast<int>(out.old_of_new.size()), out.old_of_new.push_back(w);
+        if (new_face[TriMesh::face(h)] < 0) new_face[TriMesh::face(h)] = placed++;
         h = mesh.next_around_origin(h);
       } while (h != h0);
     }
-  }
-  std::vector<int> new_face(nf, -1);
-  int placed = 0;
-  for (int v : out.old_of_new) {
-    const int h0 = mesh.vertex_halfedge(v);
-    int h = h0;
-    do {
-      if (new_face[TriMesh::face(h)] < 0) new_face[TriMesh::face(h)] = placed++;
-      h = mesh.next_around_origin(h);
-    } while (h != h0);
   }
   std::vector<int> origin(3 * static_cast<std::size_t>(nf)), twin(3 * static_cast<std::size_t>(nf));
   for (int h = 0; h < 3 * nf; ++h) {
