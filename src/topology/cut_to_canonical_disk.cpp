@@ -2211,35 +2211,13 @@ std::string CutResult::word() const { return to_string(word_of(*this)); }
 
 namespace {
 
-// Steps 1-5 on the mesh as numbered (cut_to_canonical_disk below may renumber it first).
-CutResult cut_in_given_order(const TriMesh& mesh, const std::vector<Vec3d>& positions, const CutOptions& options) {
+// Steps 1-5 on the mesh as numbered (cut_to_canonical_disk below may renumber it first). Pre: the
+// input and the options checked there, `genus` >= 1 the mesh's.
+CutResult cut_in_given_order(const TriMesh& mesh, const std::vector<Vec3d>& positions, const CutOptions& options,
+                             int genus) {
   const auto t_start = Clock::now();
   const int nv0 = mesh.num_vertices();
-  if (static_cast<int>(positions.size()) != nv0)
-    throw Error(ErrorKind::InvalidArgument, "positions (" + std::to_string(positions.size()) +
-                                                ") do not match the mesh vertices (" + std::to_string(nv0) + ")");
-  if (nv0 == 0) throw Error(ErrorKind::Empty, "mesh has no vertices");
-  for (int v = 0; v < nv0; ++v)
-    if (mesh.vertex_halfedge(v) < 0)
-      throw Error(ErrorKind::InvalidArgument, "vertex " + std::to_string(v) + " is used by no face", {v});
-  const int chi = mesh.num_vertices() - mesh.num_edges() + mesh.num_faces();
-  if (chi > 2 || chi % 2 != 0) throw Error(ErrorKind::InvalidArgument, "Euler characteristic " + std::to_string(chi));
-  const int genus = (2 - chi) / 2;
-  if (genus == 0) throw Error(ErrorKind::Unsupported, "genus 0 surface: the topology stage needs genus >= 1");
-
   CutResult res;
-  if (options.root < -1 || options.root >= nv0)
-    throw Error(ErrorKind::InvalidArgument, "root vertex " + std::to_string(options.root) + " out of range [0, " +
-                                                std::to_string(nv0) + ")", {options.root});
-  if (options.congestion_candidates < 1)
-    throw Error(ErrorKind::InvalidArgument, "CutOptions::congestion_candidates must be >= 1, got " +
-                                                std::to_string(options.congestion_candidates));
-  if (options.normal_form_roots == 0 || options.normal_form_roots < -1)
-    throw Error(ErrorKind::InvalidArgument, "CutOptions::normal_form_roots must be >= 1 or -1 (automatic), got " +
-                                                std::to_string(options.normal_form_roots));
-  if (options.congestion_rounds < -1)
-    throw Error(ErrorKind::InvalidArgument,
-                "CutOptions::congestion_rounds must be >= -1 (-1: automatic), got " + std::to_string(options.congestion_rounds));
   const std::vector<Vec3d> unit = unit_scaled(positions);  // edge lengths finite at any magnitude
   res.genus = genus;
   res.stats.genus = genus;
@@ -2626,20 +2604,41 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
                                 const CutOptions& options) {
   const auto t_start = Clock::now();
   const int nv = mesh.num_vertices();
+  // The input and the options, checked once, before step 0: errors name the caller's ids.
+  if (static_cast<int>(positions.size()) != nv)
+    throw Error(ErrorKind::InvalidArgument, "positions (" + std::to_string(positions.size()) +
+                                                ") do not match the mesh vertices (" + std::to_string(nv) + ")");
+  if (nv == 0) throw Error(ErrorKind::Empty, "mesh has no vertices");
+  for (int v = 0; v < nv; ++v)
+    if (mesh.vertex_halfedge(v) < 0)
+      throw Error(ErrorKind::InvalidArgument, "vertex " + std::to_string(v) + " is used by no face", {v});
+  const int chi = mesh.num_vertices() - mesh.num_edges() + mesh.num_faces();
+  if (chi > 2 || chi % 2 != 0) throw Error(ErrorKind::InvalidArgument, "Euler characteristic " + std::to_string(chi));
+  const int genus = (2 - chi) / 2;
+  if (genus == 0) throw Error(ErrorKind::Unsupported, "genus 0 surface: the topology stage needs genus >= 1");
+  if (options.root < -1 || options.root >= nv)
+    throw Error(ErrorKind::InvalidArgument, "root vertex " + std::to_string(options.root) + " out of range [0, " +
+                                                std::to_string(nv) + ")", {options.root});
+  if (options.congestion_candidates < 1)
+    throw Error(ErrorKind::InvalidArgument, "CutOptions::congestion_candidates must be >= 1, got " +
+                                                std::to_string(options.congestion_candidates));
+  if (options.normal_form_roots == 0 || options.normal_form_roots < -1)
+    throw Error(ErrorKind::InvalidArgument, "CutOptions::normal_form_roots must be >= 1 or -1 (automatic), got " +
+                                                std::to_string(options.normal_form_roots));
+  if (options.congestion_rounds < -1)
+    throw Error(ErrorKind::InvalidArgument,
+                "CutOptions::congestion_rounds must be >= -1 (-1: automatic), got " + std::to_string(options.congestion_rounds));
   if (options.locality_order_min_vertices < -1)
     throw Error(ErrorKind::InvalidArgument, "CutOptions::locality_order_min_vertices must be >= -1 (-1: never), got " +
                                                 std::to_string(options.locality_order_min_vertices));
-  // Bad input (and a small mesh) goes as it is, so that errors name the caller's ids.
-  bool reorder = options.locality_order_min_vertices >= 0 && nv >= options.locality_order_min_vertices &&
-                 nv > 0 && static_cast<int>(positions.size()) == nv && options.root >= -1 && options.root < nv;
-  for (int v = 0; reorder && v < nv; ++v) reorder = mesh.vertex_halfedge(v) >= 0;
-  if (!reorder) return cut_in_given_order(mesh, positions, options);
+  if (options.locality_order_min_vertices < 0 || nv < options.locality_order_min_vertices)
+    return cut_in_given_order(mesh, positions, options, genus);
   const LocalityOrder order = locality_order(mesh);
   std::vector<Vec3d> renumbered(nv);
   for (int v = 0; v < nv; ++v) renumbered[v] = positions[order.old_of_new[v]];
   CutOptions o = options;
   if (o.root >= 0) o.root = static_cast<int>(std::find(order.old_of_new.begin(), order.old_of_new.end(), o.root) - order.old_of_new.begin());
-  CutResult res = cut_in_given_order(order.mesh, renumbered, o);
+  CutResult res = cut_in_given_order(order.mesh, renumbered, o, genus);
   restore_order(res, order.old_of_new, positions);
   res.stats.locality_ordered = true;
   res.stats.seconds_total = seconds_since(t_start);
