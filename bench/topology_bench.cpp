@@ -1,10 +1,10 @@
 // Topology stage measurements: time and mesh growth of cut_to_canonical_disk.
 // Usage: igm_bench_topology [shared_dir] [--normal-form-all] [--crosses|--rounds] [--serial]
 //                           [--no-tighten] [--congestion-rounds N] [--nf-roots N]
-//                           [--no-locality-order] [--only NAME|g3|g20]
+//                           [--no-locality-order] [--only NAME|g3|g20|g40]
 // Growth is broken down by source: crossings, Steiner, band, chord and pre-condition splits, and
-// the normal form's rounds (marked "(crosses)" where the crosses construction won) and chord
-// splits. The normal form is measured on every mesh; --normal-form-all is accepted and changes
+// the normal form's rounds (marked "(crosses)" where the crosses construction won, "raced" where
+// a lone root candidate ran both constructions side by side) and chord splits. The normal form is measured on every mesh; --normal-form-all is accepted and changes
 // nothing (it added the 1M-face g20's, ~10 s before stop 27, 4.6-5 s since); --only runs one mesh,
 // with and without it; --nf-roots N sets
 // CutOptions::normal_form_roots (default: automatic; cheese gets 1, --nf-roots 11 is what it had
@@ -18,7 +18,8 @@
 // without the normal form shows "congestion r/n" (the round kept, of the n recomputed bases).
 // Under each line: the ring-capacity floor (topology/ring_bound.h) at the chosen root, the vertices
 // any loop system through it must add; without the normal form on meshes of <= 3,000 vertices also
-// the least floor over every root.
+// the least floor over every root. --only g40 runs a generated genus 40 on 1M faces (not in the
+// default run: ~15 s with the normal form), where the lone candidate races its two constructions.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -91,7 +92,7 @@ void run(const std::string& name, const Input& in, bool normal_form) {
                 " collapsed %5d precond %6d | rounds %3d%s chords %6d - %6d | roots %2d congestion %2d/%-2d | %7.3f s (basis %.3f, detach %.3f, cut %.3f)%s\n",
                 name.c_str(), s.genus, s.faces_before, normal_form ? 1 : 0, s.vertices_before, s.vertices_after,
                 100.0 * (s.vertices_after - s.vertices_before) / s.vertices_before, s.crossings, s.steiner_vertices,
-                s.band_splits, s.chord_splits, s.collapsed, s.precondition_splits, s.normal_form_rounds, s.crosses ? " (crosses)" : "", s.round_chord_splits, s.straightened,
+                s.band_splits, s.chord_splits, s.collapsed, s.precondition_splits, s.normal_form_rounds, s.crosses ? (s.raced ? " (crosses, raced)" : " (crosses)") : s.raced ? " (raced)" : "", s.round_chord_splits, s.straightened,
                 s.roots_tried,
                 s.congestion_best_round, s.congestion_rounds, s.seconds_total,
                 s.seconds_basis, s.seconds_detach, s.seconds_cut, s.locality_ordered ? " renumbered" : "");
@@ -137,7 +138,7 @@ int main(int argc, char** argv) {
     run(name, in, false);
     run(name, in, true);
   }
-  if (!only.empty() && only != "g3" && only != "g20") return 0;
+  if (!only.empty() && only != "g3" && only != "g20" && only != "g40") return 0;
   if (only.empty() || only == "g3") {
     Input in = generated(3, 52000);
     run("generated g3 52k faces", in, false);
@@ -147,6 +148,11 @@ int main(int argc, char** argv) {
     Input in = generated(20, 1000000);
     run("generated g20 1M faces", in, false);
     run("generated g20 1M faces", in, true);
+  }
+  if (only == "g40") {
+    Input in = generated(40, 1000000);
+    run("generated g40 1M faces", in, false);
+    run("generated g40 1M faces", in, true);
   }
   return 0;
 }

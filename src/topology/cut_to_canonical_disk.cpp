@@ -1281,11 +1281,13 @@ std::vector<int> split_like_copy(RefinedSurface& rs, const std::vector<std::pair
 // triangulated as in the copy and the paths exist). If that finds nothing either, gap t is given
 // up for this round. Every round adds a block: at most g rounds, at most g + 1 gaps per round.
 // Then step 2 detaches all 2g loops once, along G. Returns false as soon as the mesh would have
-// more than vertex_limit vertices. Post (true): res.loops holds the 2g loops, their word in
-// commutator blocks (relabelled by the caller); res.stats has the counts. Cost O(g^2 n log n +
+// more than vertex_limit vertices, or more than *rival (if given: the planned vertices of the
+// crosses raced against it; the rounds only add vertices, so such a run would lose). Post (true):
+// res.loops holds the 2g loops, their word in commutator blocks (relabelled by the caller);
+// res.stats has the counts. Cost O(g^2 n log n +
 // crossings) in the worst case, O(g n log n + crossings) when no gap is given up.
 bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops, long vertex_limit, DetachPlan& plan,
-                      const std::vector<double>* penalty = nullptr) {
+                      const std::vector<double>* penalty = nullptr, const std::atomic<long>* rival = nullptr) {
   const int root = res.root, genus = res.genus;
   RefinedSurface& rs = res.surface;
   std::vector<Vec3d> pos(unit.begin(), unit.begin() + rs.num_input_vertices);
@@ -1505,6 +1507,7 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
   std::size_t last_k = std::numeric_limits<int>::max();  // the gaps the last round's search used
   for (; static_cast<int>(taken.size()) < 2 * genus; ++round) {
     if (round >= genus) internal("normal form: round " + std::to_string(round) + " with g = " + std::to_string(genus));
+    if (rival && rs.mesh.num_vertices() > rival->load()) return false;  // it would lose the race
     const TriMesh& M = rs.mesh;
     extend(rs, pos);
     G.grow(M.num_vertices());
@@ -1594,7 +1597,7 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
   }
   // The last round's word, checked like the others, and step 2 once: all 2g loops detached along G.
   G.grow(rs.mesh.num_vertices());
-  return plan_along_tree(res, G, root_start, taken, vertex_limit, plan);
+  return plan_along_tree(res, G, root_start, taken, rival ? std::min(vertex_limit, rival->load()) : vertex_limit, plan);
 }
 
 // Step 3 (crosses): g disjoint crosses, each round's hung at once from a tree P from the root. A
@@ -1620,10 +1623,12 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
 // still to find) seeds, at least 1. At most g rounds (each takes a cross), at most log2 k + 1
 // searches on the surface and as many on a copy per round, and one or two hanging searches.
 // Returns false as soon as the mesh has more than vertex_limit vertices, or at the start of a
-// round once *stop (if given) is set. Post (true): as canonical_rounds. Cost O(g log g (E log E +
+// round once it has at least *rival (if given: the planned vertices of the rounds raced against
+// it, which win ties; the count at a round's start only grows, and the plan has at least as many,
+// so such a run would lose). Post (true): as canonical_rounds. Cost O(g log g (E log E +
 // L^2 log L) + crossings), L <= 2g + k the leftover edges of a search.
 bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops, long vertex_limit, DetachPlan& plan,
-                       const std::atomic<bool>* stop) {
+                       const std::atomic<long>* rival) {
   const int root = res.root, genus = res.genus;
   RefinedSurface& rs = res.surface;
   std::vector<Vec3d> pos(unit.begin(), unit.begin() + rs.num_input_vertices);
@@ -2041,7 +2046,7 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
   std::size_t last_k = std::numeric_limits<int>::max();
   while (static_cast<int>(crosses.size()) < genus) {
     if (round >= genus) internal("normal form: cross round " + std::to_string(round) + " with g = " + std::to_string(genus));
-    if (stop && stop->load()) return false;  // the rounds raced against this one succeeded
+    if (rival && rs.mesh.num_vertices() >= rival->load()) return false;  // it would lose the race
     extend(rs, pos);
     const int nv = rs.mesh.num_vertices();
     cross_of.resize(nv, -1);
@@ -2144,7 +2149,8 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
     taken.push_back(crosses[i].bands[0]);
     taken.push_back(crosses[i].bands[1]);
   }
-  return plan_along_tree(res, G, first_child_of_root(rs.mesh, G, root), taken, vertex_limit, plan);
+  return plan_along_tree(res, G, first_child_of_root(rs.mesh, G, root), taken,
+                         rival ? std::min(vertex_limit, rival->load() - 1) : vertex_limit, plan);
 }
 
 // How many root candidates the normal form tries (root = -1, CutOptions::normal_form_roots = -1):
@@ -2268,66 +2274,88 @@ CutResult cut_in_given_order(const TriMesh& mesh, const std::vector<Vec3d>& posi
       trial.surface.input_positions = positions;
       return trial;
     };
-    // One construction at candidate (c, hops), into out if it succeeds within `bound`.
+    // One construction at candidate (c, hops), into out if it succeeds within `bound` (and within
+    // *rival: canonical_rounds, canonical_crosses).
     auto attempt = [&](int c, bool hops, bool crosses, long bound, Outcome& out,
-                       const std::atomic<bool>* stop = nullptr) {
+                       const std::atomic<long>* rival = nullptr) {
       CutResult trial = new_trial(c);
       DetachPlan plan;
-      const bool ok = crosses ? canonical_crosses(trial, unit, hops, bound, plan, stop)
-                              : canonical_rounds(trial, unit, hops, bound, plan);
+      const bool ok = crosses ? canonical_crosses(trial, unit, hops, bound, plan, rival)
+                              : canonical_rounds(trial, unit, hops, bound, plan, nullptr, rival);
       if (ok) out.ok = true, out.crosses = crosses, out.hops = hops, out.stats = trial.stats, out.plan = std::move(plan);
       return ok;
     };
     // One candidate: the rounds, bounded by max_rounds_growth; where they pass it (their own bound
     // binding, not only the best so far; Best) the crosses, whose outcome (or error) then counts.
-    // side_by_side (a lone candidate on two threads): the crosses run alongside the rounds from the
-    // start, stopped at their next round once the rounds succeed or throw; the outcome is the same,
-    // in the time of the longer of the two instead of their sum (cheese, whose rounds passed 4x
-    // after 1.6 s: 2.8-3.1 s instead of 3.9-4.6 s on one thread; since stop 25 the bound is 2x). Only where the rounds are likely to pass
-    // their bound (kRaceFacesPerHandle): elsewhere the crosses would be thrown away, and beside the
-    // rounds they cost the rounds memory bandwidth (the generated 1M-face genus 20: 9.0-10.8 s
-    // for its rounds alone, 9.8-11.7 s with the crosses beside them, 4 runs each).
-    auto run_candidate = [&](int c, bool hops, bool crosses_only, long best, Outcome& out, bool side_by_side) {
+    // race (a lone candidate where the rounds tend to pass their bound or to plan more vertices
+    // than the crosses: kRaceFacesPerHandle, kRaceGenus): both run, side by side on two threads
+    // (CutOptions::parallel). Where the rounds' plan is final (no congestion reweighting follows:
+    // fewest), the fewer planned vertices win, the rounds on ties; each is then bounded by the
+    // other's plan once that one has succeeded: the rounds' count only grows, the crosses' grows
+    // from round to round, and a plan has at least the vertices of its surface, so a run that
+    // passes the other's plan would lose anyway. Else (the reweighting would lower the rounds'
+    // plan: couplingdown at root 100, 2,266 vertices after it, 2,587 for the crosses, whose plan
+    // is below the rounds' first) the rounds win if they succeed, and the crosses stop at their
+    // next round once they do. Either way the outcome does not depend on the threads (an error of
+    // the rounds wins; one of the crosses counts where the rounds failed; an Internal error that
+    // only a losing run would reach may go unseen), and the time is about that of the longer of
+    // the two, or less where the winner stops the other.
+    const int reweight_rounds = congestion_budget(options, mesh, 200000L, 0L);
+    const bool fewest = reweight_rounds == 0;
+    bool raced = false;
+    auto run_candidate = [&](int c, bool hops, bool crosses_only, long best, Outcome& out, bool race) {
       if (crosses_only) {
         attempt(c, hops, true, best, out);
         return;
       }
       const bool crosses_may_count = options.construction == C::Best && rounds_limit <= best;
+      if (!race || !crosses_may_count) {
+        if (attempt(c, hops, false, std::min(best, rounds_limit), out) || !crosses_may_count) return;
+        attempt(c, hops, true, best, out);
+        out.rounds_passed = true;
+        return;
+      }
+      raced = true;
       Outcome crossed;
-      std::atomic<bool> stop_crosses{false};
+      std::atomic<long> rounds_planned{std::numeric_limits<long>::max()};
+      std::atomic<long> crosses_planned{std::numeric_limits<long>::max()};
       std::exception_ptr crosses_error;
       auto rounds = [&] {
         try {
-          stop_crosses = attempt(c, hops, false, std::min(best, rounds_limit), out);
+          if (attempt(c, hops, false, std::min(best, rounds_limit), out, fewest ? &crosses_planned : nullptr))
+            rounds_planned = fewest ? planned_vertices(out.plan) : -1;  // -1: the crosses stop
         } catch (...) {
-          stop_crosses = true;  // the error wins: the crosses stop at their next round
+          rounds_planned = -1;  // the error wins: the crosses stop at their next round
           throw;
         }
       };
       auto crosses = [&] {
         try {
-          attempt(c, hops, true, best, crossed, &stop_crosses);
+          if (attempt(c, hops, true, best, crossed, &rounds_planned)) crosses_planned = planned_vertices(crossed.plan);
         } catch (...) {
           crosses_error = std::current_exception();
         }
       };
-      if (side_by_side && crosses_may_count) {
-        run_pair(true, rounds, crosses);
-      } else {
-        rounds();
-        if (!out.ok && crosses_may_count) crosses();
-      }
-      if (out.ok || !crosses_may_count) return;
-      if (crosses_error) std::rethrow_exception(crosses_error);
+      run_pair(options.parallel, rounds, crosses);
+      if (out.ok && (!crossed.ok || !fewest || planned_vertices(out.plan) <= planned_vertices(crossed.plan))) return;
+      if (!out.ok && crosses_error) std::rethrow_exception(crosses_error);
+      if (!crossed.ok) return;  // neither
       out = std::move(crossed);
       out.rounds_passed = true;
     };
     // The rounds pass max_rounds_growth on coarse meshes of high genus (cheese: 134 faces per
     // handle, a generated genus 200 on 30k faces: 150) and stay well within it on fine ones
-    // (couplingdown: 413, the 1M-face genus 20: 49.5k); a lone candidate races its crosses against
-    // its rounds below this.
+    // (couplingdown: 413, the 1M-face genus 20: 49.5k); and from genus 30 on they plan more
+    // vertices than the crosses on fine meshes as well, or pass their bound after seconds
+    // (generated, one root: genus 30 on 400k faces 303k vertices against the crosses' 230k, genus
+    // 40 on 1M 735k against 576k; genus 100 on 400k and 200 on 400k passed 2x after 11.8 s and
+    // 31.7 s, the crosses took 6.8 s and 12.3 s). A lone candidate races the two below
+    // kRaceFacesPerHandle or from kRaceGenus. Not below that genus on fine meshes: there the rounds
+    // plan about as many vertices in half the time (the 1M-face genus 20: 546.8k in 4.3 s
+    // against 536.0k in 8.1 s; genus 10 on 200k faces: 109.4k in 0.6 s against 111.1k in 1.0 s).
     constexpr long kRaceFacesPerHandle = 2000;
-    const bool race = mesh.num_faces() < kRaceFacesPerHandle * static_cast<long>(genus);
+    constexpr int kRaceGenus = 30;
+    const bool race = mesh.num_faces() < kRaceFacesPerHandle * static_cast<long>(genus) || genus >= kRaceGenus;
     bool found = false, kept_hops = false;
     int tried = 0, rounds_passed = 0;
     DetachPlan kept;
@@ -2343,7 +2371,7 @@ CutResult cut_in_given_order(const TriMesh& mesh, const std::vector<Vec3d>& posi
         };
       };
       if (n == 2) run_pair(options.parallel, run(0), run(1));
-      else run_candidate(candidates[i].first, candidates[i].second, crosses_only, best, out[0], options.parallel && race);
+      else run_candidate(candidates[i].first, candidates[i].second, crosses_only, best, out[0], race);
       for (std::size_t j = 0; j < n; ++j) {
         ++tried;
         rounds_passed += out[j].rounds_passed;
@@ -2363,7 +2391,6 @@ CutResult cut_in_given_order(const TriMesh& mesh, const std::vector<Vec3d>& posi
     // candidate costs seconds where they are needed). Each round is bounded by the rounds' own
     // limit only: a round past the kept plan still gives the next penalties.
     // None past 2e5 faces: there a round costs as much as the construction (the 1M-face g20: 7.5 s).
-    const int reweight_rounds = congestion_budget(options, mesh, 200000L, 0L);
     if (found && !res.stats.crosses && reweight_rounds > 0) {
       check_congestion_step(options.congestion_step);
       CutStats latest;  // the stats of the last round's construction
@@ -2379,6 +2406,7 @@ CutResult cut_in_given_order(const TriMesh& mesh, const std::vector<Vec3d>& posi
       res.stats.congestion_best_round = kept_round;
       res.stats.congestion_rounds = reweight_rounds;
     }
+    res.stats.raced = raced;
     if (found) {
       res.stats.planned_vertices = planned_vertices(kept);
       res.loops = realize_strands(kept, res.stats, options.parallel);

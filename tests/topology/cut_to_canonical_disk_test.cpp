@@ -549,9 +549,10 @@ TEST_CASE("the normal form's root candidates give the same cut on two threads as
 TEST_CASE("a lone root candidate runs its rounds and its crosses side by side: the same cut as one after the other") {
   // CutOptions::normal_form_roots = 1 (what cheese gets by default) or a given root: one candidate,
   // whose two constructions run at once on two threads, the crosses stopped once the rounds
-  // succeed (on meshes of fewer than 2000 faces per handle, as both here). Genus 10 on 3000 faces
-  // keeps the rounds; genus 20 on 1000 faces passes their bound and keeps the crosses. Serial and
-  // parallel must agree in everything.
+  // succeed (on meshes of fewer than 2000 faces per handle, as both here, of at most 2e5 faces,
+  // where the rounds' reweighting follows). Genus 10 on 3000 faces keeps the rounds; genus 20 on
+  // 1000 faces passes their bound and keeps the crosses. Serial and parallel must agree in
+  // everything.
   for (const auto& [g, faces, seed, crosses] : {std::tuple{10, 3000L, 7u, false}, std::tuple{20, 1000L, 3u, true}}) {
     CAPTURE(g);
     Input in = generated(g, faces, seed);
@@ -565,11 +566,74 @@ TEST_CASE("a lone root candidate runs its rounds and its crosses side by side: t
       o.parallel = true;
       const CutResult two = cut_to_canonical_disk(in.mesh, in.positions, o);
       CHECK(one.stats.roots_tried == 1);
+      CHECK(one.stats.raced);
+      CHECK(two.stats.raced);
       CHECK(two.stats.crosses == crosses);
       check_same_cut(one, two);
       if (crosses) CHECK(two.stats.points_on_two_threads >= 1024);
       CHECK(verify_cut(in, two) == "");
     }
+  }
+}
+
+TEST_CASE("a raced lone candidate whose plan is final keeps the construction that plans fewer vertices") {
+  // With no reweighting after it (congestion_rounds = 0 here; by default on meshes of more than
+  // 2e5 faces) the race keeps the fewer planned vertices of the rounds and the crosses, the rounds
+  // on ties, whichever finishes first: each run stops once it passes the other's plan, which must
+  // not change the outcome. At the given root, generated genus 4 on 2100 faces (seed 1) plans
+  // 1548 vertices by the rounds and 1503 by the crosses; seed 2: 1272 and 1456. With the default
+  // reweighting the rounds win wherever they succeed, as before.
+  for (const auto& [seed, crosses_fewer] : {std::pair{1u, true}, std::pair{2u, false}}) {
+    CAPTURE(seed);
+    Input in = generated(4, 2000, seed);
+    REQUIRE(in.mesh.num_faces() < 2000 * 4);  // the race's range
+    CutOptions o;
+    o.root = in.mesh.num_vertices() / 3;
+    o.congestion_rounds = 0;
+    o.construction = CutOptions::Construction::Rounds;
+    const long rounds = cut_to_canonical_disk(in.mesh, in.positions, o).stats.planned_vertices;
+    o.construction = CutOptions::Construction::Crosses;
+    const long crosses = cut_to_canonical_disk(in.mesh, in.positions, o).stats.planned_vertices;
+    CHECK((crosses < rounds) == crosses_fewer);
+    o.construction = CutOptions::Construction::Best;
+    o.parallel = false;
+    const CutResult one = cut_to_canonical_disk(in.mesh, in.positions, o);
+    o.parallel = true;
+    const CutResult two = cut_to_canonical_disk(in.mesh, in.positions, o);
+    CHECK(two.stats.raced);
+    CHECK(two.stats.crosses == crosses_fewer);
+    CHECK(two.stats.planned_vertices == std::min(rounds, crosses));
+    check_same_cut(one, two);
+    CHECK(verify_cut(in, two) == "");
+    // Reweighted afterwards (the default), the rounds keep the candidate where they succeed.
+    o.congestion_rounds = -1;
+    const CutResult reweighted = cut_to_canonical_disk(in.mesh, in.positions, o);
+    CHECK(reweighted.stats.raced);
+    CHECK_FALSE(reweighted.stats.crosses);
+    CHECK(verify_cut(in, reweighted) == "");
+  }
+}
+
+TEST_CASE("a lone candidate of genus >= 30 races its constructions on a fine mesh too") {
+  // Genus 30 on 63k faces: 2100 faces per handle, past the coarse-mesh range, and raced for its
+  // genus; a genus-20 mesh of as many faces per handle is not. (verify_cut on these takes ~14 s;
+  // the race's cuts are verified on the smaller meshes above, here the sides and the word.)
+  for (const auto& [g, raced] : {std::pair{30, true}, std::pair{20, false}}) {
+    CAPTURE(g);
+    Input in = generated(g, 2100L * g, 1);
+    REQUIRE(in.mesh.num_faces() >= 2000L * g);
+    CutOptions o;
+    o.normal_form_roots = 1;
+    const CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
+    CHECK(r.stats.raced == raced);
+    CHECK(r.loops.size() == 2u * g);
+    CHECK(r.sides.size() == 4u * g);
+    std::string canonical;  // L0 L1 L0' L1' L2 L3 L2' L3' ...
+    for (int i = 0; i < 2 * g; i += 2) {
+      const std::string p = "L" + std::to_string(i), q = "L" + std::to_string(i + 1);
+      canonical += (i ? " " : "") + p + " " + q + " " + p + "' " + q + "'";
+    }
+    CHECK(r.word() == canonical);
   }
 }
 

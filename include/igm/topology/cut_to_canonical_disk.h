@@ -170,10 +170,23 @@
 //     threads (CutOptions::parallel), each pair bounded by the best of the pairs before it and
 //     merged in order, so the result does not depend on the threads; a lone candidate (a given
 //     root, or one root: CutOptions::normal_form_roots, which gives cheese one since stop 23) runs
-//     its rounds and its crosses side by side instead, the crosses stopped once the rounds succeed,
-//     where the mesh has fewer than 2000 faces per handle (there the rounds tend to pass their
-//     bound: cheese 134; elsewhere the crosses would only take memory bandwidth from the rounds:
-//     the 1M-face genus 20, 49.5k, 8.1-9.2 s instead of 9.5-12.1 s).
+//     (Best) its rounds and its crosses side by side instead (CutStats::raced), where the mesh has
+//     fewer than 2000 faces per handle or genus >= 30: there the rounds tend to pass their bound
+//     (cheese, 134 faces per handle; generated genus 100 and 200 on 400k faces passed it after
+//     11.8 s and 31.7 s, their crosses took 6.8 s and 12.3 s) or, from genus 30, to plan more
+//     vertices than the crosses (genus 30 on 400k faces 303k against 230k, genus 40 on 1M 735k
+//     against 576k); elsewhere the crosses would only take time and memory bandwidth from the
+//     rounds for about as many vertices (the 1M-face genus 20: rounds 546.8k in 4.3 s, crosses
+//     536.0k in 8.1 s). Raced, on meshes of more than 2e5 faces (no reweighting follows) the fewer
+//     planned vertices win, the rounds on ties, each run stopped once it passes the other's plan;
+//     on smaller ones the rounds win if they succeed and the crosses stop then (the rounds'
+//     reweighting lowers their plan afterwards: couplingdown at root 100 gets 2,266 vertices from
+//     the reweighted rounds, 2,587 from the crosses, whose plan is below the rounds' first one).
+//     Measured against stop 27 (one root, generated): genus 30 on 1M faces 596.4k vertices in 6.3 s
+//     -> 580.5k in 9.1 s, genus 40 on 1M 735.0k in 7.7 s -> 576.1k in 13.3 s, genus 50 on 1M
+//     704.6k in 24.4 s -> 13.4 s, genus 100 on 400k 393.5k in 18.6 s -> 9.7 s, genus 200 on 400k
+//     658.5k in 43.0 s -> 31.8 s, genus 30 on 400k 303.4k in 2.5 s -> 230.3k in 3.5 s; the
+//     shared meshes, cheese and the 1M-face genus 20 unchanged.
 //     Loops are renumbered and reoriented so that the word is exactly L0 L1 L0^-1 L1^-1 L2 L3 ...
 //     Off, the word is whatever step 2 gives.
 //  4. embedding pre-conditions (embed/tutte.h): every interior disk edge joining two vertices of
@@ -222,7 +235,8 @@ struct CutOptions {
   /// instead of 1.6 s.
   double max_rounds_growth = 2.0;
   /// Evaluate root candidates two at a time on two threads (root = -1; a lone candidate on a mesh
-  /// of fewer than 2000 faces per handle: its two constructions side by side), and make the exact
+  /// of fewer than 2000 faces per handle or genus >= 30: its two constructions side by side, step
+  /// 3), and make the exact
   /// points of the kept plan's crossings in two halves on two threads (at least 1024 of them;
   /// each from older points only). The result is the same either way: candidates go in fixed
   /// pairs, merged in order, and every point is the same canonical rational.
@@ -279,6 +293,7 @@ struct CutStats {
   int round_chord_splits = 0;   // chords split so that a round's (or the crosses' tree's) paths exist
   int straightened = 0;         // of those, split diagonals inside input faces removed again (step 3b)
   bool crosses = false;         // the normal form came from the crosses construction
+  bool raced = false;           // a lone candidate ran both constructions (step 3, Best)
   bool locality_ordered = false;  // the steps ran on the mesh renumbered by step 0
   // Exact points of crossings made on two threads (CutOptions::parallel, at least 1024 in one
   // drawing); 0 on one thread.
