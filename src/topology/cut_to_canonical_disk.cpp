@@ -2261,6 +2261,7 @@ CutResult cut_in_given_order(const TriMesh& mesh, const std::vector<Vec3d>& posi
     // depend on the threads.
     struct Outcome {
       bool ok = false, rounds_passed = false, crosses = false, hops = false;
+      bool reweighted = false;  // a rounds plan already reweighted (in a race)
       CutStats stats;
       DetachPlan plan;
     };
@@ -2289,19 +2290,45 @@ CutResult cut_in_given_order(const TriMesh& mesh, const std::vector<Vec3d>& posi
     // binding, not only the best so far; Best) the crosses, whose outcome (or error) then counts.
     // race (a lone candidate where the rounds tend to pass their bound or to plan more vertices
     // than the crosses: kRaceFacesPerHandle, kRaceGenus): both run, side by side on two threads
-    // (CutOptions::parallel). Where the rounds' plan is final (no congestion reweighting follows:
-    // fewest), the fewer planned vertices win, the rounds on ties; each is then bounded by the
-    // other's plan once that one has succeeded: the rounds' count only grows, the crosses' grows
-    // from round to round, and a plan has at least the vertices of its surface, so a run that
-    // passes the other's plan would lose anyway. Else (the reweighting would lower the rounds'
-    // plan: couplingdown at root 100, 2,266 vertices after it, 2,587 for the crosses, whose plan
-    // is below the rounds' first) the rounds win if they succeed, and the crosses stop at their
-    // next round once they do. Either way the outcome does not depend on the threads (an error of
-    // the rounds wins; one of the crosses counts where the rounds failed; an Internal error that
-    // only a losing run would reach may go unseen), and the time is about that of the longer of
-    // the two, or less where the winner stops the other.
+    // (CutOptions::parallel), the rounds followed by their congestion reweighting (reweight), and
+    // the fewer planned vertices win, the rounds on ties (their plan after the reweighting, which
+    // can only lower it: couplingdown at root 100 gets 2,266 vertices from the reweighted rounds,
+    // 2,587 from the crosses, whose plan is below the rounds' first). Each run is bounded by the
+    // other's best plan so far: the crosses by the rounds' (from their first plan on), the rounds
+    // by the crosses' where no reweighting follows. The rounds' count only grows, the crosses'
+    // grows from round to round, and a plan has at least the vertices of its surface, so a run
+    // that passes the other's plan would lose anyway: the outcome does not depend on the threads
+    // (an error of the rounds wins; one of the crosses counts where the rounds failed; an
+    // Internal error that only a losing run would reach may go unseen), and the time is about
+    // that of the longer of the two, or less where the winner stops the other.
     const int reweight_rounds = congestion_budget(options, mesh, 200000L, 0L);
-    const bool fewest = reweight_rounds == 0;
+    if (reweight_rounds > 0) check_congestion_step(options.congestion_step);
+    // The congestion reweighting of a rounds plan at (root, hops) (step 3a with the penalties of
+    // step 1c, accumulated from each round's plan), all rounds of the budget (their outcomes are
+    // erratic); the plan with the fewest planned vertices is kept, with its stats. Not for the
+    // crosses (a candidate costs seconds where they are needed). Each round is bounded by the
+    // rounds' own limit only: a round past the kept plan still gives the next penalties. Each new
+    // best's count goes to *publish (if given). None past 2e5 faces: there a round costs as much
+    // as the construction (the 1M-face g20: 7.5 s).
+    auto reweight = [&](int root, bool hops, DetachPlan& plan, CutStats& stats, std::atomic<long>* publish) {
+      CutStats latest;  // the stats of the last round's construction
+      long latest_count = 0;
+      const int kept_round = reweight_for_congestion(
+          plan, nv0, options.congestion_step * metric_unit(mesh, unit, hops), reweight_rounds, reweight_rounds,
+          [&](const std::vector<double>& penalty, DetachPlan& next) {
+            CutResult trial = new_trial(root);
+            const bool ok = canonical_rounds(trial, unit, hops, rounds_limit, next, &penalty);
+            latest = trial.stats;
+            latest_count = ok ? planned_vertices(next) : 0;
+            return ok;
+          },
+          [&](int) {
+            stats = latest;
+            if (publish) *publish = latest_count;
+          });
+      stats.congestion_best_round = kept_round;
+      stats.congestion_rounds = reweight_rounds;
+    };
     bool raced = false;
     auto run_candidate = [&](int c, bool hops, bool crosses_only, long best, Outcome& out, bool race) {
       if (crosses_only) {
@@ -2322,8 +2349,10 @@ CutResult cut_in_given_order(const TriMesh& mesh, const std::vector<Vec3d>& posi
       std::exception_ptr crosses_error;
       auto rounds = [&] {
         try {
-          if (attempt(c, hops, false, std::min(best, rounds_limit), out, fewest ? &crosses_planned : nullptr))
-            rounds_planned = fewest ? planned_vertices(out.plan) : -1;  // -1: the crosses stop
+          if (attempt(c, hops, false, std::min(best, rounds_limit), out, reweight_rounds == 0 ? &crosses_planned : nullptr)) {
+            rounds_planned = planned_vertices(out.plan);
+            if (reweight_rounds > 0) reweight(c, hops, out.plan, out.stats, &rounds_planned), out.reweighted = true;
+          }
         } catch (...) {
           rounds_planned = -1;  // the error wins: the crosses stop at their next round
           throw;
@@ -2337,7 +2366,7 @@ CutResult cut_in_given_order(const TriMesh& mesh, const std::vector<Vec3d>& posi
         }
       };
       run_pair(options.parallel, rounds, crosses);
-      if (out.ok && (!crossed.ok || !fewest || planned_vertices(out.plan) <= planned_vertices(crossed.plan))) return;
+      if (out.ok && (!crossed.ok || planned_vertices(out.plan) <= planned_vertices(crossed.plan))) return;
       if (!out.ok && crosses_error) std::rethrow_exception(crosses_error);
       if (!crossed.ok) return;  // neither
       out = std::move(crossed);
@@ -2356,7 +2385,7 @@ CutResult cut_in_given_order(const TriMesh& mesh, const std::vector<Vec3d>& posi
     constexpr long kRaceFacesPerHandle = 2000;
     constexpr int kRaceGenus = 30;
     const bool race = mesh.num_faces() < kRaceFacesPerHandle * static_cast<long>(genus) || genus >= kRaceGenus;
-    bool found = false, kept_hops = false;
+    bool found = false, kept_hops = false, kept_reweighted = false;
     int tried = 0, rounds_passed = 0;
     DetachPlan kept;
     for (std::size_t i = 0; i < candidates.size(); i += 2) {  // chunks of two
@@ -2381,31 +2410,14 @@ CutResult cut_in_given_order(const TriMesh& mesh, const std::vector<Vec3d>& posi
           res.stats.crosses = out[j].crosses;
           kept = std::move(out[j].plan);
           kept_hops = out[j].hops;
+          kept_reweighted = out[j].reweighted;
           found = true;
         }
       }
     }
-    // Congestion reweighting of the rounds at the kept root and metric (step 3a with the penalties
-    // of step 1c, accumulated from each round's plan), all rounds of the budget (their outcomes
-    // are erratic); the plan with the fewest planned vertices is kept. Not for the crosses (a
-    // candidate costs seconds where they are needed). Each round is bounded by the rounds' own
-    // limit only: a round past the kept plan still gives the next penalties.
-    // None past 2e5 faces: there a round costs as much as the construction (the 1M-face g20: 7.5 s).
-    if (found && !res.stats.crosses && reweight_rounds > 0) {
-      check_congestion_step(options.congestion_step);
-      CutStats latest;  // the stats of the last round's construction
-      const int kept_round = reweight_for_congestion(
-          kept, nv0, options.congestion_step * metric_unit(mesh, unit, kept_hops), reweight_rounds, reweight_rounds,
-          [&](const std::vector<double>& penalty, DetachPlan& plan) {
-            CutResult trial = new_trial(res.root);
-            const bool ok = canonical_rounds(trial, unit, kept_hops, rounds_limit, plan, &penalty);
-            latest = trial.stats;
-            return ok;
-          },
-          [&](int) { res.stats = latest; });
-      res.stats.congestion_best_round = kept_round;
-      res.stats.congestion_rounds = reweight_rounds;
-    }
+    // The kept rounds plan's congestion reweighting (in a race it came before the comparison).
+    if (found && !res.stats.crosses && !kept_reweighted && reweight_rounds > 0)
+      reweight(res.root, kept_hops, kept, res.stats, nullptr);
     res.stats.raced = raced;
     if (found) {
       res.stats.planned_vertices = planned_vertices(kept);

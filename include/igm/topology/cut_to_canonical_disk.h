@@ -177,16 +177,17 @@
 //     vertices than the crosses (genus 30 on 400k faces 303k against 230k, genus 40 on 1M 735k
 //     against 576k); elsewhere the crosses would only take time and memory bandwidth from the
 //     rounds for about as many vertices (the 1M-face genus 20: rounds 546.8k in 4.3 s, crosses
-//     536.0k in 8.1 s). Raced, on meshes of more than 2e5 faces (no reweighting follows) the fewer
-//     planned vertices win, the rounds on ties, each run stopped once it passes the other's plan;
-//     on smaller ones the rounds win if they succeed and the crosses stop then (the rounds'
-//     reweighting lowers their plan afterwards: couplingdown at root 100 gets 2,266 vertices from
-//     the reweighted rounds, 2,587 from the crosses, whose plan is below the rounds' first one).
-//     Measured against stop 27 (one root, generated): genus 30 on 1M faces 596.4k vertices in 6.3 s
-//     -> 580.5k in 9.1 s, genus 40 on 1M 735.0k in 7.7 s -> 576.1k in 13.3 s, genus 50 on 1M
-//     704.6k in 24.4 s -> 13.4 s, genus 100 on 400k 393.5k in 18.6 s -> 9.7 s, genus 200 on 400k
-//     658.5k in 43.0 s -> 31.8 s, genus 30 on 400k 303.4k in 2.5 s -> 230.3k in 3.5 s; the
-//     shared meshes, cheese and the 1M-face genus 20 unchanged.
+//     536.0k in 8.1 s). Raced, the fewer planned vertices win, the rounds on ties and with their
+//     plan after their congestion reweighting where one follows (step 1c, which only lowers it:
+//     couplingdown at root 100 gets 2,266 vertices from the reweighted rounds, 2,587 from the
+//     crosses, whose plan is below the rounds' first one), each run stopped once it passes the
+//     other's best plan so far (it would lose anyway, so the threads change nothing). Measured
+//     against stop 27 (one root, generated, seed 1): genus 30 on 1M faces 596.4k vertices in
+//     6.3 s -> 580.5k in 9.1 s, genus 40 on 1M 735.0k in 7.7 s -> 576.1k in 13.3 s, genus 50 on
+//     1M 704.6k in 24.4 s -> 13.4 s, genus 100 on 400k 393.5k in 18.6 s -> 9.7 s, genus 200 on
+//     400k 658.5k in 43.0 s -> 31.8 s, genus 30 on 400k 303.4k in 2.5 s -> 230.3k in 3.5 s,
+//     genus 35 on 40k 55.8k -> 40.0k (given root); the shared meshes (at the default root and
+//     at 6 given roots each), cheese and the 1M-face genus 20 unchanged.
 //     Loops are renumbered and reoriented so that the word is exactly L0 L1 L0^-1 L1^-1 L2 L3 ...
 //     Off, the word is whatever step 2 gives.
 //  4. embedding pre-conditions (embed/tutte.h): every interior disk edge joining two vertices of
