@@ -171,7 +171,8 @@
 //     merged in order, so the result does not depend on the threads; a lone candidate (a given
 //     root, or one root: CutOptions::normal_form_roots, which gives cheese one since stop 23) runs
 //     (Best) its rounds and its crosses side by side instead (CutStats::raced), where the mesh has
-//     fewer than 2000 faces per handle or genus >= 30: there the rounds tend to pass their bound
+//     fewer than 2000 faces per handle or genus >= 30 (from genus 50 on the crosses alone, which
+//     Best kept on every mesh of that genus measured): there the rounds tend to pass their bound
 //     (cheese, 134 faces per handle; generated genus 100 and 200 on 400k faces passed it after
 //     11.8 s and 31.7 s, their crosses took 6.8 s and 12.3 s) or, from genus 30, to plan more
 //     vertices than the crosses (genus 30 on 400k faces 303k against 230k, genus 40 on 1M 735k
@@ -182,12 +183,13 @@
 //     couplingdown at root 100 gets 2,266 vertices from the reweighted rounds, 2,587 from the
 //     crosses, whose plan is below the rounds' first one), each run stopped once it passes the
 //     other's best plan so far (it would lose anyway, so the threads change nothing). Measured
-//     against stop 27 (one root, generated, seed 1): genus 30 on 1M faces 596.4k vertices in
-//     6.3 s -> 580.5k in 9.1 s, genus 40 on 1M 735.0k in 7.7 s -> 576.1k in 13.3 s, genus 50 on
-//     1M 704.6k in 24.4 s -> 13.4 s, genus 100 on 400k 393.5k in 18.6 s -> 9.7 s, genus 200 on
-//     400k 658.5k in 43.0 s -> 31.8 s, genus 30 on 400k 303.4k in 2.5 s -> 230.3k in 3.5 s,
-//     genus 35 on 40k 55.8k -> 40.0k (given root); the shared meshes (at the default root and
-//     at 6 given roots each), cheese and the 1M-face genus 20 unchanged.
+//     against stop 27 (one root, generated; seed 1 unless noted): genus 30 on 1M faces 596.4k
+//     vertices in 6.3 s -> 580.5k in 9.1 s, genus 40 on 1M 735.0k in 7.7 s -> 576.1k in 13.3 s
+//     (seed 3: 683.3k in 8.6 s -> 608.0k in 11.3 s), genus 30 on 400k 303.4k in 2.5 s -> 230.3k
+//     in 3.5 s, genus 35 on 40k 55.8k -> 40.0k (given root); crosses alone: genus 50 on 1M 704.6k
+//     in 24.4 s -> 12.5 s, genus 100 on 1M ~47 s -> 16.3 s, genus 100 on 400k (seed 3) 18.7 s ->
+//     5.7 s, genus 200 on 400k 658.5k in 43.0 s -> 10.8 s; the shared meshes (at the default root
+//     and at 6 given roots each), cheese and the 1M-face genus 20 unchanged.
 //     Loops are renumbered and reoriented so that the word is exactly L0 L1 L0^-1 L1^-1 L2 L3 ...
 //     Off, the word is whatever step 2 gives.
 //  4. embedding pre-conditions (embed/tutte.h): every interior disk edge joining two vertices of
@@ -236,8 +238,8 @@ struct CutOptions {
   /// instead of 1.6 s.
   double max_rounds_growth = 2.0;
   /// Evaluate root candidates two at a time on two threads (root = -1; a lone candidate on a mesh
-  /// of fewer than 2000 faces per handle or genus >= 30: its two constructions side by side, step
-  /// 3), and make the exact
+  /// of fewer than 2000 faces per handle or of genus 30-49: its two constructions side by side,
+  /// step 3), and make the exact
   /// points of the kept plan's crossings in two halves on two threads (at least 1024 of them;
   /// each from older points only). The result is the same either way: candidates go in fixed
   /// pairs, merged in order, and every point is the same canonical rational.
