@@ -2382,23 +2382,24 @@ CutResult cut_in_given_order(const TriMesh& mesh, const std::vector<Vec3d>& posi
     // kRaceFacesPerHandle or from kRaceGenus. Not below that genus on fine meshes: there the rounds
     // plan about as many vertices in half the time (the 1M-face genus 20: 546.8k in 4.3 s
     // against 536.0k in 8.1 s; genus 10 on 200k faces: 109.4k in 0.6 s against 111.1k in 1.0 s).
-    // From kCrossesGenus on a lone candidate runs the crosses alone: Best kept the crosses on
-    // every mesh of that genus measured (cheese and 50 generated ones of genus 50-200 on 2k-1M
+    // From kCrossesGenus on every candidate runs the crosses alone (Best): Best kept the crosses
+    // on every mesh of that genus measured (cheese and 50 generated ones of genus 50-200 on 2k-1M
     // faces; alone, the rounds planned more where they succeeded: genus 50 on 500k faces 424k
     // vertices against 345k, genus 60 on 600k 843k against 403k), and the rounds often failed
     // only after the crosses had finished (genus 200 on 400k faces: 31.7 s against 12.3 s; raced,
-    // 28.9 s).
+    // 28.9 s). With several candidates the first two no longer try the rounds before the crosses
+    // (the same cuts on 16 generated meshes of genus 50-133 with 1-24 candidates, 10-45 % faster).
     constexpr long kRaceFacesPerHandle = 2000;
     constexpr int kRaceGenus = 30, kCrossesGenus = 50;
     const bool race = mesh.num_faces() < kRaceFacesPerHandle * static_cast<long>(genus) || genus >= kRaceGenus;
-    const bool lone_crosses = options.construction == C::Best && candidates.size() == 1 && genus >= kCrossesGenus;
+    const bool crosses_by_genus = options.construction == C::Best && genus >= kCrossesGenus;
     bool found = false, kept_hops = false, kept_reweighted = false;
     int tried = 0, rounds_passed = 0;
     DetachPlan kept;
     for (std::size_t i = 0; i < candidates.size(); i += 2) {  // chunks of two
       const std::size_t n = std::min<std::size_t>(2, candidates.size() - i);
       const long best = found ? planned_vertices(kept) - 1 : limit;
-      const bool crosses_only = options.construction == C::Crosses || lone_crosses ||
+      const bool crosses_only = options.construction == C::Crosses || crosses_by_genus ||
                                 (options.construction == C::Best && rounds_passed >= 2);
       Outcome out[2];
       auto run = [&](std::size_t j) {

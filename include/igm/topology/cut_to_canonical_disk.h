@@ -171,10 +171,11 @@
 //     merged in order, so the result does not depend on the threads; a lone candidate (a given
 //     root, or one root: CutOptions::normal_form_roots, which gives cheese one since stop 23) runs
 //     (Best) its rounds and its crosses side by side instead (CutStats::raced), where the mesh has
-//     fewer than 2000 faces per handle or genus >= 30 (from genus 50 on the crosses alone, which
-//     Best kept on every mesh of that genus measured): there the rounds tend to pass their bound
-//     (cheese, 134 faces per handle; generated genus 100 and 200 on 400k faces passed it after
-//     11.8 s and 31.7 s, their crosses took 6.8 s and 12.3 s) or, from genus 30, to plan more
+//     fewer than 2000 faces per handle or genus >= 30 (from genus 50 on every candidate runs the
+//     crosses alone, which Best kept on every mesh of that genus measured): there the rounds tend
+//     to pass their bound (cheese, 134 faces per handle; generated genus 100 and 200 on 400k
+//     faces passed it after 11.8 s and 31.7 s, their crosses took 6.8 s and 12.3 s) or, from
+//     genus 30, to plan more
 //     vertices than the crosses (genus 30 on 400k faces 303k against 230k, genus 40 on 1M 735k
 //     against 576k); elsewhere the crosses would only take time and memory bandwidth from the
 //     rounds for about as many vertices (the 1M-face genus 20: rounds 546.8k in 4.3 s, crosses
@@ -221,7 +222,9 @@ struct CutOptions {
   /// (PipelineOptions::normal_form, step 3's growth); here it is on by default.
   bool normal_form = true;
   /// Which construction of step 3 builds the normal form: Best (rounds, and crosses for a root
-  /// where the rounds pass max_rounds_growth; the fewest vertices win), or one of the two alone.
+  /// where the rounds pass max_rounds_growth; a lone root candidate of a coarse mesh or of genus
+  /// 30-49 runs both, and from genus 50 on only the crosses run; the fewest vertices win), or one
+  /// of the two alone.
   enum class Construction { Best, Rounds, Crosses };
   Construction construction = Construction::Best;
   /// Bound on the vertices the normal form may add, as a multiple of the input's vertex count;
@@ -230,19 +233,18 @@ struct CutOptions {
   double max_normal_form_growth = 100.0;
   /// The rounds construction is abandoned for a root once it passes this multiple (its later loops
   /// compound on coarse meshes of high genus); with Best, after two roots that did so it is not
-  /// tried again, and the crosses construction runs instead. 2 since stop 25 (was 4): on generated
-  /// meshes of genus 5-60 (500-40k faces, two seeds each) the rounds alone added between 2x and
-  /// 4x on 7 of 32, and the crosses gave fewer vertices on all 7; with Best, 10 of 32 got fewer
-  /// vertices (5,505 fewer in all, e.g. genus 25 on 5k faces 8,646 -> 7,365), 3 more (227 in
-  /// all), the rest the same; and cheese's rounds (which the crosses beat) stop after about 1 s
-  /// instead of 1.6 s.
+  /// tried again (from genus 50 on not at all), and the crosses construction runs instead. 2 since
+  /// stop 25 (was 4): on generated meshes of genus 5-60 (500-40k faces, two seeds each) the rounds
+  /// alone added between 2x and 4x on 7 of 32, and the crosses gave fewer vertices on all 7; with
+  /// Best, 10 of 32 got fewer vertices (5,505 fewer in all, e.g. genus 25 on 5k faces 8,646 ->
+  /// 7,365), 3 more (227 in all), the rest the same; and cheese's rounds (which the crosses beat)
+  /// stop after about 1 s instead of 1.6 s.
   double max_rounds_growth = 2.0;
   /// Evaluate root candidates two at a time on two threads (root = -1; a lone candidate on a mesh
   /// of fewer than 2000 faces per handle or of genus 30-49: its two constructions side by side,
-  /// step 3), and make the exact
-  /// points of the kept plan's crossings in two halves on two threads (at least 1024 of them;
-  /// each from older points only). The result is the same either way: candidates go in fixed
-  /// pairs, merged in order, and every point is the same canonical rational.
+  /// step 3), and make the exact points of the kept plan's crossings in two halves on two threads
+  /// (at least 1024 of them; each from older points only). The result is the same either way:
+  /// candidates go in fixed pairs, merged in order, and every point is the same canonical rational.
   bool parallel = true;
   /// With the normal form and root = -1: how many roots are tried (each with 3D lengths and hop
   /// counts; one root: hop counts only). -1 picks clamp(min(2e5 / F, 4e6 / (F g)), 1, 12): a
