@@ -498,6 +498,8 @@ TEST_CASE("the rounds construction alone stops at its own bound with a typed err
   CHECK(r.stats.crosses);
   CHECK_FALSE(r.stats.raced);  // from genus 50 on a lone candidate runs the crosses alone
   CHECK(verify_cut(in, r) == "");
+  o.parallel = false;  // the same cut on one thread
+  check_same_cut(cut_to_canonical_disk(in.mesh, in.positions, o), r);
 }
 
 TEST_CASE("the rounds' default bound (2x) hands a coarse genus 8 mesh to the crosses, which add fewer vertices") {
