@@ -2288,19 +2288,19 @@ CutResult cut_in_given_order(const TriMesh& mesh, const std::vector<Vec3d>& posi
     };
     // One candidate: the rounds, bounded by max_rounds_growth; where they pass it (their own bound
     // binding, not only the best so far; Best) the crosses, whose outcome (or error) then counts.
-    // race (a lone candidate where the rounds tend to pass their bound or to plan more vertices
-    // than the crosses: kRaceFacesPerHandle, kRaceGenus): both run, side by side on two threads
-    // (CutOptions::parallel), the rounds followed by their congestion reweighting (reweight), and
-    // the fewer planned vertices win, the rounds on ties (their plan after the reweighting, which
-    // can only lower it: couplingdown at root 100 gets 2,266 vertices from the reweighted rounds,
-    // 2,587 from the crosses, whose plan is below the rounds' first). Each run is bounded by the
-    // other's best plan so far: the crosses by the rounds' (from their first plan on), the rounds
-    // by the crosses' where no reweighting follows. The rounds' count only grows, the crosses'
-    // grows from round to round, and a plan has at least the vertices of its surface, so a run
-    // that passes the other's plan would lose anyway: the outcome does not depend on the threads
-    // (an error of the rounds wins; one of the crosses counts where the rounds failed; an
-    // Internal error that only a losing run would reach may go unseen), and the time is about
-    // that of the longer of the two, or less where the winner stops the other.
+    // race (a lone candidate where the rounds tend to pass their bound: kRaceFacesPerHandle): both
+    // run, side by side on two threads (CutOptions::parallel), the rounds followed by their
+    // congestion reweighting (reweight), and the fewer planned vertices win, the rounds on ties
+    // (their plan after the reweighting, which can only lower it: couplingdown at root 100 gets
+    // 2,266 vertices from the reweighted rounds, 2,587 from the crosses, whose plan is below the
+    // rounds' first). Each run is bounded by the other's best plan so far: the crosses by the
+    // rounds' (from their first plan on), the rounds by the crosses' where no reweighting follows.
+    // The rounds' count only grows, the crosses' grows from round to round, and a plan has at least
+    // the vertices of its surface, so a run that passes the other's plan would lose anyway: the
+    // outcome does not depend on the threads (an error of the rounds wins; one of the crosses
+    // counts where the rounds failed; an Internal error that only a losing run would reach may go
+    // unseen), and the time is about that of the longer of the two, or less where the winner stops
+    // the other.
     const int reweight_rounds = congestion_budget(options, mesh, 200000L, 0L);
     if (reweight_rounds > 0) check_congestion_step(options.congestion_step);
     // The congestion reweighting of a rounds plan at (root, hops) (step 3a with the penalties of
@@ -2374,24 +2374,23 @@ CutResult cut_in_given_order(const TriMesh& mesh, const std::vector<Vec3d>& posi
     };
     // The rounds pass max_rounds_growth on coarse meshes of high genus (cheese: 134 faces per
     // handle, a generated genus 200 on 30k faces: 150) and stay well within it on fine ones
-    // (couplingdown: 413, the 1M-face genus 20: 49.5k); and from genus 30 on they plan more
-    // vertices than the crosses on fine meshes as well, or pass their bound after seconds
-    // (generated, one root: genus 30 on 400k faces 303k vertices against the crosses' 230k, genus
-    // 40 on 1M 735k against 576k; genus 100 on 400k and 200 on 400k passed 2x after 11.8 s and
-    // 31.7 s, the crosses took 6.8 s and 12.3 s). A lone candidate races the two below
-    // kRaceFacesPerHandle or from kRaceGenus. Not below that genus on fine meshes: there the rounds
-    // plan about as many vertices in half the time (the 1M-face genus 20: 546.8k in 4.3 s
-    // against 536.0k in 8.1 s; genus 10 on 200k faces: 109.4k in 0.6 s against 111.1k in 1.0 s).
-    // From kCrossesGenus on every candidate runs the crosses alone (Best): Best kept the crosses
-    // on every mesh of that genus measured (cheese and 50 generated ones of genus 50-200 on 2k-1M
-    // faces; alone, the rounds planned more where they succeeded: genus 50 on 500k faces 424k
-    // vertices against 345k, genus 60 on 600k 843k against 403k), and the rounds often failed
-    // only after the crosses had finished (genus 200 on 400k faces: 31.7 s against 12.3 s; raced,
-    // 28.9 s). With several candidates the first two no longer try the rounds before the crosses
-    // (the same cuts on 16 generated meshes of genus 50-133 with 1-24 candidates, 10-45 % faster).
+    // (couplingdown: 413, the 1M-face genus 20: 49.5k): a lone candidate races the two below
+    // kRaceFacesPerHandle. Not on fine meshes below kCrossesGenus: there the rounds plan about as
+    // many vertices in half the time (the 1M-face genus 20: 546.8k in 4.3 s against 536.0k in
+    // 8.1 s; genus 10 on 200k faces: 109.4k in 0.6 s against 111.1k in 1.0 s).
+    // From kCrossesGenus on every candidate runs the crosses alone (Best): on every mesh of that
+    // genus measured the crosses planned at most the rounds' vertices, where the rounds
+    // succeeded at all (cheese; 50 generated meshes of genus 50-200 on 2k-1M faces, e.g. genus 50
+    // on 500k faces 424k vertices for the rounds alone against 345k, genus 60 on 600k 843k
+    // against 403k; 13 of genus 30-45, e.g. one root: genus 30 on 400k faces 303k against 230k,
+    // genus 40 on 1M 735k against 576k; 4-6 roots: genus 35 on 40k faces 45.0k for Best against
+    // 35.5k for the crosses alone, genus 30 on 36k 34.0k against 28.3k), and the rounds often
+    // failed only after the crosses had finished (genus 200 on 400k faces: 31.7 s against
+    // 12.3 s). With several candidates the first two no longer try the rounds before the crosses
+    // (genus 50-133, 16 meshes with 1-24 candidates: the same cuts, 10-45 % faster).
     constexpr long kRaceFacesPerHandle = 2000;
-    constexpr int kRaceGenus = 30, kCrossesGenus = 50;
-    const bool race = mesh.num_faces() < kRaceFacesPerHandle * static_cast<long>(genus) || genus >= kRaceGenus;
+    constexpr int kCrossesGenus = 30;
+    const bool race = mesh.num_faces() < kRaceFacesPerHandle * static_cast<long>(genus);
     const bool crosses_by_genus = options.construction == C::Best && genus >= kCrossesGenus;
     bool found = false, kept_hops = false, kept_reweighted = false;
     int tried = 0, rounds_passed = 0;

@@ -169,28 +169,26 @@
 //     drawn, and only the one kept is realized; candidates go in fixed pairs, side by side on two
 //     threads (CutOptions::parallel), each pair bounded by the best of the pairs before it and
 //     merged in order, so the result does not depend on the threads; a lone candidate (a given
-//     root, or one root: CutOptions::normal_form_roots, which gives cheese one since stop 23) runs
-//     (Best) its rounds and its crosses side by side instead (CutStats::raced), where the mesh has
-//     fewer than 2000 faces per handle or genus >= 30 (from genus 50 on every candidate runs the
-//     crosses alone, which Best kept on every mesh of that genus measured): there the rounds tend
-//     to pass their bound (cheese, 134 faces per handle; generated genus 100 and 200 on 400k
-//     faces passed it after 11.8 s and 31.7 s, their crosses took 6.8 s and 12.3 s) or, from
-//     genus 30, to plan more
-//     vertices than the crosses (genus 30 on 400k faces 303k against 230k, genus 40 on 1M 735k
-//     against 576k); elsewhere the crosses would only take time and memory bandwidth from the
-//     rounds for about as many vertices (the 1M-face genus 20: rounds 546.8k in 4.3 s, crosses
-//     536.0k in 8.1 s). Raced, the fewer planned vertices win, the rounds on ties and with their
-//     plan after their congestion reweighting where one follows (step 1c, which only lowers it:
-//     couplingdown at root 100 gets 2,266 vertices from the reweighted rounds, 2,587 from the
-//     crosses, whose plan is below the rounds' first one), each run stopped once it passes the
-//     other's best plan so far (it would lose anyway, so the threads change nothing). Measured
-//     against stop 27 (one root, generated; seed 1 unless noted): genus 30 on 1M faces 596.4k
-//     vertices in 6.3 s -> 580.5k in 9.1 s, genus 40 on 1M 735.0k in 7.7 s -> 576.1k in 13.3 s
-//     (seed 3: 683.3k in 8.6 s -> 608.0k in 11.3 s), genus 30 on 400k 303.4k in 2.5 s -> 230.3k
-//     in 3.5 s, genus 35 on 40k 55.8k -> 40.0k (given root); crosses alone: genus 50 on 1M 704.6k
-//     in 24.4 s -> 12.5 s, genus 100 on 1M ~47 s -> 16.3 s, genus 100 on 400k (seed 3) 18.7 s ->
-//     5.7 s, genus 200 on 400k 658.5k in 43.0 s -> 10.8 s; the shared meshes (at the default root
-//     and at 6 given roots each), cheese and the 1M-face genus 20 unchanged.
+//     root, or one root: CutOptions::normal_form_roots) of a mesh of fewer than 2000 faces per
+//     handle runs (Best) its rounds and its crosses side by side instead (CutStats::raced): there
+//     the rounds tend to pass their bound, and elsewhere (below genus 30) the crosses would only
+//     take time and memory bandwidth from the rounds for about as many vertices (the 1M-face genus
+//     20: rounds 546.8k in 4.3 s, crosses 536.0k in 8.1 s). Raced, the fewer planned vertices win,
+//     the rounds on ties and with their plan after their congestion reweighting where one follows
+//     (step 1c, which only lowers it: couplingdown at root 100 gets 2,266 vertices from the
+//     reweighted rounds, 2,587 from the crosses, whose plan is below the rounds' first one), each
+//     run stopped once it passes the other's best plan so far (it would lose anyway, so the
+//     threads change nothing). From genus 30 on (Best) every candidate runs the crosses alone: on
+//     every such mesh measured they gave at most the vertices Best gave with the rounds (cheese
+//     and 63 generated meshes of genus 30-200), and on large ones the rounds passed their bound only after seconds
+//     (generated genus 200 on 400k faces: 31.7 s, the crosses took 12.3 s). Measured against
+//     stop 27 (generated; one root, seed 1, unless noted): genus 30 on 1M faces 596.4k vertices
+//     in 6.3 s -> 580.5k, genus 40 on 1M 735.0k in 7.7 s -> 576.1k (seed 3: 683.3k in 8.6 s ->
+//     608.0k), genus 30 on 400k 303.4k in 2.5 s -> 230.3k, genus 35 on 40k (4 roots) 45.0k ->
+//     35.5k, genus 50 on 1M 704.6k in 24.4 s -> 12.5 s, genus 100 on 1M ~47 s -> 16.3 s, genus
+//     200 on 400k 658.5k in 43.0 s -> 10.8 s; genus 20 on 8k faces at a given root 10.0k -> 8.9k
+//     (raced); the shared meshes (at the default root and at 6 given roots each), cheese and the
+//     1M-face genus 20 unchanged.
 //     Loops are renumbered and reoriented so that the word is exactly L0 L1 L0^-1 L1^-1 L2 L3 ...
 //     Off, the word is whatever step 2 gives.
 //  4. embedding pre-conditions (embed/tutte.h): every interior disk edge joining two vertices of
@@ -222,9 +220,8 @@ struct CutOptions {
   /// (PipelineOptions::normal_form, step 3's growth); here it is on by default.
   bool normal_form = true;
   /// Which construction of step 3 builds the normal form: Best (rounds, and crosses for a root
-  /// where the rounds pass max_rounds_growth; a lone root candidate of a coarse mesh or of genus
-  /// 30-49 runs both, and from genus 50 on only the crosses run; the fewest vertices win), or one
-  /// of the two alone.
+  /// where the rounds pass max_rounds_growth; a lone root candidate of a coarse mesh runs both,
+  /// and from genus 30 on only the crosses run; the fewest vertices win), or one of the two alone.
   enum class Construction { Best, Rounds, Crosses };
   Construction construction = Construction::Best;
   /// Bound on the vertices the normal form may add, as a multiple of the input's vertex count;
@@ -233,7 +230,7 @@ struct CutOptions {
   double max_normal_form_growth = 100.0;
   /// The rounds construction is abandoned for a root once it passes this multiple (its later loops
   /// compound on coarse meshes of high genus); with Best, after two roots that did so it is not
-  /// tried again (from genus 50 on not at all), and the crosses construction runs instead. 2 since
+  /// tried again (from genus 30 on not at all), and the crosses construction runs instead. 2 since
   /// stop 25 (was 4): on generated meshes of genus 5-60 (500-40k faces, two seeds each) the rounds
   /// alone added between 2x and 4x on 7 of 32, and the crosses gave fewer vertices on all 7; with
   /// Best, 10 of 32 got fewer vertices (5,505 fewer in all, e.g. genus 25 on 5k faces 8,646 ->
@@ -241,7 +238,7 @@ struct CutOptions {
   /// stop after about 1 s instead of 1.6 s.
   double max_rounds_growth = 2.0;
   /// Evaluate root candidates two at a time on two threads (root = -1; a lone candidate on a mesh
-  /// of fewer than 2000 faces per handle or of genus 30-49: its two constructions side by side,
+  /// of fewer than 2000 faces per handle and genus < 30: its two constructions side by side,
   /// step 3), and make the exact points of the kept plan's crossings in two halves on two threads
   /// (at least 1024 of them; each from older points only). The result is the same either way:
   /// candidates go in fixed pairs, merged in order, and every point is the same canonical rational.
