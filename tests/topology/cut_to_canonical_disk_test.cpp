@@ -615,7 +615,7 @@ TEST_CASE("a raced lone candidate keeps the construction that plans fewer vertic
   }
 }
 
-TEST_CASE("from genus 30 on the crosses run alone; below it a fine mesh's lone candidate runs the rounds") {
+TEST_CASE("from genus 30 on the crosses run alone, and below it a fine mesh's lone candidate runs the rounds") {
   // Genus 30 and 20 on 2100 faces per handle (past the coarse meshes' race), one root candidate:
   // genus 30 gets the crosses alone, genus 20 the rounds alone (they stay within their bound).
   // (verify_cut on these takes ~14 s; the constructions' cuts are verified on smaller meshes
