@@ -177,16 +177,16 @@
 //     the rounds on ties and with their plan after their congestion reweighting where one follows
 //     (step 1c, which only lowers it: couplingdown at root 100 gets 2,266 vertices from the
 //     reweighted rounds, 2,587 from the crosses, whose plan is below the rounds' first one), each
-//     run stopped once it passes the other's best plan so far (it would lose anyway, so the
-//     threads change nothing). From genus 30 on (Best) every candidate runs the crosses alone: on
-//     every such mesh measured they gave at most the vertices Best gave with the rounds (cheese
-//     and 63 generated meshes of genus 30-200), and on large ones the rounds passed their bound only after seconds
-//     (generated genus 200 on 400k faces: 31.7 s, the crosses took 12.3 s). Measured against
-//     stop 27 (generated; one root, seed 1, unless noted): genus 30 on 1M faces 596.4k vertices
-//     in 6.3 s -> 580.5k, genus 40 on 1M 735.0k in 7.7 s -> 576.1k (seed 3: 683.3k in 8.6 s ->
-//     608.0k), genus 30 on 400k 303.4k in 2.5 s -> 230.3k, genus 35 on 40k (4 roots) 45.0k ->
-//     35.5k, genus 50 on 1M 704.6k in 24.4 s -> 12.5 s, genus 100 on 1M ~47 s -> 16.3 s, genus
-//     200 on 400k 658.5k in 43.0 s -> 10.8 s; genus 20 on 8k faces at a given root 10.0k -> 8.9k
+//     run stopped once it passes the other's best plan so far (it would lose anyway, so the threads
+//     change nothing). From genus 30 on (Best) every candidate runs the crosses alone: on every
+//     such mesh measured they gave at most the vertices Best gave with the rounds (cheese and 63
+//     generated meshes of genus 30-200), and on large ones the rounds passed their bound only after
+//     seconds (generated genus 200 on 400k faces: 31.7 s, the crosses took 12.3 s). Measured
+//     against stop 27 (generated; one root, seed 1, unless noted): genus 30 on 1M faces 596.4k
+//     vertices in 6.3 s -> 580.5k, genus 40 on 1M 735.0k in 7.7 s -> 576.1k (seed 3: 683.3k in 8.6
+//     s -> 608.0k), genus 30 on 400k 303.4k in 2.5 s -> 230.3k, genus 35 on 40k (4 roots) 45.0k ->
+//     35.5k, genus 50 on 1M 704.6k in 24.4 s -> 12.5 s, genus 100 on 1M ~47 s -> 16.3 s, genus 200
+//     on 400k 658.5k in 43.0 s -> 10.8 s; genus 20 on 8k faces at a given root 10.0k -> 8.9k
 //     (raced); the shared meshes (at the default root and at 6 given roots each), cheese and the
 //     1M-face genus 20 unchanged.
 //     Loops are renumbered and reoriented so that the word is exactly L0 L1 L0^-1 L1^-1 L2 L3 ...
