@@ -4,10 +4,10 @@
 //                           [--no-locality-order] [--only NAME|g3|g20|g40]
 // Growth is broken down by source: crossings, Steiner, band, chord and pre-condition splits, and
 // the normal form's rounds (marked "(crosses)" where the crosses construction won, "raced" where
-// a lone root candidate ran both constructions side by side) and chord splits. The normal form is measured on every mesh; --normal-form-all is accepted and changes
-// nothing (it added the 1M-face g20's, ~10 s before stop 27, 4.6-5 s since); --only runs one mesh,
-// with and without it; --nf-roots N sets
-// CutOptions::normal_form_roots (default: automatic; cheese gets 1, --nf-roots 11 is what it had
+// a lone root candidate ran both constructions side by side) and chord splits. The normal form
+// is measured on every mesh; --normal-form-all is accepted and changes nothing (it added the
+// 1M-face g20's, ~10 s before stop 27, 4.6-5 s since); --only runs one mesh, with and without it;
+// --nf-roots N sets CutOptions::normal_form_roots (default: automatic; cheese gets 1, --nf-roots 11 is what it had
 // before stop 23); --crosses / --rounds use that construction alone; --serial
 // evaluates the root candidates on one thread (CutOptions::parallel = false; same results);
 // --no-tighten skips the loop tightening (CutOptions::tighten = false), for comparison;

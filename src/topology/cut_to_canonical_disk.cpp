@@ -1284,8 +1284,8 @@ std::vector<int> split_like_copy(RefinedSurface& rs, const std::vector<std::pair
 // more than vertex_limit vertices, or more than *rival (if given: the planned vertices of the
 // crosses raced against it; the rounds only add vertices, so such a run would lose). Post (true):
 // res.loops holds the 2g loops, their word in commutator blocks (relabelled by the caller);
-// res.stats has the counts. Cost O(g^2 n log n +
-// crossings) in the worst case, O(g n log n + crossings) when no gap is given up.
+// res.stats has the counts. Cost O(g^2 n log n + crossings) in the worst case, O(g n log n +
+// crossings) when no gap is given up.
 bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops, long vertex_limit, DetachPlan& plan,
                       const std::vector<double>* penalty = nullptr, const std::atomic<long>* rival = nullptr) {
   const int root = res.root, genus = res.genus;
