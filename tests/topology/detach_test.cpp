@@ -1,0 +1,101 @@
+// Tests of steps 1, 1c and 2 of the topology stage (src/topology/detach.cpp, internal): the
+// planned detaching against its drawing, and the congestion reweighting's choice of plan.
+#include <doctest/doctest.h>
+
+#include <set>
+#include <vector>
+
+#include "../../src/topology/detach.h"
+#include "igm/mesh/generate.h"
+#include "igm/mesh/validate.h"
+
+using namespace igm;
+using namespace igm::topology_internal;
+
+namespace {
+
+ValidMesh generated(int genus, long faces, std::uint64_t seed) {
+  GenerateOptions o;
+  o.genus = genus;
+  o.faces = faces;
+  o.seed = seed;
+  return validate(generate_closed_mesh(o));
+}
+
+// A plan that only carries a vertex count (an empty surface plus `crossings`).
+DetachPlan plan_of(long long crossings) {
+  DetachPlan p;
+  p.crossings = crossings;
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("the congestion reweighting keeps the first plan with the fewest vertices and stops after its patience") {
+  // Planned counts of the first plan (round 0) and of the replans of rounds 1, 2, ...
+  const std::vector<long long> counts = {50, 60, 40, 45, 40, 39, 70, 80, 90, 20};
+  auto run = [&](int rounds, int patience, std::vector<int>& kept_rounds, int& replans) {
+    DetachPlan best = plan_of(counts[0]);
+    replans = 0;
+    const int r = reweight_for_congestion(
+        best, 0, 1.0, rounds, patience,
+        [&](const std::vector<double>&, DetachPlan& next) {
+          ++replans;
+          if (counts[replans] == 45) return false;  // a round that gives no plan
+          next = plan_of(counts[replans]);
+          return true;
+        },
+        [&](int round) { kept_rounds.push_back(round); });
+    CHECK(planned_vertices(best) == counts[r]);
+    return r;
+  };
+  std::vector<int> kept;
+  int replans = 0;
+  // Round 2 (40) beats 50, round 4 only ties it, round 5 (39) wins; then three rounds without a
+  // new best end the run before round 9's 20.
+  CHECK(run(9, 3, kept, replans) == 5);
+  CHECK(kept == std::vector<int>{2, 5});
+  CHECK(replans == 8);
+  // With patience enough, round 9 is reached and kept.
+  kept.clear();
+  CHECK(run(9, 9, kept, replans) == 9);
+  CHECK(kept == std::vector<int>{2, 5, 9});
+  CHECK(replans == 9);
+  // No rounds: the first plan stays.
+  kept.clear();
+  CHECK(run(0, 9, kept, replans) == 0);
+  CHECK(kept.empty());
+  CHECK(replans == 0);
+}
+
+TEST_CASE("a planned detaching predicts the crossings its drawing makes, and the loops meet only at the root") {
+  for (std::uint64_t seed : {1u, 2u, 3u}) {
+    const ValidMesh in = generated(3, 3000, seed);
+    const int genus = 3, root = static_cast<int>(seed) * 97 % in.mesh.num_vertices();
+    for (bool hops : {false, true}) {
+      DetachPlan plan = plan_detach(in.mesh, in.positions, root, genus, hops);
+      const long long predicted = plan.crossings;
+      const long planned = planned_vertices(plan);
+      plan.rs.input_positions = in.positions;
+      CutStats stats;
+      const std::vector<std::vector<int>> loops = realize_strands(plan, stats, false);
+      const TriMesh& M = plan.rs.mesh;
+      CHECK(M.check_invariants().empty());
+      CHECK(long(M.num_vertices()) - M.num_edges() + M.num_faces() == 2 - 2 * genus);
+      CHECK(stats.crossings == predicted);
+      CHECK(M.num_vertices() == planned + stats.steiner_vertices + stats.chord_splits);
+      REQUIRE(loops.size() == 2u * genus);
+      std::set<int> seen;
+      for (const auto& loop : loops) {
+        REQUIRE(loop.size() >= 3u);
+        CHECK(loop[0] == root);
+        for (std::size_t i = 0; i < loop.size(); ++i) {
+          CHECK(M.find_halfedge(loop[i], loop[(i + 1) % loop.size()]) >= 0);  // a cycle of edges
+          if (i > 0) CHECK(seen.insert(loop[i]).second);                       // simple, and disjoint
+        }
+      }
+      // Planning twice gives the same plan (deterministic).
+      CHECK(plan_detach(in.mesh, in.positions, root, genus, hops).crossings == predicted);
+    }
+  }
+}
