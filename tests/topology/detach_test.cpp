@@ -6,21 +6,12 @@
 #include <vector>
 
 #include "../../src/topology/detach.h"
-#include "igm/mesh/generate.h"
-#include "igm/mesh/validate.h"
+#include "generated_mesh.h"
 
 using namespace igm;
 using namespace igm::topology_internal;
 
 namespace {
-
-ValidMesh generated(int genus, long faces, std::uint64_t seed) {
-  GenerateOptions o;
-  o.genus = genus;
-  o.faces = faces;
-  o.seed = seed;
-  return validate(generate_closed_mesh(o));
-}
 
 // A plan that only carries a vertex count (an empty surface plus `crossings`).
 DetachPlan plan_of(long long crossings) {
@@ -70,7 +61,7 @@ TEST_CASE("the congestion reweighting keeps the first plan with the fewest verti
 
 TEST_CASE("a planned detaching predicts the crossings its drawing makes, and the loops meet only at the root") {
   for (std::uint64_t seed : {1u, 2u, 3u}) {
-    const ValidMesh in = generated(3, 3000, seed);
+    const ValidMesh in = igm_test::generated_mesh(3, 3000, seed);
     const int genus = 3, root = static_cast<int>(seed) * 97 % in.mesh.num_vertices();
     for (bool hops : {false, true}) {
       DetachPlan plan = plan_detach(in.mesh, in.positions, root, genus, hops);

@@ -9,21 +9,12 @@
 #include <vector>
 
 #include "../../src/topology/normal_form.h"
-#include "igm/mesh/generate.h"
-#include "igm/mesh/validate.h"
+#include "generated_mesh.h"
 
 using namespace igm;
 using namespace igm::topology_internal;
 
 namespace {
-
-ValidMesh generated(int genus, long faces, std::uint64_t seed) {
-  GenerateOptions o;
-  o.genus = genus;
-  o.faces = faces;
-  o.seed = seed;
-  return validate(generate_closed_mesh(o));
-}
 
 bool has_edge(const TriMesh& M, int a, int b) { return M.find_halfedge(a, b) >= 0; }
 
@@ -37,7 +28,7 @@ bool wall(int v) { return v % 3 == 0; }
 
 TEST_CASE("the chords are the edges between wall vertices but the skipped ones, sorted, and the copy splits each at its midpoint") {
   for (std::uint64_t seed : {1u, 2u}) {
-    const ValidMesh in = generated(3, 1500, seed);
+    const ValidMesh in = igm_test::generated_mesh(3, 1500, seed);
     const TriMesh& M = in.mesh;
     const int nv = M.num_vertices();
     // Skip the edges whose lower end is even: sorted_chords must leave exactly those out.
@@ -76,7 +67,7 @@ TEST_CASE("the chords are the edges between wall vertices but the skipped ones, 
 }
 
 TEST_CASE("split_like_copy splits on the surface only what the used edges of the copy need, at exact midpoints") {
-  const ValidMesh in = generated(2, 1200, 5);
+  const ValidMesh in = igm_test::generated_mesh(2, 1200, 5);
   const TriMesh& M = in.mesh;
   const int nv = M.num_vertices();
   const auto chords = sorted_chords(M, wall, [](int, int, int) { return false; });
