@@ -28,17 +28,7 @@
 // neighbours, or to the root unless it is an end of its loop: such an edge could join two vertices
 // of one polygon side, which the cut would split again (cut_to_canonical_disk.h, step 4).
 // Input vertices are never removed or moved; the constructed vertices that stay keep their exact
-// points.
-// Measured and not built (stop 19, prototypes outside the library, couplingdown without the normal
-// form, 229 constructed vertices here against a floor of 67 at its root, topology/ring_bound.h):
-// rerouting one loop at a time along free vertices and chord splits, the others fixed, finds no
-// cheaper route for any loop (229 -> 231 summed); drawing the loops one by one as disjoint paths
-// from the start, each the cheapest loop independent in Z2 homology of those before, needs 905.
-// The remaining vertices are shared by bundles near the root, not owed to any single loop. Nor is
-// the drawing near the root the loss: an optimal redraw of the 36 strands inside the root's ball of
-// radius k (a disk for k <= 3; min-cost flow with the strands' exits on its boundary fixed) saves
-// 0, 2 and 9 of the 30, 82 and 126 constructed vertices there. The floor is loose where the loops
-// leave the root in bundles towards their handles, as they do here.
+// points. Variants measured and not built: bench/README.md.
 #include <utility>
 #include <vector>
 
