@@ -264,6 +264,348 @@ std::string CutResult::word() const { return to_string(word_of(*this)); }
 
 namespace {
 
+// Step 3 (options.normal_form): the root and metric (the given root, or among deterministic
+// candidates), the construction of each (the rounds, the crosses, or both raced), the kept one's
+// congestion reweighting and its detaching, drawn: fills res.root, res.loops, res.surface and
+// res.stats. `unit`: the positions unit-scaled; t_start: when the stage began (for the stats).
+// Throws Unsupported if no candidate stays within the growth bounds.
+void normal_form_system(const TriMesh& mesh, const std::vector<Vec3d>& positions, const std::vector<Vec3d>& unit,
+                        const CutOptions& options, int genus, Clock::time_point t_start, CutResult& res) {
+  const int nv0 = mesh.num_vertices();
+  RefinedSurface& rs = res.surface;
+  // Root and metric: the given root with 3D lengths, or among K deterministic candidates
+  // (root_candidates, K = normal_form_root_count) with 3D lengths and hop counts (one root: hop
+  // counts only), the pair whose planned detaching ends with the fewest vertices
+  // (planned_vertices; only that one is drawn); a candidate stops once it has more than the best
+  // so far. Per candidate (Best): the rounds, bounded by max_rounds_growth; if they pass it, the
+  // crosses (a lone candidate: both at once, see run_candidate). After two candidates whose
+  // rounds passed it, only the crosses.
+  const long limit = nv0 + static_cast<long>(options.max_normal_form_growth * nv0);
+  const long rounds_limit = std::min(limit, nv0 + static_cast<long>(options.max_rounds_growth * nv0));
+  std::vector<std::pair<int, bool>> candidates;
+  if (options.root >= 0) {
+    candidates.push_back({options.root, false});
+  } else {
+    const long k = options.normal_form_roots > 0 ? std::min<long>(options.normal_form_roots, nv0)
+                                                  : normal_form_root_count(mesh, genus);
+    // One root: hop counts, which count the vertices the normal form pays for (cheese's root 2:
+    // 161.9k planned vertices, against 257k with 3D lengths; the 1M-face g20: 536.6k, 538.6k).
+    for (int c : root_candidates(mesh, k))
+      for (bool hops : {false, true})
+        if (hops || k > 1) candidates.push_back({c, hops});
+  }
+  using C = CutOptions::Construction;
+  // Each candidate is only planned (its detaching counted, not drawn); the kept one is realized
+  // once at the end. Candidates go in chunks of two, in order: the two of a chunk are bounded by
+  // the best of the chunks before it and run concurrently (options.parallel), then are merged in
+  // order (a candidate is kept if it plans strictly fewer vertices), so that the result does not
+  // depend on the threads.
+  struct Outcome {
+    bool ok = false, rounds_passed = false, crosses = false, hops = false;
+    bool reweighted = false;  // a rounds plan already reweighted (in a race)
+    CutStats stats;
+    DetachPlan plan;
+  };
+  // A construction's starting point: the input surface, unrefined, at `root`.
+  auto new_trial = [&](int root) {
+    CutResult trial;
+    trial.root = root;
+    trial.genus = genus;
+    trial.surface.mesh = mesh;
+    trial.surface.num_input_vertices = nv0;
+    trial.surface.input_positions = positions;
+    return trial;
+  };
+  // One construction at candidate (c, hops), into out if it succeeds within `bound` (and within
+  // *rival: canonical_rounds, canonical_crosses).
+  auto attempt = [&](int c, bool hops, bool crosses, long bound, Outcome& out,
+                     const std::atomic<long>* rival = nullptr) {
+    CutResult trial = new_trial(c);
+    DetachPlan plan;
+    const bool ok = crosses ? canonical_crosses(trial, unit, hops, bound, plan, rival)
+                            : canonical_rounds(trial, unit, hops, bound, plan, nullptr, rival);
+    if (ok) out.ok = true, out.crosses = crosses, out.hops = hops, out.stats = trial.stats, out.plan = std::move(plan);
+    return ok;
+  };
+  // One candidate: the rounds, bounded by max_rounds_growth; where they pass it (their own bound
+  // binding, not only the best so far; Best) the crosses, whose outcome (or error) then counts.
+  // race (a lone candidate where the rounds tend to pass their bound: kRaceFacesPerHandle): both
+  // run, side by side on two threads (CutOptions::parallel), the rounds followed by their
+  // congestion reweighting (reweight), and the fewer planned vertices win, the rounds on ties
+  // (their plan after the reweighting, which can only lower it: couplingdown at root 100 gets
+  // 2,266 vertices from the reweighted rounds, 2,587 from the crosses, whose plan is below the
+  // rounds' first). Each run is bounded by the other's best plan so far: the crosses by the
+  // rounds' (from their first plan on), the rounds by the crosses' where no reweighting follows.
+  // The rounds' count only grows, the crosses' grows from round to round, and a plan has at least
+  // the vertices of its surface, so a run that passes the other's plan would lose anyway: the
+  // outcome does not depend on the threads (an error of the rounds wins; one of the crosses
+  // counts where the rounds failed; an Internal error that only a losing run would reach may go
+  // unseen), and the time is about that of the longer of the two, or less where the winner stops
+  // the other.
+  const int reweight_rounds = congestion_budget(options, mesh, 200000L, 0L);
+  if (reweight_rounds > 0) check_congestion_step(options.congestion_step);
+  // The congestion reweighting of a rounds plan at (root, hops) (step 3a with the penalties of
+  // step 1c, accumulated from each round's plan), all rounds of the budget (their outcomes are
+  // erratic); the plan with the fewest planned vertices is kept, with its stats. Not for the
+  // crosses (a candidate costs seconds where they are needed). Each round is bounded by the
+  // rounds' own limit only: a round past the kept plan still gives the next penalties. Each new
+  // best's count goes to *publish (if given). None past 2e5 faces: there a round costs as much
+  // as the construction (the 1M-face g20: 7.5 s).
+  auto reweight = [&](int root, bool hops, DetachPlan& plan, CutStats& stats, std::atomic<long>* publish) {
+    CutStats latest;  // the stats of the last round's construction
+    long latest_count = 0;
+    const int kept_round = reweight_for_congestion(
+        plan, nv0, options.congestion_step * metric_unit(mesh, unit, hops), reweight_rounds, reweight_rounds,
+        [&](const std::vector<double>& penalty, DetachPlan& next) {
+          CutResult trial = new_trial(root);
+          const bool ok = canonical_rounds(trial, unit, hops, rounds_limit, next, &penalty);
+          latest = trial.stats;
+          latest_count = ok ? planned_vertices(next) : 0;
+          return ok;
+        },
+        [&](int) {
+          stats = latest;
+          if (publish) *publish = latest_count;
+        });
+    stats.congestion_best_round = kept_round;
+    stats.congestion_rounds = reweight_rounds;
+  };
+  bool raced = false;
+  auto run_candidate = [&](int c, bool hops, bool crosses_only, long best, Outcome& out, bool race) {
+    if (crosses_only) {
+      attempt(c, hops, true, best, out);
+      return;
+    }
+    const bool crosses_may_count = options.construction == C::Best && rounds_limit <= best;
+    if (!race || !crosses_may_count) {
+      if (attempt(c, hops, false, std::min(best, rounds_limit), out) || !crosses_may_count) return;
+      attempt(c, hops, true, best, out);
+      out.rounds_passed = true;
+      return;
+    }
+    raced = true;
+    Outcome crossed;
+    std::atomic<long> rounds_planned{std::numeric_limits<long>::max()};
+    std::atomic<long> crosses_planned{std::numeric_limits<long>::max()};
+    std::exception_ptr crosses_error;
+    auto rounds = [&] {
+      try {
+        if (attempt(c, hops, false, std::min(best, rounds_limit), out, reweight_rounds == 0 ? &crosses_planned : nullptr)) {
+          rounds_planned = planned_vertices(out.plan);
+          if (reweight_rounds > 0) reweight(c, hops, out.plan, out.stats, &rounds_planned), out.reweighted = true;
+        }
+      } catch (...) {
+        rounds_planned = -1;  // the error wins: the crosses stop at their next round
+        throw;
+      }
+    };
+    auto crosses = [&] {
+      try {
+        if (attempt(c, hops, true, best, crossed, &rounds_planned)) crosses_planned = planned_vertices(crossed.plan);
+      } catch (...) {
+        crosses_error = std::current_exception();
+      }
+    };
+    run_pair(options.parallel, rounds, crosses);
+    if (out.ok && (!crossed.ok || planned_vertices(out.plan) <= planned_vertices(crossed.plan))) return;
+    if (!out.ok && crosses_error) std::rethrow_exception(crosses_error);
+    if (!crossed.ok) return;  // neither
+    out = std::move(crossed);
+    out.rounds_passed = true;
+  };
+  // The rounds pass max_rounds_growth on coarse meshes of high genus (cheese: 134 faces per
+  // handle, a generated genus 200 on 30k faces: 150) and stay well within it on fine ones
+  // (couplingdown: 413, the 1M-face genus 20: 49.5k): a lone candidate races the two below
+  // kRaceFacesPerHandle. Not on fine meshes below kCrossesGenus: there the rounds plan about as
+  // many vertices in half the time (the 1M-face genus 20: 546.8k in 4.3 s against 536.0k in
+  // 8.1 s; genus 10 on 200k faces: 109.4k in 0.6 s against 111.1k in 1.0 s).
+  // From kCrossesGenus on every candidate runs the crosses alone (Best): on every mesh of that
+  // genus measured the crosses planned at most the rounds' vertices, where the rounds
+  // succeeded at all (cheese; 50 generated meshes of genus 50-200 on 2k-1M faces, e.g. genus 50
+  // on 500k faces 424k vertices for the rounds alone against 345k, genus 60 on 600k 843k
+  // against 403k; 13 of genus 30-45, e.g. one root: genus 30 on 400k faces 303k against 230k,
+  // genus 40 on 1M 735k against 576k; 4-6 roots: genus 35 on 40k faces 45.0k for Best against
+  // 35.5k for the crosses alone, genus 30 on 36k 34.0k against 28.3k), and the rounds often
+  // failed only after the crosses had finished (genus 200 on 400k faces: 31.7 s against
+  // 12.3 s). With several candidates the first two no longer try the rounds before the crosses
+  // (genus 50-133, 16 meshes with 1-24 candidates: the same cuts, 10-45 % faster).
+  constexpr long kRaceFacesPerHandle = 2000;
+  constexpr int kCrossesGenus = 30;
+  const bool race = mesh.num_faces() < kRaceFacesPerHandle * static_cast<long>(genus);
+  const bool crosses_by_genus = options.construction == C::Best && genus >= kCrossesGenus;
+  bool found = false, kept_hops = false, kept_reweighted = false;
+  int tried = 0, rounds_passed = 0;
+  DetachPlan kept;
+  for (std::size_t i = 0; i < candidates.size(); i += 2) {  // chunks of two
+    const std::size_t n = std::min<std::size_t>(2, candidates.size() - i);
+    const long best = found ? planned_vertices(kept) - 1 : limit;
+    const bool crosses_only = options.construction == C::Crosses || crosses_by_genus ||
+                              (options.construction == C::Best && rounds_passed >= 2);
+    Outcome out[2];
+    auto run = [&](std::size_t j) {
+      return [&, j] {
+        run_candidate(candidates[i + j].first, candidates[i + j].second, crosses_only, best, out[j], false);
+      };
+    };
+    if (n == 2) run_pair(options.parallel, run(0), run(1));
+    else run_candidate(candidates[i].first, candidates[i].second, crosses_only, best, out[0], race);
+    for (std::size_t j = 0; j < n; ++j) {
+      ++tried;
+      rounds_passed += out[j].rounds_passed;
+      if (out[j].ok && (!found || planned_vertices(out[j].plan) < planned_vertices(kept))) {
+        res.root = candidates[i + j].first;
+        res.stats = out[j].stats;
+        res.stats.crosses = out[j].crosses;
+        kept = std::move(out[j].plan);
+        kept_hops = out[j].hops;
+        kept_reweighted = out[j].reweighted;
+        found = true;
+      }
+    }
+  }
+  // The kept rounds plan's congestion reweighting (in a race it came before the comparison).
+  if (found && !res.stats.crosses && !kept_reweighted && reweight_rounds > 0)
+    reweight(res.root, kept_hops, kept, res.stats, nullptr);
+  res.stats.raced = raced;
+  if (found) {
+    res.stats.planned_vertices = planned_vertices(kept);
+    res.loops = realize_strands(kept, res.stats, options.parallel);
+    rs = std::move(kept.rs);
+    found = rs.mesh.num_vertices() <= limit;  // chord splits and face vertices come on top of the plan
+  }
+  if (!found && options.construction == C::Rounds)
+    throw Error(ErrorKind::Unsupported,
+                "normal form: the rounds would grow the mesh past " + std::to_string(rounds_limit) +
+                    " vertices (CutOptions::max_rounds_growth x " + std::to_string(nv0) +
+                    " input vertices); use the crosses construction, or run without the normal form");
+  if (!found)
+    throw Error(ErrorKind::Unsupported,
+                "normal form: the canonical loops would grow the mesh past " + std::to_string(limit) +
+                    " vertices (CutOptions::max_normal_form_growth x " + std::to_string(nv0) +
+                    " input vertices); run without the normal form");
+  res.stats.genus = genus;
+  res.stats.vertices_before = nv0;
+  res.stats.faces_before = mesh.num_faces();
+  res.stats.roots_tried = tried;
+  res.stats.seconds_detach = seconds_since(t_start);
+}
+
+// Steps 1, 1c and 2 (without the normal form): the root and metric (the given root, or among
+// deterministic candidates ranked by their planned crossings), the congestion reweighting of the
+// best ranked and the detaching of the kept plan: fills res.root, res.loops, res.surface and
+// res.stats. Returns true if the loops are already tightened (the drawn comparison kept them).
+bool greedy_system(const TriMesh& mesh, const std::vector<Vec3d>& positions, const std::vector<Vec3d>& unit,
+                   const CutOptions& options, int genus, Clock::time_point t_start, CutResult& res) {
+  const int nv0 = mesh.num_vertices();
+  RefinedSurface& rs = res.surface;
+  bool tightened = false;
+  // Root and metric: the given root with 3D edge lengths, or among K deterministic root
+  // candidates (root_candidates_by_ring_deficit, K = clamp(1e6 / F, 1, 24): the extra cost is
+  // bounded by one basis computation on a 1M-face mesh), each with 3D lengths and with hop
+  // counts as the basis metric, ranked by the crossings their detaching will make (predicted by plan_detach, without
+  // building anything; the earlier wins ties). The best CutOptions::congestion_candidates of them
+  // are reweighted (step 1c, two at a time on two threads) and the plan with the fewest planned
+  // vertices is kept (the better ranked on ties), so the result does not depend on the threads.
+  std::vector<DetachPlan> top;  // the best ranked plans, best first
+  const int rounds = congestion_budget(options, mesh, 1000000L, 1L);
+  const std::size_t keep = rounds > 0 ? static_cast<std::size_t>(options.congestion_candidates) : 1;
+  if (options.root >= 0) {
+    top.push_back(plan_detach(mesh, unit, options.root, genus, false));
+  } else {
+    const long k = std::clamp(1000000L / std::max(1, mesh.num_faces()), 1L, 24L);
+    for (int c : root_candidates_by_ring_deficit(mesh, k, genus)) {
+      DetachPlan q[2];  // 3D lengths, hop counts: planned side by side, ranked in that order
+      run_pair(options.parallel, [&] { q[0] = plan_detach(mesh, unit, c, genus, false); },
+               [&] { q[1] = plan_detach(mesh, unit, c, genus, true); });
+      for (DetachPlan& p : q) {
+        ++res.stats.roots_tried;
+        // Insert after every kept plan with at most as many crossings (stable), drop the last.
+        std::size_t at = top.size();
+        while (at > 0 && p.crossings < top[at - 1].crossings) --at;
+        if (at < keep) {
+          top.insert(top.begin() + static_cast<std::ptrdiff_t>(at), std::move(p));
+          if (top.size() > keep) top.pop_back();
+        }
+      }
+    }
+  }
+  // Congestion reweighting at each kept root and metric (reweight_for_congestion).
+  DetachPlan P;
+  std::optional<TightenedLoops> drawn_win;  // the drawn comparison's winner, drawn and tightened
+  CutStats drawn_stats;                     // its drawing's counts
+  if (rounds > 0) {
+    check_congestion_step(options.congestion_step);
+    std::vector<int> best_round(top.size(), 0);
+    for (std::size_t i = 0; i < top.size(); i += 2) {
+      auto one = [&](std::size_t j) {
+        return [&, j] {
+          if (j >= top.size()) return;
+          const bool hops = top[j].hops;
+          const int root = top[j].root;
+          best_round[j] = reweight_for_congestion(
+              top[j], nv0, options.congestion_step * metric_unit(mesh, unit, hops), rounds, kCongestionPatience,
+              [&](const std::vector<double>& penalty, DetachPlan& plan) {
+                plan = plan_detach(mesh, unit, root, genus, hops, &penalty);
+                return true;
+              },
+              [](int) {});
+        };
+      };
+      run_pair(options.parallel && i + 1 < top.size(), one(i), one(i + 1));
+    }
+    std::size_t win = 0;
+    for (std::size_t j = 1; j < top.size(); ++j)
+      if (planned_vertices(top[j]) < planned_vertices(top[win])) win = j;
+    // On meshes of at most 2e5 faces the reweighted candidates are drawn and tightened on copies,
+    // and the fewest vertices win instead (the better ranked on ties): the plan does not see
+    // what the tightening will remove. Tightened here even with CutOptions::tighten off, so that
+    // the option does not change the loops chosen; with it on, the winner's copy is the result
+    // (not drawn a second time). O(C (n + crossings)).
+    if (top.size() > 1 && mesh.num_faces() <= 200000) {
+      long fewest = -1;
+      for (std::size_t j = 0; j < top.size(); ++j) {
+        DetachPlan copy = top[j];
+        CutStats scratch;
+        copy.rs.input_positions = positions;
+        std::vector<std::vector<int>> loops = realize_strands(copy, scratch, options.parallel);
+        TightenedLoops t = tighten_loops(std::move(copy.rs), std::move(loops), copy.root);
+        const long drawn = t.surface.mesh.num_vertices();
+        if (fewest < 0 || drawn < fewest) {
+          fewest = drawn, win = j;
+          if (options.tighten) drawn_win = std::move(t), drawn_stats = scratch;
+        }
+      }
+    }
+    P = std::move(top[win]);
+    res.stats.congestion_rounds = rounds;
+    res.stats.congestion_best_round = best_round[win];
+    res.stats.congestion_candidates = static_cast<int>(top.size());
+  } else {
+    P = std::move(top[0]);
+  }
+  res.root = P.root;
+  res.stats.band_splits = P.band_splits;
+  res.stats.predicted_crossings = P.crossings;
+  res.stats.planned_vertices = planned_vertices(P);
+  res.stats.seconds_basis = seconds_since(t_start);
+  const auto t_detach = Clock::now();
+  if (drawn_win) {
+    res.stats.crossings = drawn_stats.crossings;
+    res.stats.steiner_vertices = drawn_stats.steiner_vertices;
+    res.stats.chord_splits = drawn_stats.chord_splits;
+    res.stats.collapsed = drawn_win->stats.collapsed;
+    rs = std::move(drawn_win->surface);
+    res.loops = std::move(drawn_win->loops);
+    tightened = true;
+  } else {
+    P.rs.input_positions = positions;
+    res.loops = realize_strands(P, res.stats, options.parallel);
+    rs = std::move(P.rs);
+  }
+  res.stats.seconds_detach = seconds_since(t_detach);
+  return tightened;
+}
+
 // Steps 1-5 on the mesh as numbered (cut_to_canonical_disk below may renumber it first). Pre: the
 // input and the options checked there, `genus` >= 1 the mesh's.
 CutResult cut_in_given_order(const TriMesh& mesh, const std::vector<Vec3d>& positions, const CutOptions& options,
@@ -278,328 +620,8 @@ CutResult cut_in_given_order(const TriMesh& mesh, const std::vector<Vec3d>& posi
   res.stats.faces_before = mesh.num_faces();
   RefinedSurface& rs = res.surface;
   bool tightened = false;  // the loops were drawn and tightened while the root was chosen
-  if (options.normal_form) {
-    // Root and metric: the given root with 3D lengths, or among K deterministic candidates
-    // (root_candidates, K = normal_form_root_count) with 3D lengths and hop counts (one root: hop
-    // counts only), the pair whose planned detaching ends with the fewest vertices
-    // (planned_vertices; only that one is drawn); a candidate stops once it has more than the best
-    // so far. Per candidate (Best): the rounds, bounded by max_rounds_growth; if they pass it, the
-    // crosses (a lone candidate: both at once, see run_candidate). After two candidates whose
-    // rounds passed it, only the crosses.
-    const long limit = nv0 + static_cast<long>(options.max_normal_form_growth * nv0);
-    const long rounds_limit = std::min(limit, nv0 + static_cast<long>(options.max_rounds_growth * nv0));
-    std::vector<std::pair<int, bool>> candidates;
-    if (options.root >= 0) {
-      candidates.push_back({options.root, false});
-    } else {
-      const long k = options.normal_form_roots > 0 ? std::min<long>(options.normal_form_roots, nv0)
-                                                    : normal_form_root_count(mesh, genus);
-      // One root: hop counts, which count the vertices the normal form pays for (cheese's root 2:
-      // 161.9k planned vertices, against 257k with 3D lengths; the 1M-face g20: 536.6k, 538.6k).
-      for (int c : root_candidates(mesh, k))
-        for (bool hops : {false, true})
-          if (hops || k > 1) candidates.push_back({c, hops});
-    }
-    using C = CutOptions::Construction;
-    // Each candidate is only planned (its detaching counted, not drawn); the kept one is realized
-    // once at the end. Candidates go in chunks of two, in order: the two of a chunk are bounded by
-    // the best of the chunks before it and run concurrently (options.parallel), then are merged in
-    // order (a candidate is kept if it plans strictly fewer vertices), so that the result does not
-    // depend on the threads.
-    struct Outcome {
-      bool ok = false, rounds_passed = false, crosses = false, hops = false;
-      bool reweighted = false;  // a rounds plan already reweighted (in a race)
-      CutStats stats;
-      DetachPlan plan;
-    };
-    // A construction's starting point: the input surface, unrefined, at `root`.
-    auto new_trial = [&](int root) {
-      CutResult trial;
-      trial.root = root;
-      trial.genus = genus;
-      trial.surface.mesh = mesh;
-      trial.surface.num_input_vertices = nv0;
-      trial.surface.input_positions = positions;
-      return trial;
-    };
-    // One construction at candidate (c, hops), into out if it succeeds within `bound` (and within
-    // *rival: canonical_rounds, canonical_crosses).
-    auto attempt = [&](int c, bool hops, bool crosses, long bound, Outcome& out,
-                       const std::atomic<long>* rival = nullptr) {
-      CutResult trial = new_trial(c);
-      DetachPlan plan;
-      const bool ok = crosses ? canonical_crosses(trial, unit, hops, bound, plan, rival)
-                              : canonical_rounds(trial, unit, hops, bound, plan, nullptr, rival);
-      if (ok) out.ok = true, out.crosses = crosses, out.hops = hops, out.stats = trial.stats, out.plan = std::move(plan);
-      return ok;
-    };
-    // One candidate: the rounds, bounded by max_rounds_growth; where they pass it (their own bound
-    // binding, not only the best so far; Best) the crosses, whose outcome (or error) then counts.
-    // race (a lone candidate where the rounds tend to pass their bound: kRaceFacesPerHandle): both
-    // run, side by side on two threads (CutOptions::parallel), the rounds followed by their
-    // congestion reweighting (reweight), and the fewer planned vertices win, the rounds on ties
-    // (their plan after the reweighting, which can only lower it: couplingdown at root 100 gets
-    // 2,266 vertices from the reweighted rounds, 2,587 from the crosses, whose plan is below the
-    // rounds' first). Each run is bounded by the other's best plan so far: the crosses by the
-    // rounds' (from their first plan on), the rounds by the crosses' where no reweighting follows.
-    // The rounds' count only grows, the crosses' grows from round to round, and a plan has at least
-    // the vertices of its surface, so a run that passes the other's plan would lose anyway: the
-    // outcome does not depend on the threads (an error of the rounds wins; one of the crosses
-    // counts where the rounds failed; an Internal error that only a losing run would reach may go
-    // unseen), and the time is about that of the longer of the two, or less where the winner stops
-    // the other.
-    const int reweight_rounds = congestion_budget(options, mesh, 200000L, 0L);
-    if (reweight_rounds > 0) check_congestion_step(options.congestion_step);
-    // The congestion reweighting of a rounds plan at (root, hops) (step 3a with the penalties of
-    // step 1c, accumulated from each round's plan), all rounds of the budget (their outcomes are
-    // erratic); the plan with the fewest planned vertices is kept, with its stats. Not for the
-    // crosses (a candidate costs seconds where they are needed). Each round is bounded by the
-    // rounds' own limit only: a round past the kept plan still gives the next penalties. Each new
-    // best's count goes to *publish (if given). None past 2e5 faces: there a round costs as much
-    // as the construction (the 1M-face g20: 7.5 s).
-    auto reweight = [&](int root, bool hops, DetachPlan& plan, CutStats& stats, std::atomic<long>* publish) {
-      CutStats latest;  // the stats of the last round's construction
-      long latest_count = 0;
-      const int kept_round = reweight_for_congestion(
-          plan, nv0, options.congestion_step * metric_unit(mesh, unit, hops), reweight_rounds, reweight_rounds,
-          [&](const std::vector<double>& penalty, DetachPlan& next) {
-            CutResult trial = new_trial(root);
-            const bool ok = canonical_rounds(trial, unit, hops, rounds_limit, next, &penalty);
-            latest = trial.stats;
-            latest_count = ok ? planned_vertices(next) : 0;
-            return ok;
-          },
-          [&](int) {
-            stats = latest;
-            if (publish) *publish = latest_count;
-          });
-      stats.congestion_best_round = kept_round;
-      stats.congestion_rounds = reweight_rounds;
-    };
-    bool raced = false;
-    auto run_candidate = [&](int c, bool hops, bool crosses_only, long best, Outcome& out, bool race) {
-      if (crosses_only) {
-        attempt(c, hops, true, best, out);
-        return;
-      }
-      const bool crosses_may_count = options.construction == C::Best && rounds_limit <= best;
-      if (!race || !crosses_may_count) {
-        if (attempt(c, hops, false, std::min(best, rounds_limit), out) || !crosses_may_count) return;
-        attempt(c, hops, true, best, out);
-        out.rounds_passed = true;
-        return;
-      }
-      raced = true;
-      Outcome crossed;
-      std::atomic<long> rounds_planned{std::numeric_limits<long>::max()};
-      std::atomic<long> crosses_planned{std::numeric_limits<long>::max()};
-      std::exception_ptr crosses_error;
-      auto rounds = [&] {
-        try {
-          if (attempt(c, hops, false, std::min(best, rounds_limit), out, reweight_rounds == 0 ? &crosses_planned : nullptr)) {
-            rounds_planned = planned_vertices(out.plan);
-            if (reweight_rounds > 0) reweight(c, hops, out.plan, out.stats, &rounds_planned), out.reweighted = true;
-          }
-        } catch (...) {
-          rounds_planned = -1;  // the error wins: the crosses stop at their next round
-          throw;
-        }
-      };
-      auto crosses = [&] {
-        try {
-          if (attempt(c, hops, true, best, crossed, &rounds_planned)) crosses_planned = planned_vertices(crossed.plan);
-        } catch (...) {
-          crosses_error = std::current_exception();
-        }
-      };
-      run_pair(options.parallel, rounds, crosses);
-      if (out.ok && (!crossed.ok || planned_vertices(out.plan) <= planned_vertices(crossed.plan))) return;
-      if (!out.ok && crosses_error) std::rethrow_exception(crosses_error);
-      if (!crossed.ok) return;  // neither
-      out = std::move(crossed);
-      out.rounds_passed = true;
-    };
-    // The rounds pass max_rounds_growth on coarse meshes of high genus (cheese: 134 faces per
-    // handle, a generated genus 200 on 30k faces: 150) and stay well within it on fine ones
-    // (couplingdown: 413, the 1M-face genus 20: 49.5k): a lone candidate races the two below
-    // kRaceFacesPerHandle. Not on fine meshes below kCrossesGenus: there the rounds plan about as
-    // many vertices in half the time (the 1M-face genus 20: 546.8k in 4.3 s against 536.0k in
-    // 8.1 s; genus 10 on 200k faces: 109.4k in 0.6 s against 111.1k in 1.0 s).
-    // From kCrossesGenus on every candidate runs the crosses alone (Best): on every mesh of that
-    // genus measured the crosses planned at most the rounds' vertices, where the rounds
-    // succeeded at all (cheese; 50 generated meshes of genus 50-200 on 2k-1M faces, e.g. genus 50
-    // on 500k faces 424k vertices for the rounds alone against 345k, genus 60 on 600k 843k
-    // against 403k; 13 of genus 30-45, e.g. one root: genus 30 on 400k faces 303k against 230k,
-    // genus 40 on 1M 735k against 576k; 4-6 roots: genus 35 on 40k faces 45.0k for Best against
-    // 35.5k for the crosses alone, genus 30 on 36k 34.0k against 28.3k), and the rounds often
-    // failed only after the crosses had finished (genus 200 on 400k faces: 31.7 s against
-    // 12.3 s). With several candidates the first two no longer try the rounds before the crosses
-    // (genus 50-133, 16 meshes with 1-24 candidates: the same cuts, 10-45 % faster).
-    constexpr long kRaceFacesPerHandle = 2000;
-    constexpr int kCrossesGenus = 30;
-    const bool race = mesh.num_faces() < kRaceFacesPerHandle * static_cast<long>(genus);
-    const bool crosses_by_genus = options.construction == C::Best && genus >= kCrossesGenus;
-    bool found = false, kept_hops = false, kept_reweighted = false;
-    int tried = 0, rounds_passed = 0;
-    DetachPlan kept;
-    for (std::size_t i = 0; i < candidates.size(); i += 2) {  // chunks of two
-      const std::size_t n = std::min<std::size_t>(2, candidates.size() - i);
-      const long best = found ? planned_vertices(kept) - 1 : limit;
-      const bool crosses_only = options.construction == C::Crosses || crosses_by_genus ||
-                                (options.construction == C::Best && rounds_passed >= 2);
-      Outcome out[2];
-      auto run = [&](std::size_t j) {
-        return [&, j] {
-          run_candidate(candidates[i + j].first, candidates[i + j].second, crosses_only, best, out[j], false);
-        };
-      };
-      if (n == 2) run_pair(options.parallel, run(0), run(1));
-      else run_candidate(candidates[i].first, candidates[i].second, crosses_only, best, out[0], race);
-      for (std::size_t j = 0; j < n; ++j) {
-        ++tried;
-        rounds_passed += out[j].rounds_passed;
-        if (out[j].ok && (!found || planned_vertices(out[j].plan) < planned_vertices(kept))) {
-          res.root = candidates[i + j].first;
-          res.stats = out[j].stats;
-          res.stats.crosses = out[j].crosses;
-          kept = std::move(out[j].plan);
-          kept_hops = out[j].hops;
-          kept_reweighted = out[j].reweighted;
-          found = true;
-        }
-      }
-    }
-    // The kept rounds plan's congestion reweighting (in a race it came before the comparison).
-    if (found && !res.stats.crosses && !kept_reweighted && reweight_rounds > 0)
-      reweight(res.root, kept_hops, kept, res.stats, nullptr);
-    res.stats.raced = raced;
-    if (found) {
-      res.stats.planned_vertices = planned_vertices(kept);
-      res.loops = realize_strands(kept, res.stats, options.parallel);
-      rs = std::move(kept.rs);
-      found = rs.mesh.num_vertices() <= limit;  // chord splits and face vertices come on top of the plan
-    }
-    if (!found && options.construction == C::Rounds)
-      throw Error(ErrorKind::Unsupported,
-                  "normal form: the rounds would grow the mesh past " + std::to_string(rounds_limit) +
-                      " vertices (CutOptions::max_rounds_growth x " + std::to_string(nv0) +
-                      " input vertices); use the crosses construction, or run without the normal form");
-    if (!found)
-      throw Error(ErrorKind::Unsupported,
-                  "normal form: the canonical loops would grow the mesh past " + std::to_string(limit) +
-                      " vertices (CutOptions::max_normal_form_growth x " + std::to_string(nv0) +
-                      " input vertices); run without the normal form");
-    res.stats.genus = genus;
-    res.stats.vertices_before = nv0;
-    res.stats.faces_before = mesh.num_faces();
-    res.stats.roots_tried = tried;
-    res.stats.seconds_detach = seconds_since(t_start);
-  } else {
-    // Root and metric: the given root with 3D edge lengths, or among K deterministic root
-    // candidates (root_candidates_by_ring_deficit, K = clamp(1e6 / F, 1, 24): the extra cost is
-    // bounded by one basis computation on a 1M-face mesh), each with 3D lengths and with hop
-    // counts as the basis metric, ranked by the crossings their detaching will make (predicted by plan_detach, without
-    // building anything; the earlier wins ties). The best CutOptions::congestion_candidates of them
-    // are reweighted (step 1c, two at a time on two threads) and the plan with the fewest planned
-    // vertices is kept (the better ranked on ties), so the result does not depend on the threads.
-    std::vector<DetachPlan> top;  // the best ranked plans, best first
-    const int rounds = congestion_budget(options, mesh, 1000000L, 1L);
-    const std::size_t keep = rounds > 0 ? static_cast<std::size_t>(options.congestion_candidates) : 1;
-    if (options.root >= 0) {
-      top.push_back(plan_detach(mesh, unit, options.root, genus, false));
-    } else {
-      const long k = std::clamp(1000000L / std::max(1, mesh.num_faces()), 1L, 24L);
-      for (int c : root_candidates_by_ring_deficit(mesh, k, genus)) {
-        DetachPlan q[2];  // 3D lengths, hop counts: planned side by side, ranked in that order
-        run_pair(options.parallel, [&] { q[0] = plan_detach(mesh, unit, c, genus, false); },
-                 [&] { q[1] = plan_detach(mesh, unit, c, genus, true); });
-        for (DetachPlan& p : q) {
-          ++res.stats.roots_tried;
-          // Insert after every kept plan with at most as many crossings (stable), drop the last.
-          std::size_t at = top.size();
-          while (at > 0 && p.crossings < top[at - 1].crossings) --at;
-          if (at < keep) {
-            top.insert(top.begin() + static_cast<std::ptrdiff_t>(at), std::move(p));
-            if (top.size() > keep) top.pop_back();
-          }
-        }
-      }
-    }
-    // Congestion reweighting at each kept root and metric (reweight_for_congestion).
-    DetachPlan P;
-    std::optional<TightenedLoops> drawn_win;  // the drawn comparison's winner, drawn and tightened
-    CutStats drawn_stats;                     // its drawing's counts
-    if (rounds > 0) {
-      check_congestion_step(options.congestion_step);
-      std::vector<int> best_round(top.size(), 0);
-      for (std::size_t i = 0; i < top.size(); i += 2) {
-        auto one = [&](std::size_t j) {
-          return [&, j] {
-            if (j >= top.size()) return;
-            const bool hops = top[j].hops;
-            const int root = top[j].root;
-            best_round[j] = reweight_for_congestion(
-                top[j], nv0, options.congestion_step * metric_unit(mesh, unit, hops), rounds, kCongestionPatience,
-                [&](const std::vector<double>& penalty, DetachPlan& plan) {
-                  plan = plan_detach(mesh, unit, root, genus, hops, &penalty);
-                  return true;
-                },
-                [](int) {});
-          };
-        };
-        run_pair(options.parallel && i + 1 < top.size(), one(i), one(i + 1));
-      }
-      std::size_t win = 0;
-      for (std::size_t j = 1; j < top.size(); ++j)
-        if (planned_vertices(top[j]) < planned_vertices(top[win])) win = j;
-      // On meshes of at most 2e5 faces the reweighted candidates are drawn and tightened on copies,
-      // and the fewest vertices win instead (the better ranked on ties): the plan does not see
-      // what the tightening will remove. Tightened here even with CutOptions::tighten off, so that
-      // the option does not change the loops chosen; with it on, the winner's copy is the result
-      // (not drawn a second time). O(C (n + crossings)).
-      if (top.size() > 1 && mesh.num_faces() <= 200000) {
-        long fewest = -1;
-        for (std::size_t j = 0; j < top.size(); ++j) {
-          DetachPlan copy = top[j];
-          CutStats scratch;
-          copy.rs.input_positions = positions;
-          std::vector<std::vector<int>> loops = realize_strands(copy, scratch, options.parallel);
-          TightenedLoops t = tighten_loops(std::move(copy.rs), std::move(loops), copy.root);
-          const long drawn = t.surface.mesh.num_vertices();
-          if (fewest < 0 || drawn < fewest) {
-            fewest = drawn, win = j;
-            if (options.tighten) drawn_win = std::move(t), drawn_stats = scratch;
-          }
-        }
-      }
-      P = std::move(top[win]);
-      res.stats.congestion_rounds = rounds;
-      res.stats.congestion_best_round = best_round[win];
-      res.stats.congestion_candidates = static_cast<int>(top.size());
-    } else {
-      P = std::move(top[0]);
-    }
-    res.root = P.root;
-    res.stats.band_splits = P.band_splits;
-    res.stats.predicted_crossings = P.crossings;
-    res.stats.planned_vertices = planned_vertices(P);
-    res.stats.seconds_basis = seconds_since(t_start);
-    const auto t_detach = Clock::now();
-    if (drawn_win) {
-      res.stats.crossings = drawn_stats.crossings;
-      res.stats.steiner_vertices = drawn_stats.steiner_vertices;
-      res.stats.chord_splits = drawn_stats.chord_splits;
-      res.stats.collapsed = drawn_win->stats.collapsed;
-      rs = std::move(drawn_win->surface);
-      res.loops = std::move(drawn_win->loops);
-      tightened = true;
-    } else {
-      P.rs.input_positions = positions;
-      res.loops = realize_strands(P, res.stats, options.parallel);
-      rs = std::move(P.rs);
-    }
-    res.stats.seconds_detach = seconds_since(t_detach);
-  }
+  if (options.normal_form) normal_form_system(mesh, positions, unit, options, genus, t_start, res);
+  else tightened = greedy_system(mesh, positions, unit, options, genus, t_start, res);
   if (options.tighten && !tightened) {
     const auto t_tighten = Clock::now();
     TightenedLoops t = tighten_loops(std::move(rs), std::move(res.loops), res.root);
