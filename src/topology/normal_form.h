@@ -75,6 +75,15 @@ void gamma_tour(const TriMesh& M, const GammaTree& K, const std::vector<std::pai
                 int root_h0, std::vector<int>& band_of, std::vector<int>& gap_of, std::vector<Letter>& rot,
                 std::vector<int>* gap_halfedges = nullptr);
 
+// The searches' edge length on the surface or on a chord-split copy (P: unit-scaled positions): one
+// hop or the 3D length, plus kMidpointCost for each end that is a copy's chord midpoint (ids >=
+// first_mid), so that crossing a chord is a last resort. Both constructions use it. O(1).
+inline constexpr double kMidpointCost = 1000.0;
+inline double search_length(const std::vector<Vec3d>& P, int first_mid, bool hops, int a, int b) {
+  return (hops ? 1.0 : length(P[a], P[b])) + (a >= first_mid ? kMidpointCost : 0.0) +
+         (b >= first_mid ? kMidpointCost : 0.0);
+}
+
 // Appends to p the (unit-scaled, double) positions of S's vertices from p.size() on, to guide the
 // searches only (path lengths): each weight rounded to a double, then summed in doubles (not the
 // exact point rounded, as evaluate() gives: a fifth of a crosses candidate's time on cheese).

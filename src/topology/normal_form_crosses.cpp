@@ -22,7 +22,6 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
   RefinedSurface& rs = res.surface;
   std::vector<Vec3d> pos(unit.begin(), unit.begin() + rs.num_input_vertices);
   auto extend = [&](const RefinedSurface& S, std::vector<Vec3d>& p) { extend_positions(S, unit, p); };
-  constexpr double kMidpointCost = 1000.0;  // unit-scaled lengths: crossing a chord is a last resort
   struct Cross {
     std::vector<std::pair<int, int>> edges;  // tree edges (x, parent of x in the seed's forest)
     std::array<std::pair<int, int>, 2> bands;
@@ -44,10 +43,7 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
     return std::find(cross_nb[a].begin(), cross_nb[a].end(), b) != cross_nb[a].end();
   };
   auto lenf = [&](const std::vector<Vec3d>& P, int first_mid) {
-    return [&P, first_mid, hops](int a, int b) {
-      return (hops ? 1.0 : length(P[a], P[b])) + (a >= first_mid ? kMidpointCost : 0.0) +
-             (b >= first_mid ? kMidpointCost : 0.0);
-    };
+    return [&P, first_mid, hops](int a, int b) { return search_length(P, first_mid, hops, a, b); };
   };
   // The search's per-vertex, per-face and per-half-edge state, kept across searches and reset
   // where the last search touched it (its reached vertices, faces and band half-edges), so that a

@@ -45,11 +45,9 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
   // pair. O(E log E + pairs * taken log taken).
   auto search = [&](const TriMesh& M, const GammaTree& K, const std::vector<Vec3d>& P,
                     const std::vector<int>& gaps, int round, int first_mid, Found& out) {
-    constexpr double kMidpointCost = 1000.0;  // unit-scaled lengths: crossing a chord is a last resort
     const int nv = M.num_vertices(), nh = M.num_halfedges();
     auto len = [&](int a, int b) {
-      const double base = (hops ? 1.0 : length(P[a], P[b])) + (a >= first_mid ? kMidpointCost : 0.0) +
-                          (b >= first_mid ? kMidpointCost : 0.0);
+      const double base = search_length(P, first_mid, hops, a, b);
       if (!penalty) return base;
       const int n0 = static_cast<int>(penalty->size());  // input vertices; splits and midpoints: none
       return base + 0.5 * ((a < n0 ? (*penalty)[a] : 0.0) + (b < n0 ? (*penalty)[b] : 0.0));
