@@ -3,19 +3,19 @@
 //                           [--no-tighten] [--congestion-rounds N] [--nf-roots N]
 //                           [--no-locality-order] [--only NAME|g3|g20|g40]
 // Growth is broken down by source: crossings, Steiner, band, chord and pre-condition splits, and
-// the normal form's rounds (marked "(crosses)" where the crosses construction won, "raced" where
-// a lone root candidate ran both constructions side by side) and chord splits. The normal form
-// is measured on every mesh; --normal-form-all is accepted and changes nothing (it added the
-// 1M-face g20's, ~10 s before stop 27, 4.6-5 s since); --only runs one mesh, with and without it;
-// --nf-roots N sets CutOptions::normal_form_roots (default: automatic; cheese gets 1, --nf-roots 11 is what it had
-// before stop 23); --crosses / --rounds use that construction alone; --serial
+// the normal form's rounds (marked "(crosses)" where the crosses construction won, "raced" where a
+// lone root candidate ran both constructions side by side) and chord splits. The normal form is
+// measured on every mesh; --normal-form-all is accepted and changes nothing (it added the 1M-face
+// g20's, ~10 s before stop 27, 4.6-5 s since); --only runs one mesh, with and without it;
+// --nf-roots N sets CutOptions::normal_form_roots (default: automatic; cheese gets 1, --nf-roots 11
+// is what it had before stop 23); --crosses / --rounds use that construction alone; --serial
 // evaluates the root candidates on one thread (CutOptions::parallel = false; same results);
 // --no-tighten skips the loop tightening (CutOptions::tighten = false), for comparison;
 // --congestion-rounds N sets CutOptions::congestion_rounds (0: off; default: automatic);
 // --no-locality-order runs the steps in the input's own vertex order on every mesh
 // (CutOptions::locality_order_min_vertices = -1; by default meshes of >= 32,768 vertices, here the
-// 1M-face g20, are renumbered first: the line then ends with "renumbered"). The line
-// without the normal form shows "congestion r/n" (the round kept, of the n recomputed bases).
+// 1M-face g20, are renumbered first: the line then ends with "renumbered"). The line without the
+// normal form shows "congestion r/n" (the round kept, of the n recomputed bases).
 // Under each line: the ring-capacity floor (topology/ring_bound.h) at the chosen root, the vertices
 // any loop system through it must add; without the normal form on meshes of <= 3,000 vertices also
 // the least floor over every root. --only g40 runs a generated genus 40 on 1M faces (not in the

@@ -18,8 +18,8 @@
 
 namespace igm::topology_internal {
 
-// Seconds since t0, for CutStats.
 using Clock = std::chrono::steady_clock;
+// Seconds since t0, for CutStats.
 inline double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
