@@ -342,7 +342,7 @@ void normal_form_system(const TriMesh& mesh, const std::vector<Vec3d>& positions
   // counts where the rounds failed; an Internal error that only a losing run would reach may go
   // unseen), and the time is about that of the longer of the two, or less where the winner stops
   // the other.
-  const int reweight_rounds = congestion_budget(options, mesh, 200000L, 0L);
+  const int reweight_rounds = congestion_budget(options, mesh, 200000L, 0L, 40L);
   if (reweight_rounds > 0) check_congestion_step(options.congestion_step);
   // The congestion reweighting of a rounds plan at (root, hops) (step 3a with the penalties of
   // step 1c, accumulated from each round's plan), all rounds of the budget (their outcomes are
@@ -507,7 +507,7 @@ bool greedy_system(const TriMesh& mesh, const std::vector<Vec3d>& positions, con
   // are reweighted (step 1c, two at a time on two threads) and the plan with the fewest planned
   // vertices is kept (the better ranked on ties), so the result does not depend on the threads.
   std::vector<DetachPlan> top;  // the best ranked plans, best first
-  const int rounds = congestion_budget(options, mesh, 1000000L, 1L);
+  const int rounds = congestion_budget(options, mesh, 2000000L, 1L, 500L);
   const std::size_t keep = rounds > 0 ? static_cast<std::size_t>(options.congestion_candidates) : 1;
   if (options.root >= 0) {
     top.push_back(plan_detach(mesh, unit, options.root, genus, false));

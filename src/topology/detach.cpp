@@ -322,9 +322,9 @@ void check_congestion_step(double step) {
     throw Error(ErrorKind::InvalidArgument, "CutOptions::congestion_step must be finite and > 0, got " + std::to_string(step));
 }
 
-int congestion_budget(const CutOptions& options, const TriMesh& mesh, long per_faces, long least) {
+int congestion_budget(const CutOptions& options, const TriMesh& mesh, long per_faces, long least, long most) {
   if (options.congestion_rounds >= 0) return options.congestion_rounds;
-  return static_cast<int>(std::clamp(per_faces / std::max(1, mesh.num_faces()), least, 40L));
+  return static_cast<int>(std::clamp(per_faces / std::max(1, mesh.num_faces()), least, most));
 }
 
 std::vector<std::vector<int>> realize_strands(DetachPlan& P, CutStats& stats, bool parallel) {

@@ -2,6 +2,7 @@
 // Internal to the topology stage (igm/topology/cut_to_canonical_disk.h): steps 1 (greedy homotopy
 // basis by tree-cotree, planned), 1c (congestion reweighting) and 2 (detaching the loops as
 // disjoint strands along the tree). Not installed, not part of the API.
+#include <algorithm>
 #include <vector>
 
 #include "igm/mesh/surface_point.h"
@@ -60,17 +61,18 @@ double metric_unit(const TriMesh& mesh, const std::vector<Vec3d>& unit, bool hop
 void check_congestion_step(double step);
 
 // The congestion reweighting of the basis (not of the normal form's rounds, whose outcomes jump
-// from round to round: there it would lose, e.g. couplingdown 2141 -> 2167 vertices) stops after
-// this many rounds without a new best plan: on the shared meshes and generated genus 2-12 it loses
-// nothing against running all rounds (1,595 vertices added in all against 1,620) and takes 30 %
-// less time.
+// from round to round: there it would lose, e.g. couplingdown 2141 -> 2167 vertices) stops once
+// max(this, the best round's index) rounds have passed without a new best plan. Its descent is
+// slow and steady (couplingdown's best plans come at rounds 38, 49, 95, ..., 255, 444), so a fixed
+// patience would stop it early; a mesh where it stalls (cheese: round 2) stops after 12 rounds.
 inline constexpr int kCongestionPatience = 10;
 
 // The round budget of the congestion reweighting: CutOptions::congestion_rounds, or for -1
-// clamp(per_faces / F, least, 40).
-int congestion_budget(const CutOptions& options, const TriMesh& mesh, long per_faces, long least);
+// clamp(per_faces / F, least, most) (a round costs about one basis, O(F log F)).
+int congestion_budget(const CutOptions& options, const TriMesh& mesh, long per_faces, long least, long most);
 
-// Step 1c: up to `rounds` rounds (and at most `patience` after the last new best) of congestion
+// Step 1c: up to `rounds` rounds (stopping once max(patience, r_best) rounds have passed since
+// the round r_best of the last new best) of congestion
 // reweighting from the plan `best`, the penalties (raise_penalties, `raise` per extra strand)
 // accumulating over the rounds, each from the last plan made. replan(penalty, plan) makes a plan
 // with the penalties, or returns false (that round gives none). `best` becomes the plan with the
@@ -85,7 +87,7 @@ int reweight_for_congestion(DetachPlan& best, int nv0, double raise, int rounds,
   const DetachPlan* last = &best;
   long best_count = planned_vertices(best);
   int best_round = 0;
-  for (int r = 1; r <= rounds && r - best_round <= patience; ++r) {
+  for (int r = 1; r <= rounds && r - best_round <= std::max(patience, best_round); ++r) {
     raise_penalties(*last, nv0, raise, penalty);
     DetachPlan next;
     if (!replan(penalty, next)) continue;

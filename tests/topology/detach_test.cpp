@@ -22,9 +22,9 @@ DetachPlan plan_of(long long crossings) {
 
 }  // namespace
 
-TEST_CASE("the congestion reweighting keeps the first plan with the fewest vertices and stops after its patience") {
+TEST_CASE("the congestion reweighting keeps the first plan with the fewest vertices and stops when its patience runs out") {
   // Planned counts of the first plan (round 0) and of the replans of rounds 1, 2, ...
-  const std::vector<long long> counts = {50, 60, 40, 45, 40, 39, 70, 80, 90, 20};
+  const std::vector<long long> counts = {50, 60, 40, 45, 40, 39, 70, 80, 90, 91, 92, 20, 25};
   auto run = [&](int rounds, int patience, std::vector<int>& kept_rounds, int& replans) {
     DetachPlan best = plan_of(counts[0]);
     replans = 0;
@@ -42,16 +42,23 @@ TEST_CASE("the congestion reweighting keeps the first plan with the fewest verti
   };
   std::vector<int> kept;
   int replans = 0;
-  // Round 2 (40) beats 50, round 4 only ties it, round 5 (39) wins; then three rounds without a
-  // new best end the run before round 9's 20.
-  CHECK(run(9, 3, kept, replans) == 5);
+  // Round 2 (40) beats 50, round 4 only ties it, round 5 (39) wins. The patience is then
+  // max(3, 5) = 5 rounds, not 3: rounds 6 to 10 run (a fixed patience of 3 would stop after
+  // round 8), and round 11's 20 is not reached (a run without patience would keep it).
+  CHECK(run(12, 3, kept, replans) == 5);
   CHECK(kept == std::vector<int>{2, 5});
-  CHECK(replans == 8);
-  // With patience enough, round 9 is reached and kept.
+  CHECK(replans == 10);
+  // With patience 7, round 11 is reached and kept; round 12 runs (its patience is now 11) but
+  // does not beat it.
   kept.clear();
-  CHECK(run(9, 9, kept, replans) == 9);
-  CHECK(kept == std::vector<int>{2, 5, 9});
-  CHECK(replans == 9);
+  CHECK(run(12, 7, kept, replans) == 11);
+  CHECK(kept == std::vector<int>{2, 5, 11});
+  CHECK(replans == 12);
+  // Before any new best the patience is the given one: patience 1 stops after round 1.
+  kept.clear();
+  CHECK(run(12, 1, kept, replans) == 0);
+  CHECK(kept.empty());
+  CHECK(replans == 1);
   // No rounds: the first plan stays.
   kept.clear();
   CHECK(run(0, 9, kept, replans) == 0);

@@ -81,10 +81,11 @@ struct CutOptions {
   int normal_form_roots = -1;
   /// After the root and metric are chosen, the basis (with the normal form: the rounds of step
   /// 3a; not the crosses) is recomputed up to this many times with the metric raised at the
-  /// vertices that several strands pass, the basis stopping 10 rounds after its last new best
-  /// (step 1c; the plan with the fewest planned vertices wins, so it never plans more than the
-  /// first). -1 picks clamp(1e6 / F, 1, 40) (with the normal form
-  /// clamp(2e5 / F, 0, 40): none past 2e5 faces), 0 turns it off, < -1 is InvalidArgument.
+  /// vertices that several strands pass, the basis stopping once max(10, r) rounds have passed
+  /// since its last new best, found at round r (step 1c; the plan with the fewest planned
+  /// vertices wins, so it never plans more than the first). -1 picks clamp(2e6 / F, 1, 500)
+  /// (with the normal form clamp(2e5 / F, 0, 40): none past 2e5 faces), 0 turns it off, < -1
+  /// is InvalidArgument.
   int congestion_rounds = -1;
   /// Without the normal form and with root = -1: how many of the best ranked root candidates
   /// (by their first plan) are reweighted; the fewest vertices once drawn and tightened win (even
