@@ -300,11 +300,18 @@ void normal_form_system(const TriMesh& mesh, const std::vector<Vec3d>& positions
   // the best of the chunks before it and run concurrently (options.parallel), then are merged in
   // order (a candidate is kept if it plans strictly fewer vertices), so that the result does not
   // depend on the threads.
+  // A plan of the congestion reweighting, with its construction's stats.
+  struct Ranked {
+    DetachPlan plan;
+    CutStats stats;
+    int round = 0;  // of the reweighting (0: the first plan)
+  };
   struct Outcome {
     bool ok = false, rounds_passed = false, crosses = false, hops = false;
     bool reweighted = false;  // a rounds plan already reweighted (in a race)
     CutStats stats;
     DetachPlan plan;
+    std::vector<Ranked> ranked;  // its reweighting's best plans (reweight), `plan` first
   };
   // A construction's starting point: the input surface, unrefined, at `root`.
   auto new_trial = [&](int root) {
@@ -342,25 +349,49 @@ void normal_form_system(const TriMesh& mesh, const std::vector<Vec3d>& positions
   // counts where the rounds failed; an Internal error that only a losing run would reach may go
   // unseen), and the time is about that of the longer of the two, or less where the winner stops
   // the other.
-  const int reweight_rounds = congestion_budget(options, mesh, 200000L, 0L, 40L);
+  // How many of the reweighting's best plans are drawn to choose the kept one, and whether they
+  // are (see after the candidates below).
+  constexpr std::size_t kNormalFormDrawn = 8;
+  const bool draw_ranked = mesh.num_faces() <= 200000;
+  const int reweight_rounds = mesh.num_faces() > 200000 && options.congestion_rounds < 0
+                                   ? 0
+                                   : congestion_budget(options, mesh, 1000000L, 0L, 250L);
   if (reweight_rounds > 0) check_congestion_step(options.congestion_step);
   // The congestion reweighting of a rounds plan at (root, hops) (step 3a with the penalties of
   // step 1c, accumulated from each round's plan), all rounds of the budget (their outcomes are
   // erratic); the plan with the fewest planned vertices is kept, with its stats. Not for the
   // crosses (a candidate costs seconds where they are needed). Each round is bounded by the
   // rounds' own limit only: a round past the kept plan still gives the next penalties. Each new
-  // best's count goes to *publish (if given). None past 2e5 faces: there a round costs as much
-  // as the construction (the 1M-face g20: 7.5 s).
-  auto reweight = [&](int root, bool hops, DetachPlan& plan, CutStats& stats, std::atomic<long>* publish) {
+  // best's count goes to *publish (if given). Budget clamp(1e6 / F, 0, 250) rounds, none past
+  // 2e5 faces: there a round costs as much as the construction (the 1M-face g20: 7.5 s). Against
+  // clamp(2e5 / F, 0, 40): on generated genus 2-12 of 2k-40k faces (36 meshes) 20,340 vertices
+  // added instead of 23,873 in 3.5x the time (43.6 s against 12.6 s; 2e6 / F and 500 rounds:
+  // 19,457 in 81 s); the new bests keep coming late (couplingdown's at rounds 71, 121, 235, 284).
+  // Besides the kept plan, the kNormalFormDrawn plans with the fewest planned vertices (the
+  // first plan included; the earlier on ties) are collected in *ranked, `plan` first, for
+  // the drawn choice after the candidates below.
+  auto reweight = [&](int root, bool hops, DetachPlan& plan, CutStats& stats, std::atomic<long>* publish,
+                      std::vector<Ranked>* ranked) {
     CutStats latest;  // the stats of the last round's construction
     long latest_count = 0;
+    int round = 0;
+    if (ranked) ranked->assign(1, Ranked{plan, stats, 0});
     const int kept_round = reweight_for_congestion(
         plan, nv0, options.congestion_step * metric_unit(mesh, unit, hops), reweight_rounds, reweight_rounds,
         [&](const std::vector<double>& penalty, DetachPlan& next) {
           CutResult trial = new_trial(root);
           const bool ok = canonical_rounds(trial, unit, hops, rounds_limit, next, &penalty);
+          ++round;  // one replan per round
           latest = trial.stats;
           latest_count = ok ? planned_vertices(next) : 0;
+          if (ok && ranked) {  // a stable insertion by planned count, at most kNormalFormDrawn kept
+            std::size_t at = ranked->size();
+            while (at > 0 && latest_count < planned_vertices((*ranked)[at - 1].plan)) --at;
+            if (at < kNormalFormDrawn) {
+              ranked->insert(ranked->begin() + static_cast<std::ptrdiff_t>(at), Ranked{next, latest, round});
+              if (ranked->size() > kNormalFormDrawn) ranked->pop_back();
+            }
+          }
           return ok;
         },
         [&](int) {
@@ -392,7 +423,10 @@ void normal_form_system(const TriMesh& mesh, const std::vector<Vec3d>& positions
       try {
         if (attempt(c, hops, false, std::min(best, rounds_limit), out, reweight_rounds == 0 ? &crosses_planned : nullptr)) {
           rounds_planned = planned_vertices(out.plan);
-          if (reweight_rounds > 0) reweight(c, hops, out.plan, out.stats, &rounds_planned), out.reweighted = true;
+          if (reweight_rounds > 0) {
+            reweight(c, hops, out.plan, out.stats, &rounds_planned, draw_ranked ? &out.ranked : nullptr);
+            out.reweighted = true;
+          }
         }
       } catch (...) {
         rounds_planned = -1;  // the error wins: the crosses stop at their next round
@@ -436,6 +470,7 @@ void normal_form_system(const TriMesh& mesh, const std::vector<Vec3d>& positions
   bool found = false, kept_hops = false, kept_reweighted = false;
   int tried = 0, rounds_passed = 0;
   DetachPlan kept;
+  std::vector<Ranked> kept_ranked;  // the kept plan's reweighting's best plans
   for (std::size_t i = 0; i < candidates.size(); i += 2) {  // chunks of two
     const std::size_t n = std::min<std::size_t>(2, candidates.size() - i);
     const long best = found ? planned_vertices(kept) - 1 : limit;
@@ -459,13 +494,32 @@ void normal_form_system(const TriMesh& mesh, const std::vector<Vec3d>& positions
         kept = std::move(out[j].plan);
         kept_hops = out[j].hops;
         kept_reweighted = out[j].reweighted;
+        kept_ranked = std::move(out[j].ranked);
         found = true;
       }
     }
   }
   // The kept rounds plan's congestion reweighting (in a race it came before the comparison).
   if (found && !res.stats.crosses && !kept_reweighted && reweight_rounds > 0)
-    reweight(res.root, kept_hops, kept, res.stats, nullptr);
+    reweight(res.root, kept_hops, kept, res.stats, nullptr, draw_ranked ? &kept_ranked : nullptr);
+  // On meshes of at most 2e5 faces the reweighting's best plans are drawn and tightened on
+  // copies, and the fewest vertices win (the fewer planned on ties, then the earlier): the plan
+  // does not see what the tightening will remove (couplingdown: the fewest planned, 2,257, end
+  // with 2,137 vertices; the fifth fewest, 2,294, with 2,093). Tightened here even with
+  // CutOptions::tighten off, so that the option does not change the loops chosen. The winner is
+  // drawn again below. O(kNormalFormDrawn (n + crossings)).
+  if (found && kept_ranked.size() > 1) {
+    std::vector<const DetachPlan*> plans;
+    for (const Ranked& r : kept_ranked) plans.push_back(&r.plan);
+    const std::size_t win = fewest_drawn(plans, positions, options.parallel, nullptr);
+    if (win > 0) {
+      kept = std::move(kept_ranked[win].plan);
+      res.stats = kept_ranked[win].stats;
+      res.stats.congestion_rounds = reweight_rounds;
+      res.stats.congestion_best_round = kept_ranked[win].round;
+    }
+  }
+  kept_ranked.clear();
   res.stats.raced = raced;
   if (found) {
     res.stats.planned_vertices = planned_vertices(kept);
@@ -562,19 +616,11 @@ bool greedy_system(const TriMesh& mesh, const std::vector<Vec3d>& positions, con
     // the option does not change the loops chosen; with it on, the winner's copy is the result
     // (not drawn a second time). O(C (n + crossings)).
     if (top.size() > 1 && mesh.num_faces() <= 200000) {
-      long fewest = -1;
-      for (std::size_t j = 0; j < top.size(); ++j) {
-        DetachPlan copy = top[j];
-        CutStats scratch;
-        copy.rs.input_positions = positions;
-        std::vector<std::vector<int>> loops = realize_strands(copy, scratch, options.parallel);
-        TightenedLoops t = tighten_loops(std::move(copy.rs), std::move(loops), copy.root);
-        const long drawn = t.surface.mesh.num_vertices();
-        if (fewest < 0 || drawn < fewest) {
-          fewest = drawn, win = j;
-          if (options.tighten) drawn_win = std::move(t), drawn_stats = scratch;
-        }
-      }
+      std::vector<const DetachPlan*> plans;
+      for (const DetachPlan& p : top) plans.push_back(&p);
+      DrawnPlan drawn;
+      win = fewest_drawn(plans, positions, options.parallel, options.tighten ? &drawn : nullptr);
+      if (options.tighten) drawn_win = std::move(drawn.tightened), drawn_stats = drawn.drawing;
     }
     P = std::move(top[win]);
     res.stats.congestion_rounds = rounds;

@@ -322,7 +322,8 @@ void check_congestion_step(double step) {
     throw Error(ErrorKind::InvalidArgument, "CutOptions::congestion_step must be finite and > 0, got " + std::to_string(step));
 }
 
-int congestion_budget(const CutOptions& options, const TriMesh& mesh, long per_faces, long least, long most) {
+int congestion_budget(const CutOptions& options, const TriMesh& mesh, long per_faces, long least,
+                      long most) {
   if (options.congestion_rounds >= 0) return options.congestion_rounds;
   return static_cast<int>(std::clamp(per_faces / std::max(1, mesh.num_faces()), least, most));
 }
@@ -566,6 +567,25 @@ std::vector<std::vector<int>> realize_strands(DetachPlan& P, CutStats& stats, bo
     }
   }
   return loops;
+}
+
+std::size_t fewest_drawn(const std::vector<const DetachPlan*>& plans, const std::vector<Vec3d>& positions,
+                         bool parallel, DrawnPlan* winner) {
+  long fewest = -1;
+  std::size_t win = 0;
+  for (std::size_t i = 0; i < plans.size(); ++i) {
+    DetachPlan copy = *plans[i];
+    copy.rs.input_positions = positions;
+    DrawnPlan d;
+    std::vector<std::vector<int>> loops = realize_strands(copy, d.drawing, parallel);
+    d.tightened = tighten_loops(std::move(copy.rs), std::move(loops), copy.root);
+    const long drawn = d.tightened.surface.mesh.num_vertices();
+    if (fewest < 0 || drawn < fewest) {
+      fewest = drawn, win = i;
+      if (winner) *winner = std::move(d);
+    }
+  }
+  return win;
 }
 
 }  // namespace igm::topology_internal

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "igm/mesh/surface_point.h"
+#include "igm/topology/tighten_loops.h"
 #include "topology_internal.h"
 
 namespace igm::topology_internal {
@@ -111,5 +112,20 @@ int reweight_for_congestion(DetachPlan& best, int nv0, double raise, int rounds,
 // appended). Returns the loops, one per band in band order, each from the root. Adds to
 // stats.crossings, steiner_vertices and chord_splits. Cost O(n + total crossings).
 std::vector<std::vector<int>> realize_strands(DetachPlan& P, CutStats& stats, bool parallel);
+
+// A plan drawn and tightened on a copy (fewest_drawn): the loops and the drawing's counts.
+struct DrawnPlan {
+  TightenedLoops tightened;
+  CutStats drawing;  // crossings, steiner_vertices, chord_splits of realize_strands
+};
+
+// Draws each of `plans` on a copy whose input positions are `positions` (realize_strands, then
+// tighten_loops; the plans are not changed) and returns the index of the one with the fewest
+// vertices once drawn and tightened, the earliest on ties. The plans do not see what the
+// tightening will remove, so this can beat the fewest planned. With `winner`, the winner's
+// drawing is left there. Pre: plans non-empty, all of one input mesh. O(sum over the plans of
+// n + crossings).
+std::size_t fewest_drawn(const std::vector<const DetachPlan*>& plans, const std::vector<Vec3d>& positions,
+                         bool parallel, DrawnPlan* winner);
 
 }  // namespace igm::topology_internal

@@ -2,6 +2,7 @@
 // planned detaching against its drawing, and the congestion reweighting's choice of plan.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <set>
 #include <vector>
 
@@ -96,4 +97,44 @@ TEST_CASE("a planned detaching predicts the crossings its drawing makes, and the
       CHECK(plan_detach(in.mesh, in.positions, root, genus, hops).crossings == predicted);
     }
   }
+}
+
+TEST_CASE("the drawn choice keeps the plan with the fewest vertices once drawn and tightened, the earliest on ties") {
+  const ValidMesh in = igm_test::generated_mesh(4, 2000, 5);
+  const int genus = 4;
+  // Plans at a few roots, both metrics: their counts once drawn and tightened, found here directly.
+  std::vector<DetachPlan> plans;
+  for (int root : {0, 311, 622, 933})
+    for (bool hops : {false, true}) plans.push_back(plan_detach(in.mesh, in.positions, root, genus, hops));
+  std::vector<long> drawn;
+  for (const DetachPlan& p : plans) {
+    DetachPlan copy = p;
+    copy.rs.input_positions = in.positions;
+    CutStats stats;
+    std::vector<std::vector<int>> loops = realize_strands(copy, stats, false);
+    drawn.push_back(tighten_loops(std::move(copy.rs), std::move(loops), copy.root).surface.mesh.num_vertices());
+  }
+  const long fewest = *std::min_element(drawn.begin(), drawn.end());
+  const auto first_fewest = static_cast<std::size_t>(std::min_element(drawn.begin(), drawn.end()) - drawn.begin());
+  // The counts differ between plans and the fewest is not the first plan's, or the test would
+  // not tell a choice from taking the first.
+  CHECK(*std::max_element(drawn.begin(), drawn.end()) > fewest);
+  CHECK(drawn[0] > fewest);
+  std::vector<const DetachPlan*> ptrs;
+  for (const DetachPlan& p : plans) ptrs.push_back(&p);
+  std::vector<long long> crossings_before;
+  for (const DetachPlan& p : plans) crossings_before.push_back(p.crossings);
+  DrawnPlan winner;
+  const std::size_t win = fewest_drawn(ptrs, in.positions, false, &winner);
+  CHECK(win == first_fewest);
+  CHECK(winner.tightened.surface.mesh.num_vertices() == fewest);
+  CHECK(winner.drawing.crossings == plans[win].crossings);
+  CHECK(winner.tightened.loops.size() == 2u * genus);
+  CHECK(winner.tightened.loops[0][0] == plans[win].root);
+  // The plans are drawn on copies: unchanged, and drawing them again gives the same choice.
+  for (std::size_t i = 0; i < plans.size(); ++i) CHECK(plans[i].crossings == crossings_before[i]);
+  CHECK(fewest_drawn(ptrs, in.positions, true, nullptr) == win);
+  // Ties go to the earlier: the winner placed after a copy of itself loses to the copy.
+  std::vector<const DetachPlan*> tied = {ptrs[(win + 1) % ptrs.size()], ptrs[win], ptrs[win]};
+  CHECK(fewest_drawn(tied, in.positions, false, nullptr) == (drawn[(win + 1) % ptrs.size()] == fewest ? 0u : 1u));
 }

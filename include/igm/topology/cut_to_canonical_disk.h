@@ -83,9 +83,10 @@ struct CutOptions {
   /// 3a; not the crosses) is recomputed up to this many times with the metric raised at the
   /// vertices that several strands pass, the basis stopping once max(10, r) rounds have passed
   /// since its last new best, found at round r (step 1c; the plan with the fewest planned
-  /// vertices wins, so it never plans more than the first). -1 picks clamp(2e6 / F, 1, 500)
-  /// (with the normal form clamp(2e5 / F, 0, 40): none past 2e5 faces), 0 turns it off, < -1
-  /// is InvalidArgument.
+  /// vertices wins, so it never plans more than the first; with the normal form, on at most 2e5
+  /// faces, the 8 plans with the fewest are drawn and the fewest vertices once drawn and
+  /// tightened win). -1 picks clamp(2e6 / F, 1, 500) (with the normal form clamp(1e6 / F, 0,
+  /// 250), all of them run, none past 2e5 faces), 0 turns it off, < -1 is InvalidArgument.
   int congestion_rounds = -1;
   /// Without the normal form and with root = -1: how many of the best ranked root candidates
   /// (by their first plan) are reweighted; the fewest vertices once drawn and tightened win (even
