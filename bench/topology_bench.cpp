@@ -1,16 +1,19 @@
 // Topology stage measurements: time and mesh growth of cut_to_canonical_disk.
 // Usage: igm_bench_topology [shared_dir] [--normal-form-all] [--crosses|--rounds] [--serial]
-//                           [--no-tighten] [--congestion-rounds N] [--nf-roots N]
+//                           [--no-tighten] [--no-slides] [--congestion-rounds N] [--nf-roots N]
 //                           [--no-locality-order] [--only NAME|g3|g20|g40]
 // Growth is broken down by source: crossings, Steiner, band, chord and pre-condition splits, and
 // the normal form's rounds (marked "(crosses)" where the crosses construction won, "raced" where a
-// lone root candidate ran both constructions side by side) and chord splits. The normal form is
+// lone root candidate ran both constructions side by side) and chord splits, and "slides k/t" (step
+// 3c: the k handle slides of the kept normal form, 0 if the rounds or crosses were kept, of t
+// drawn to choose them; "failed" where a step could draw none). The normal form is
 // measured on every mesh; --normal-form-all is accepted and changes nothing (it added the 1M-face
 // g20's, ~10 s before stop 27, 4.6-5 s since); --only runs one mesh, with and without it;
 // --nf-roots N sets CutOptions::normal_form_roots (default: automatic; cheese gets 1, --nf-roots 11
 // is what it had before stop 23); --crosses / --rounds use that construction alone; --serial
 // evaluates the root candidates on one thread (CutOptions::parallel = false; same results);
 // --no-tighten skips the loop tightening (CutOptions::tighten = false), for comparison;
+// --no-slides turns step 3c off (CutOptions::slides = 0);
 // --congestion-rounds N sets CutOptions::congestion_rounds (0: off; default: automatic);
 // --no-locality-order runs the steps in the input's own vertex order on every mesh
 // (CutOptions::locality_order_min_vertices = -1; by default meshes of >= 32,768 vertices, here the
@@ -74,6 +77,7 @@ bool parallel = true;                                                      // --
 bool tighten = true;                                                       // --no-tighten
 int locality_min = CutOptions{}.locality_order_min_vertices;  // --no-locality-order: -1
 int congestion_rounds = -1;                                                // --congestion-rounds N
+int slides = -1;                                                           // --no-slides: 0
 int nf_roots = -1;                                                         // --nf-roots N
 
 void run(const std::string& name, const Input& in, bool normal_form) {
@@ -83,16 +87,19 @@ void run(const std::string& name, const Input& in, bool normal_form) {
   o.parallel = parallel;
   o.tighten = tighten;
   o.congestion_rounds = congestion_rounds;
+  o.slides = slides;
   o.normal_form_roots = nf_roots;
   o.locality_order_min_vertices = locality_min;
   try {
     CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
     const auto& s = r.stats;
     std::printf("%-24s g=%-4d F=%-8d nf=%d  V %8d -> %8d (+%6.1f%%) | crossings %6d steiner %5d band %4d chord %5d"
-                " collapsed %5d precond %6d | rounds %3d%s chords %6d - %6d | roots %2d congestion %2d/%-2d | %7.3f s (basis %.3f, detach %.3f, cut %.3f)%s\n",
+                " collapsed %5d precond %6d | rounds %3d%s chords %6d - %6d | slides %2d/%-4lld%s | roots %2d"
+                " congestion %2d/%-2d | %7.3f s (basis %.3f, detach %.3f, cut %.3f)%s\n",
                 name.c_str(), s.genus, s.faces_before, normal_form ? 1 : 0, s.vertices_before, s.vertices_after,
                 100.0 * (s.vertices_after - s.vertices_before) / s.vertices_before, s.crossings, s.steiner_vertices,
                 s.band_splits, s.chord_splits, s.collapsed, s.precondition_splits, s.normal_form_rounds, s.crosses ? (s.raced ? " (crosses, raced)" : " (crosses)") : s.raced ? " (raced)" : "", s.round_chord_splits, s.straightened,
+                s.slides, s.slide_trials, s.slides_failed ? " failed" : "",
                 s.roots_tried,
                 s.congestion_best_round, s.congestion_rounds, s.seconds_total,
                 s.seconds_basis, s.seconds_detach, s.seconds_cut, s.locality_ordered ? " renumbered" : "");
@@ -123,6 +130,7 @@ int main(int argc, char** argv) {
     else if (std::strcmp(argv[i], "--only") == 0 && i + 1 < argc) only = argv[++i];
     else if (std::strcmp(argv[i], "--serial") == 0) parallel = false;
     else if (std::strcmp(argv[i], "--no-tighten") == 0) tighten = false;
+    else if (std::strcmp(argv[i], "--no-slides") == 0) slides = 0;
     else if (std::strcmp(argv[i], "--no-locality-order") == 0) locality_min = -1;
     else if (std::strcmp(argv[i], "--congestion-rounds") == 0 && i + 1 < argc) congestion_rounds = std::atoi(argv[++i]);
     else if (std::strcmp(argv[i], "--nf-roots") == 0 && i + 1 < argc) nf_roots = std::atoi(argv[++i]);

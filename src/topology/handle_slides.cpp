@@ -59,13 +59,11 @@ bool is_canonical_word(const Word& w) {
   return true;
 }
 
-namespace {
 bool block_at(const Word& w, int p) {
   const int n = static_cast<int>(w.size());
   Letter a = w[mod(p, n)], b = w[mod(p + 1, n)];
   return a.loop != b.loop && w[mod(p + 2, n)] == inv(a) && w[mod(p + 3, n)] == inv(b);
 }
-}  // namespace
 
 int commutator_rotation(const Word& w) {
   const int n = static_cast<int>(w.size());

@@ -205,4 +205,58 @@ bool canonical_rounds(CutResult& res, const std::vector<Vec3d>& unit, bool hops,
 bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops, long vertex_limit, DetachPlan& plan,
                        const std::atomic<long>* rival);
 
+// Step 3c (slides): the normal form reached from detached loops by handle slides (Fulton,
+// Algebraic Topology, ch. 17b; handle_slides.h), each slide drawn on the surface. A slide {i, j, x}
+// replaces loop x by a new loop c from polygon corner i to corner j: with x removed, the surface
+// cut along the other loops is an annulus whose two boundaries hold corners i and j, and any
+// simple arc across it from corner i to corner j cuts it into a disk with the word apply_slide
+// gives (the word depends only on the corners), so c is the shortest such arc: a path from the
+// root's wedge of corner i to its wedge of corner j over the vertices on no other loop (x's are
+// free again), none of them beside the root but its two ends, by hop count, crossing chords (edges
+// off the loops joining two loop vertices) at their midpoints on a copy where needed (a midpoint
+// costs kMidpointCost), after which only the chords it crosses are split on the surface
+// (split_like_copy). The loops are then tightened (tighten_loops), which also removes x's old
+// constructed vertices.
+
+// The loops, their surface and the word read from the root (one cycle, trace_word's convention).
+struct SlideState {
+  RefinedSurface rs;
+  std::vector<std::vector<int>> loops;  // each from the root, pairwise disjoint but at the root
+  Word word;
+  int splits = 0;     // chords split by the slides drawn (split_like_copy)
+  int collapsed = 0;  // constructed vertices their tightening removed
+  long loop_vertices() const {
+    long n = 0;
+    for (const auto& l : loops) n += static_cast<long>(l.size());
+    return n;
+  }
+};
+
+// The word of `loops` read at the root of M from the end at position 0 of the root's ccw rotation
+// (from its stored half-edge); Internal if the loops' ends do not make one boundary cycle.
+// O(valence + g log g).
+Word root_word(const TriMesh& M, int root, const std::vector<std::vector<int>>& loops);
+
+// Draws slide s on st (st.word: the current word, as root_word reads it up to rotation): the new
+// loop takes s.loop's id, st.word becomes apply_slide(st.word, s), the loops are tightened, and
+// st.splits and st.collapsed count what that added and removed. False (st unchanged) if no path
+// joins the two wedges (a wedge whose free vertices are all walled in, even on the copy).
+// Internal if the drawn loops do not read st.word up to rotation before or after the slide.
+// O(n + chords + tightening).
+bool draw_slide(SlideState& st, int root, const Slide& s);
+
+// The handles formed greedily, one per step: while some loops are not in commutator blocks, each
+// linked pair X .. Y .. X^-1 .. Y^-1 of them is a candidate from each of its letters (the two-slide
+// formation of plan_handle_slides: first {X, the corner after X^-1, Y}, then from the corner before
+// the new Y^-1 to the one before the new Y, replacing X). Every candidate's first slide is drawn on
+// a copy of st; the 6 best (ranked by vertices + loop vertices / 4, then vertices, loop vertices,
+// candidate order: long loops are walls that make later slides long) get their second, and the best
+// of those so ranked is kept. Candidates are drawn in two halves on two threads if `parallel`,
+// merged in candidate order (the same choice either way). At most g steps (each adds a block and
+// keeps the others: Internal otherwise), each of at most (4g)^2 + 6 drawn slides. True: st's word
+// is in commutator blocks, *slides = the slides kept, *trials = the slides drawn. False (st
+// unchanged): at some step no candidate could be drawn (generated genus 10 on 2k faces, seed 2).
+// Pre: st as stated, tightened.
+bool canonical_slides(SlideState& st, int root, bool parallel, int* slides, long long* trials);
+
 }  // namespace igm::topology_internal

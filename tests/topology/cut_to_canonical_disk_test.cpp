@@ -389,11 +389,13 @@ TEST_CASE("generated meshes of genus 1 to 200 are cut into verified disks") {
     }
     const CutStats& s = r.stats;  // every added vertex counted once by its source
     CHECK(s.vertices_after == s.vertices_before + s.crossings + s.steiner_vertices + s.band_splits + s.chord_splits +
-                                  s.round_chord_splits - s.straightened + s.precondition_splits - s.collapsed);
+                                  s.round_chord_splits - s.straightened + s.slide_splits + s.precondition_splits -
+                                  s.collapsed);
     MESSAGE("genus " << c.genus << ": V " << r.stats.vertices_before << " -> " << r.stats.vertices_after
                      << " crossings " << r.stats.crossings << " splits " << r.stats.precondition_splits << " rounds "
                      << r.stats.normal_form_rounds << " chord splits " << r.stats.round_chord_splits
                      << " straightened " << r.stats.straightened << std::string(r.stats.crosses ? " (crosses)" : "")
+                     << " slides " << r.stats.slides
                      << " in " << r.stats.seconds_total << " s");
   }
 }
@@ -531,6 +533,7 @@ TEST_CASE("the normal form's root candidates give the same cut on two threads as
     CAPTURE(g);
     Input in = generated(g, faces, seed);
     CutOptions o;
+    o.slides = 0;  // the candidates of the rounds and crosses (step 3c: its own test)
     o.parallel = false;
     const CutResult one = cut_to_canonical_disk(in.mesh, in.positions, o);
     o.parallel = true;
@@ -568,6 +571,7 @@ TEST_CASE("a lone root candidate runs its rounds and its crosses side by side: t
     for (bool given_root : {false, true}) {
       CAPTURE(given_root);
       CutOptions o;
+      o.slides = 0;  // the race of the rounds and crosses alone
       if (given_root) o.root = in.mesh.num_vertices() / 3;
       else o.normal_form_roots = 1;
       o.parallel = false;
@@ -598,6 +602,7 @@ TEST_CASE("a raced lone candidate keeps the construction that plans fewer vertic
     Input in = generated(4, 2000, seed);
     REQUIRE(in.mesh.num_faces() < 2000 * 4);  // the race's range
     CutOptions o;
+    o.slides = 0;  // the race of the rounds and crosses alone
     o.root = in.mesh.num_vertices() / 3;
     o.congestion_rounds = congestion_rounds;
     o.construction = CutOptions::Construction::Rounds;  // reweighted where congestion_rounds != 0
@@ -635,6 +640,7 @@ TEST_CASE("from genus 30 on the crosses run alone, and below it a fine mesh's lo
     const CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
     CHECK_FALSE(r.stats.raced);
     CHECK(r.stats.crosses == crosses);
+    CHECK(r.stats.slide_trials == 0);  // F g^2 > 2e6: no step 3c
     CHECK(r.loops.size() == 2u * g);
     CHECK(r.sides.size() == 4u * g);
     CHECK(in_normal_form(r));
@@ -674,7 +680,9 @@ TEST_CASE("a round whose gaps are walled off by chords finds its loops on a copy
   // Generated genus 10 on 3000 faces: some rounds find no linked pair until chords are split (the
   // search on the copy); the paths found there must exist on the surface after the partial splits.
   Input in = generated(10, 3000, 7);
-  CutResult r = cut_to_canonical_disk(in.mesh, in.positions);
+  CutOptions o;
+  o.slides = 0;  // the rounds' result (step 3c would keep fewer vertices here)
+  CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
   CHECK(r.stats.round_chord_splits > 0);
   CHECK(r.stats.normal_form_rounds <= 10);
   CHECK(verify_cut(in, r) == "");
@@ -684,6 +692,7 @@ TEST_CASE("the normal form takes at most g rounds, and without it the cut is sti
   for (int g : {2, 3, 6}) {
     Input in = generated(g, 600 * g, 20 + g);
     CutOptions o;
+    o.slides = 0;  // the rounds' result
     CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
     CHECK(verify_cut(in, r) == "");
     CHECK(r.stats.normal_form_rounds >= 1);
@@ -897,6 +906,7 @@ TEST_CASE("the tightening keeps the root, the loops' order and the word, and rem
       CAPTURE(nf);
       CutOptions o;
       o.normal_form = nf;
+      o.slides = 0;  // step 3c needs the tightening: the same construction both ways
       o.tighten = false;
       const CutResult loose = cut_to_canonical_disk(in.mesh, in.positions, o);
       o.tighten = true;
@@ -913,7 +923,8 @@ TEST_CASE("the tightening keeps the root, the loops' order and the word, and rem
       for (const CutResult* r : {&loose, &tight}) {
         const CutStats& s = r->stats;
         CHECK(s.vertices_after == s.vertices_before + s.crossings + s.steiner_vertices + s.band_splits + s.chord_splits +
-                                      s.round_chord_splits - s.straightened + s.precondition_splits - s.collapsed);
+                                      s.round_chord_splits - s.straightened + s.slide_splits + s.precondition_splits -
+                                      s.collapsed);
       }
       if (name == "couplingdown") CHECK(tight.stats.vertices_after < loose.stats.vertices_after);
       removed += loose.stats.vertices_after - tight.stats.vertices_after;
@@ -932,6 +943,65 @@ TEST_CASE("a normal form beyond the growth bound is a typed error, not a blow-up
   CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
   CHECK(r.stats.vertices_after <= 5.0 * r.stats.vertices_before);
   CHECK(verify_cut(in, r) == "");
+}
+
+TEST_CASE("step 3c: the greedy loops brought into blocks by slides are the cut where they keep fewer vertices") {
+  // Generated genus 4 on 4000 faces: the rounds end with 2132 vertices once tightened, the slides
+  // of the greedy loops with 2087 (bench/README.md, step 3c). The cut is verified like any other;
+  // the same on one thread; without step 3c the rounds' cut comes back and no slide is drawn.
+  Input in = generated(4, 4000, 1);
+  CutOptions o;
+  const CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
+  CHECK(verify_cut(in, r) == "");
+  CHECK(r.stats.slides > 0);
+  CHECK(r.stats.slides <= 2 * 4);
+  CHECK(r.stats.slide_trials > r.stats.slides);
+  CHECK_FALSE(r.stats.slides_failed);
+  CHECK(r.stats.normal_form_rounds == 0);  // the counts are those of the greedy loops and the slides
+  o.parallel = false;
+  check_same_cut(cut_to_canonical_disk(in.mesh, in.positions, o), r);
+  o.slides = 0;
+  const CutResult rounds = cut_to_canonical_disk(in.mesh, in.positions, o);
+  CHECK(verify_cut(in, rounds) == "");
+  CHECK(rounds.stats.slides == 0);
+  CHECK(rounds.stats.slide_trials == 0);
+  CHECK(r.stats.vertices_after < rounds.stats.vertices_after);
+  MESSAGE("genus 4: slides " << r.stats.vertices_after << " vertices, rounds " << rounds.stats.vertices_after);
+  // Off the budget (F g^2 > 2e6) step 3c does not run; slides = 1 runs it anyway.
+  Input coarse = generated(2, 600, 2);
+  o.slides = 1;
+  o.parallel = true;
+  const CutResult forced = cut_to_canonical_disk(coarse.mesh, coarse.positions, o);
+  CHECK(forced.stats.slide_trials > 0);
+  CHECK(verify_cut(coarse, forced) == "");
+  for (int bad : {-2, 2}) {
+    CAPTURE(bad);
+    o.slides = bad;
+    try {
+      cut_to_canonical_disk(coarse.mesh, coarse.positions, o);
+      FAIL("accepted");
+    } catch (const Error& e) {
+      CHECK(e.kind() == ErrorKind::InvalidArgument);
+      CHECK(std::string(e.what()).find("slides") != std::string::npos);
+    }
+  }
+}
+
+TEST_CASE("step 3c: where a step can draw none of its candidates, the rounds' cut stays, and it says so") {
+  // Generated genus 10 on 2000 faces (seed 2): at some step every candidate's first slide starts
+  // from a wedge whose free vertices are walled in, even on the copy with every chord split.
+  Input in = generated(10, 2000, 2);
+  CutOptions o;
+  const CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
+  CHECK(r.stats.slides_failed);
+  CHECK(r.stats.slides == 0);
+  CHECK(r.stats.slide_trials > 0);
+  CHECK(verify_cut(in, r) == "");
+  o.slides = 0;
+  const CutResult rounds = cut_to_canonical_disk(in.mesh, in.positions, o);
+  CHECK(rounds.root == r.root);
+  CHECK(rounds.loops == r.loops);
+  CHECK(rounds.surface.mesh.num_vertices() == r.surface.mesh.num_vertices());
 }
 
 TEST_CASE("invalid use gets typed errors") {

@@ -38,6 +38,10 @@ Word apply_slide(const Word& w, const Slide& s);
 /// True if w = L0 L1 L0^-1 L1^-1 L2 L3 L2^-1 L3^-1 ... exactly (ids and orientations as written).
 bool is_canonical_word(const Word& w);
 
+/// True if letters p, p+1, p+2, p+3 of w (cyclically, p any integer) read x y x^-1 y^-1 for two
+/// different loops x, y (any orientations). Pre: w non-empty. O(1).
+bool block_at(const Word& w, int p);
+
 /// A rotation r such that w[r], w[r+1], ... consists of g consecutive commutator blocks
 /// p q p^-1 q^-1 (any ids and orientations), or -1.
 int commutator_rotation(const Word& w);
