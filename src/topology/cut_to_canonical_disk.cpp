@@ -653,15 +653,18 @@ bool greedy_system(const TriMesh& mesh, const std::vector<Vec3d>& positions, con
 }
 
 // Whether step 3c runs (CutOptions::slides): with the normal form, Best and the tightening on;
-// for -1 where F g^2 <= kSlidesBudget. A step draws about 4 slides per linked pair (about 6 g^2 in
-// all), each on a copy of the surface: about 1 microsecond x F g^2 on the bench machine (generated
-// genus 10 on 100k faces: 5.3 s more than the rounds alone, for 1.1 % growth instead of 8.6 %).
-constexpr double kSlidesBudget = 1e7;
+// for -1 where F g^2 <= kSlidesBudget and F g^3 <= kSlidesBudgetCubed. About 5 g^2 slides are
+// drawn (4 per linked pair per step), each on a copy of the surface: O(F) each, about 1
+// microsecond x F g^2 in all on the bench machine (generated genus 10 on 100k faces: 7.5 s
+// instead of 2.2 s, for 1.1 % growth instead of 8.6 %); with many loops a drawing's word checks
+// and tightening grow with g as well (genus 20 on 5k faces: 1,758 slides in 6.9 s).
+constexpr double kSlidesBudget = 1e7, kSlidesBudgetCubed = 1.6e8;
 bool use_slides(const TriMesh& mesh, const CutOptions& options, int genus) {
   if (!options.normal_form || options.construction != CutOptions::Construction::Best || !options.tighten ||
       options.slides == 0)
     return false;
-  return options.slides == 1 || static_cast<double>(mesh.num_faces()) * genus * genus <= kSlidesBudget;
+  const double f = mesh.num_faces();
+  return options.slides == 1 || (f * genus * genus <= kSlidesBudget && f * genus * genus * genus <= kSlidesBudgetCubed);
 }
 
 // Step 3c: the greedy system of steps 1-2b (same options), tightened, brought into blocks by

@@ -107,8 +107,8 @@ struct CutOptions {
   /// whichever of the two systems has fewer vertices once tightened (the rounds' or crosses' on
   /// ties). It costs about 1 microsecond x F g^2 more (about 6 g^2 slides drawn on copies) and
   /// often adds far fewer vertices (generated genus 10 on 100k faces: 1.1 % instead of 8.6 %, in
-  /// 7.5 s instead of 2.2 s). -1: where F g^2 <= 1e7, 0: never, 1: always; other values are
-  /// InvalidArgument.
+  /// 7.5 s instead of 2.2 s). -1: where F g^2 <= 1e7 and F g^3 <= 1.6e8, 0: never, 1: always;
+  /// other values are InvalidArgument.
   int slides = -1;
   /// From this many vertices on, the steps run on a copy of the mesh renumbered for memory
   /// locality (step 0) and the result is given back in the caller's vertex ids; 0: always, -1:
