@@ -676,7 +676,6 @@ struct Slid {
   int slides = 0;
   long long trials = 0;
   bool ok = false;
-  double seconds = 0;
 };
 Slid slides_system(const TriMesh& mesh, const std::vector<Vec3d>& positions, const std::vector<Vec3d>& unit,
                    const CutOptions& options, int genus) {
@@ -695,7 +694,6 @@ Slid slides_system(const TriMesh& mesh, const std::vector<Vec3d>& positions, con
   out.root = g.root;
   out.stats = g.stats;
   out.ok = canonical_slides(out.state, g.root, options.parallel, &out.slides, &out.trials);
-  out.seconds = seconds_since(t_slides);
   return out;
 }
 

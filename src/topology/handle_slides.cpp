@@ -76,6 +76,38 @@ int commutator_rotation(const Word& w) {
   return -1;
 }
 
+void mark_blocks(const Word& w, std::vector<char>& done) {
+  const int n = static_cast<int>(w.size());
+  for (int p = 0; p < n; ++p)
+    if (!done[w[p].loop] && !done[w[mod(p + 1, n)].loop] && block_at(w, p))
+      done[w[p].loop] = done[w[mod(p + 1, n)].loop] = 1;
+}
+
+std::vector<Formation> formations(const Word& w, const std::vector<char>& done) {
+  const int n = static_cast<int>(w.size());
+  std::vector<int> pos_f(n / 2), pos_b(n / 2);
+  for (int p = 0; p < n; ++p) (w[p].inverse ? pos_b : pos_f)[w[p].loop] = p;
+  auto partner = [&](int p) { return w[p].inverse ? pos_f[w[p].loop] : pos_b[w[p].loop]; };
+  std::vector<Formation> out;
+  for (int p = 0; p < n; ++p) {
+    if (done[w[p].loop]) continue;
+    const int q = partner(p), span = mod(q - p, n);
+    for (int k = 1; k < span; ++k) {
+      const int y = mod(p + k, n);
+      if (!done[w[y].loop] && mod(partner(y) - p, n) > span)
+        out.push_back({Slide{p, mod(q + 1, n), w[y].loop}, w[p].loop});
+    }
+  }
+  return out;
+}
+
+Slide second_slide(const Word& w1, const Formation& f) {
+  int c_inv = -1, c_fwd = -1;
+  for (int p = 0; p < static_cast<int>(w1.size()); ++p)
+    if (w1[p].loop == f.first.loop) (w1[p].inverse ? c_inv : c_fwd) = p;
+  return Slide{c_inv, c_fwd, f.x};
+}
+
 std::vector<Slide> plan_handle_slides(const Word& w0, Word* final_word) {
   if (!is_valid_word(w0)) throw Error(ErrorKind::InvalidArgument, "not a valid gluing word: " + to_string(w0));
   Word w = w0;
@@ -84,40 +116,18 @@ std::vector<Slide> plan_handle_slides(const Word& w0, Word* final_word) {
   std::vector<char> done(n / 2, 0);
   // Each iteration turns at least one handle into a block: at most g iterations.
   for (int iter = 0; iter <= n / 4; ++iter) {
-    // Mark existing blocks of unfinished loops.
-    for (int p = 0; p < n; ++p)
-      if (!done[w[p].loop] && !done[w[mod(p + 1, n)].loop] && block_at(w, p))
-        done[w[p].loop] = done[w[mod(p + 1, n)].loop] = 1;
+    mark_blocks(w, done);  // existing blocks of unfinished loops
     int remaining = 0;
     for (char d : done) remaining += d ? 0 : 1;
     if (remaining == 0) break;
     if (iter == n / 4) throw Error(ErrorKind::Internal, "handle slides did not converge: " + to_string(w));
-    std::vector<int> pos_f(n / 2), pos_b(n / 2);
-    for (int p = 0; p < n; ++p) (w[p].inverse ? pos_b : pos_f)[w[p].loop] = p;
-    auto partner = [&](int p) { return w[p].inverse ? pos_f[w[p].loop] : pos_b[w[p].loop]; };
-    int p1 = -1, p2 = -1, p3 = -1;
-    for (int p = 0; p < n && p1 < 0; ++p) {
-      if (done[w[p].loop]) continue;
-      const int q = partner(p);
-      const int span = mod(q - p, n);
-      for (int k = 1; k < span; ++k) {
-        const int y = mod(p + k, n);
-        if (done[w[y].loop]) continue;
-        if (mod(partner(y) - p, n) > span) {
-          p1 = p, p2 = y, p3 = q;
-          break;
-        }
-      }
-    }
-    if (p1 < 0) throw Error(ErrorKind::Internal, "no linked pair in word " + to_string(w));
-    const int x = w[p1].loop, y = w[p2].loop;
-    Slide s1{p1, mod(p3 + 1, n), y};
-    w = apply_slide(w, s1);
-    slides.push_back(s1);
-    int c_inv = -1, c_fwd = -1;
-    for (int p = 0; p < n; ++p)
-      if (w[p].loop == y) (w[p].inverse ? c_inv : c_fwd) = p;
-    Slide s2{c_inv, c_fwd, x};
+    const std::vector<Formation> all = formations(w, done);
+    if (all.empty()) throw Error(ErrorKind::Internal, "no linked pair in word " + to_string(w));
+    const Formation& f = all.front();
+    const int x = f.x, y = f.first.loop;
+    w = apply_slide(w, f.first);
+    slides.push_back(f.first);
+    const Slide s2 = second_slide(w, f);
     w = apply_slide(w, s2);
     slides.push_back(s2);
     bool formed = false;

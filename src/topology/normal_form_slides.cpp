@@ -1,7 +1,6 @@
 // Step 3c of the topology stage: the normal form by handle slides drawn on the surface
 // (normal_form.h).
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -64,14 +63,10 @@ int start_reading(const RootRotation& R, const Word& w, std::vector<int>& depart
   return -1;
 }
 
-// Per loop: whether it is in a commutator block of w (blocks marked from position 0 on, as
-// plan_handle_slides does). O(|w|).
+// Per loop: whether it is in a commutator block of w (mark_blocks from nothing marked). O(|w|).
 std::vector<char> loops_in_blocks(const Word& w) {
-  const int n = static_cast<int>(w.size());
-  std::vector<char> done(n / 2, 0);
-  for (int p = 0; p < n; ++p)
-    if (!done[w[p].loop] && !done[w[wrap(p + 1, n)].loop] && block_at(w, p))
-      done[w[p].loop] = done[w[wrap(p + 1, n)].loop] = 1;
+  std::vector<char> done(w.size() / 2, 0);
+  mark_blocks(w, done);
   return done;
 }
 
@@ -201,20 +196,8 @@ bool canonical_slides(SlideState& st, int root, bool parallel, int* slides, long
     const long in_blocks = std::count(done.begin(), done.end(), 1);
     if (in_blocks == n / 2) break;
     if (step == n / 4) internal("slides: no normal form after g steps: " + to_string(w));
-    // The candidates: (p1, p2, p3) with letters p1, p3 the two of a loop X not in a block, p2
-    // strictly between them a letter of a loop Y not in a block whose other letter lies outside.
-    std::vector<int> pos_f(n / 2), pos_b(n / 2);
-    for (int p = 0; p < n; ++p) (w[p].inverse ? pos_b : pos_f)[w[p].loop] = p;
-    auto partner = [&](int p) { return w[p].inverse ? pos_f[w[p].loop] : pos_b[w[p].loop]; };
-    std::vector<std::array<int, 3>> cands;
-    for (int p = 0; p < n; ++p) {
-      if (done[w[p].loop]) continue;
-      const int q = partner(p), span = wrap(q - p, n);
-      for (int k = 1; k < span; ++k) {
-        const int y = wrap(p + k, n);
-        if (!done[w[y].loop] && wrap(partner(y) - p, n) > span) cands.push_back({p, y, q});
-      }
-    }
+    // The candidates: every two-slide formation among the loops not in a block.
+    const std::vector<Formation> cands = formations(w, done);
     if (cands.empty()) internal("slides: no linked pair in " + to_string(w));
     // Each candidate's first slide drawn on a copy; the kSlideFinalists best (`better`) also get
     // their second, and the best of those wins. Two halves on two threads, merged in candidate
@@ -243,11 +226,10 @@ bool canonical_slides(SlideState& st, int root, bool parallel, int* slides, long
     };
     auto first_slides = [&](std::size_t from, std::vector<Drawn>& top) {
       for (std::size_t c = from; c < cands.size(); c += 2) {
-        const auto [p1, p2, p3] = cands[c];
         Drawn d;
         d.index = c;
         d.state = cur;
-        if (!draw_slide(d.state, root, Slide{p1, wrap(p3 + 1, n), w[p2].loop})) continue;
+        if (!draw_slide(d.state, root, cands[c].first)) continue;
         d.vertices = d.state.rs.mesh.num_vertices(), d.loop_vertices = d.state.loop_vertices(), d.ok = true;
         keep(top, std::move(d));
       }
@@ -260,12 +242,7 @@ bool canonical_slides(SlideState& st, int root, bool parallel, int* slides, long
     for (Drawn& d : top_even) finalists.push_back(&d);
     auto slide_two = [&](std::size_t k) {
       Drawn& d = *finalists[k];
-      const auto [p1, p2, p3] = cands[d.index];
-      const int xl = w[p1].loop, yl = w[p2].loop;
-      int c_inv = -1, c_fwd = -1;
-      for (int p = 0; p < n; ++p)
-        if (d.state.word[p].loop == yl) (d.state.word[p].inverse ? c_inv : c_fwd) = p;
-      d.ok = draw_slide(d.state, root, Slide{c_inv, c_fwd, xl});
+      d.ok = draw_slide(d.state, root, second_slide(d.state.word, cands[d.index]));
       if (!d.ok) return;
       const std::vector<char> now = loops_in_blocks(d.state.word);
       if (std::count(now.begin(), now.end(), 1) <= in_blocks)  // its corners lie between blocks

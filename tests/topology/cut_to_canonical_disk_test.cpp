@@ -309,6 +309,18 @@ void check_unsupported(const Input& in, const CutOptions& o, const std::string& 
   }
 }
 
+// The cut with options o must fail with InvalidArgument naming `option`.
+void check_invalid(const Input& in, const CutOptions& o, const std::string& option) {
+  CAPTURE(option);
+  try {
+    cut_to_canonical_disk(in.mesh, in.positions, o);
+    FAIL("accepted");
+  } catch (const Error& e) {
+    CHECK(e.kind() == ErrorKind::InvalidArgument);
+    CHECK(std::string(e.what()).find(option) != std::string::npos);
+  }
+}
+
 // A cut made on one thread and on two agree in everything a caller sees.
 void check_same_cut(const CutResult& one, const CutResult& two) {
   CHECK(one.stats.roots_tried == two.stats.roots_tried);
@@ -670,13 +682,7 @@ TEST_CASE("the normal form tries normal_form_roots roots, each with both metrics
   for (int bad : {0, -2}) {
     CAPTURE(bad);
     o.normal_form_roots = bad;
-    try {
-      cut_to_canonical_disk(in.mesh, in.positions, o);
-      FAIL("accepted");
-    } catch (const Error& e) {
-      CHECK(e.kind() == ErrorKind::InvalidArgument);
-      CHECK(std::string(e.what()).find("normal_form_roots") != std::string::npos);
-    }
+    check_invalid(in, o, "normal_form_roots");
   }
 }
 
@@ -872,31 +878,21 @@ TEST_CASE("the congestion reweighting of several root candidates gives the same 
 TEST_CASE("the congestion reweighting's options are checked") {
   Input in = generated(2, 500, 1);
   // A typed InvalidArgument naming the option.
-  auto rejected = [&](const CutOptions& o, const std::string& option) {
-    CAPTURE(option);
-    try {
-      cut_to_canonical_disk(in.mesh, in.positions, o);
-      FAIL("accepted");
-    } catch (const Error& e) {
-      CHECK(e.kind() == ErrorKind::InvalidArgument);
-      CHECK(std::string(e.what()).find(option) != std::string::npos);
-    }
-  };
   CutOptions o;
   o.normal_form = false;
   for (double bad : {0.0, -1.0, std::nan(""), double(INFINITY)}) {
     o.congestion_step = bad;
-    rejected(o, "congestion_step");
+    check_invalid(in, o, "congestion_step");
   }
   o.congestion_rounds = 0;  // off: the step is not used
   CHECK(verify_cut(in, cut_to_canonical_disk(in.mesh, in.positions, o), false) == "");
   o.congestion_step = 0.05;
   o.congestion_rounds = -1;
   o.congestion_candidates = 0;
-  rejected(o, "congestion_candidates");
+  check_invalid(in, o, "congestion_candidates");
   o.congestion_candidates = 4;
   o.congestion_rounds = -2;
-  rejected(o, "congestion_rounds");
+  check_invalid(in, o, "congestion_rounds");
 }
 
 TEST_CASE("the tightening keeps the root, the loops' order and the word, and removes vertices") {
@@ -983,13 +979,7 @@ TEST_CASE("step 3c: the greedy loops brought into blocks by slides are the cut w
   for (int bad : {-2, 2}) {
     CAPTURE(bad);
     o.slides = bad;
-    try {
-      cut_to_canonical_disk(coarse.mesh, coarse.positions, o);
-      FAIL("accepted");
-    } catch (const Error& e) {
-      CHECK(e.kind() == ErrorKind::InvalidArgument);
-      CHECK(std::string(e.what()).find("slides") != std::string::npos);
-    }
+    check_invalid(coarse, o, "slides");
   }
 }
 

@@ -12,6 +12,7 @@
 
 #include "../../src/topology/normal_form.h"
 #include "generated_mesh.h"
+#include "loop_check.h"
 #include "igm/mesh/validate.h"
 #include "igm/topology/cut_to_canonical_disk.h"
 #include "igm/topology/handle_slides.h"
@@ -70,22 +71,6 @@ bool reads(const SlideState& st, int root, const Word& w) {
   return std::find(all.begin(), all.end(), to_string(w)) != all.end();
 }
 
-// Loops: from the root, along edges, simple, pairwise disjoint but at the root.
-std::string loop_violation(const TriMesh& M, const std::vector<std::vector<int>>& loops, int root) {
-  std::vector<int> owner(M.num_vertices(), -1);
-  for (std::size_t i = 0; i < loops.size(); ++i) {
-    const auto& L = loops[i];
-    if (L.size() < 3 || L[0] != root) return "loop " + std::to_string(i) + " does not start at the root";
-    for (std::size_t j = 0; j < L.size(); ++j) {
-      if (M.find_halfedge(L[j], L[(j + 1) % L.size()]) < 0) return "loop step is not an edge";
-      if (j == 0) continue;
-      if (L[j] == root || owner[L[j]] != -1) return "loops not simple or not disjoint";
-      owner[L[j]] = static_cast<int>(i);
-    }
-  }
-  return "";
-}
-
 // The detached greedy loops of a generated mesh (the cut without the normal form), as a start.
 struct Start {
   ValidMesh in;
@@ -126,7 +111,7 @@ TEST_CASE("each drawn slide reads the word apply_slide predicts, on an exact ref
     ++drawn;
     CHECK(s.st.word == predicted);
     CHECK(reads(s.st, s.root, predicted));
-    CHECK(loop_violation(s.st.rs.mesh, s.st.loops, s.root) == "");
+    CHECK(igm_test::loop_violation(s.st.rs.mesh, s.st.loops, s.root, s.in.genus) == "");
     CHECK(igm_test::refinement_violation(s.in, s.st.rs, true) == "");
     CHECK(s.st.rs.mesh.num_vertices() == before + (s.st.splits - splits) - (s.st.collapsed - collapsed));
     // Only the slid loop is new; the others are the same up to the tightening (same ends' order).
@@ -150,7 +135,7 @@ TEST_CASE("the greedy slides bring the loops into commutator blocks, the same on
     CHECK(slides_one % 2 == 0);
     CHECK(slides_one <= 2 * genus);
     CHECK(trials_one >= slides_one);
-    CHECK(loop_violation(one.rs.mesh, one.loops, s.root) == "");
+    CHECK(igm_test::loop_violation(one.rs.mesh, one.loops, s.root, genus) == "");
     CHECK(igm_test::refinement_violation(s.in, one.rs, true) == "");
     CHECK(slides_two == slides_one);
     CHECK(trials_two == trials_one);

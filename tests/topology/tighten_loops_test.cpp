@@ -15,6 +15,7 @@
 #include "igm/topology/cut_to_canonical_disk.h"
 #include "igm/topology/tighten_loops.h"
 #include "generated_mesh.h"
+#include "loop_check.h"
 #include "refinement_check.h"
 #include "test_data.h"
 
@@ -42,24 +43,6 @@ std::vector<std::pair<int, int>> ends_at_root(const TriMesh& M, const std::vecto
   if (start == ends.end()) return {};
   std::rotate(ends.begin(), start, ends.end());
   return ends;
-}
-
-// Loops: 2g of them, from the root, along edges, simple and pairwise disjoint but at the root.
-std::string loop_violation(const TriMesh& M, const std::vector<std::vector<int>>& loops, int root, int genus) {
-  if (static_cast<int>(loops.size()) != 2 * genus) return "loop count";
-  std::vector<int> owner(M.num_vertices(), -1);
-  for (std::size_t i = 0; i < loops.size(); ++i) {
-    const auto& L = loops[i];
-    if (L.size() < 3 || L[0] != root) return "loop " + std::to_string(i) + " does not start at the root";
-    for (std::size_t j = 0; j < L.size(); ++j) {
-      if (L[j] < 0 || L[j] >= M.num_vertices()) return "vertex out of range";
-      if (M.find_halfedge(L[j], L[(j + 1) % L.size()]) < 0) return "loop step is not an edge";
-      if (j == 0) continue;
-      if (L[j] == root || owner[L[j]] != -1) return "loops not simple or not disjoint";
-      owner[L[j]] = static_cast<int>(i);
-    }
-  }
-  return "";
 }
 
 // Tightens the untightened cut of `in` and checks everything the header promises; returns the
@@ -96,7 +79,7 @@ int check_tightening(const ValidMesh& in, bool normal_form) {
   CHECK(t.surface.num_input_vertices == in.mesh.num_vertices());
   CHECK(M.num_vertices() == before - t.stats.collapsed);
   CHECK(igm_test::refinement_violation(in, t.surface, true) == "");
-  CHECK(loop_violation(M, t.loops, raw.root, raw.genus) == "");
+  CHECK(igm_test::loop_violation(M, t.loops, raw.root, raw.genus) == "");
   CHECK(ends_at_root(M, t.loops, raw.root) == ends_before);  // the same system: same order, same word
   // A fixed point: tightening again changes nothing.
   const TightenedLoops again = tighten_loops(t.surface, t.loops, raw.root);

@@ -46,13 +46,34 @@ bool block_at(const Word& w, int p);
 /// p q p^-1 q^-1 (any ids and orientations), or -1.
 int commutator_rotation(const Word& w);
 
+/// Marks in `done` (per loop id, size |w|/2) both loops of each commutator block of w whose loops
+/// are both unmarked, scanning block_at from position 0 on. O(|w|).
+void mark_blocks(const Word& w, std::vector<char>& done);
+
+/// A two-slide formation of a handle (plan_handle_slides): `first` = {p1, p3+1, Y} for a linked
+/// pair X (letters p1, p3) and Y (letter p2 strictly between them, its other letter outside).
+struct Formation {
+  Slide first;
+  int x = -1;  // X, the loop the second slide replaces
+};
+
+/// The formations of w among loops not `done`, in plan_handle_slides' order: every letter p1 of
+/// such a loop X, then every letter p2 after it (cyclically, before X's other letter p3) of such a
+/// loop Y whose other letter lies outside. O(|w|^2).
+std::vector<Formation> formations(const Word& w, const std::vector<char>& done);
+
+/// The second slide of formation f, on the word w1 = apply_slide(w, f.first): from the corner
+/// before the new Y^-1 to the corner before the new Y, replacing X. O(|w|).
+Slide second_slide(const Word& w1, const Formation& f);
+
 /// Plans slides that bring a one-vertex word into commutator blocks: for a linked pair
 /// X .. Y .. X^-1 .. Y^-1 (positions p1 < p2 < p3 < p4 cyclically), slide {p1, p3+1, Y} gives
 /// Q X^-1 c^-1 X P S c R, then the slide from the corner before c^-1 to the corner before c,
 /// replacing X, gives the block d^-1 c^-1 d c next to R Q P S. Handles already in block form are
 /// left alone. Returns at most 2g slides (two per handle not yet a block); *final_word receives the
 /// result. Pre: is_valid_word(w) and all corners of w are one vertex (true for the words of
-/// cut_to_canonical_disk); throws igm::Error(Internal) if no linked pair exists. O(g^2).
+/// cut_to_canonical_disk); throws igm::Error(Internal) if no linked pair exists. O(g^3): the
+/// formations of each iteration, the first taken.
 std::vector<Slide> plan_handle_slides(const Word& w, Word* final_word = nullptr);
 
 /// "L0 L1 L0' L1'": for messages and tests.
