@@ -94,12 +94,12 @@ void run(const std::string& name, const Input& in, bool normal_form) {
     CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
     const auto& s = r.stats;
     std::printf("%-24s g=%-4d F=%-8d nf=%d  V %8d -> %8d (+%6.1f%%) | crossings %6d steiner %5d band %4d chord %5d"
-                " collapsed %5d precond %6d | rounds %3d%s chords %6d - %6d | slides %2d/%-4lld%s | roots %2d"
+                " collapsed %5d precond %6d | rounds %3d%s chords %6d - %6d | slides %2d/%-4lld%s redrawn %2d | roots %2d"
                 " congestion %2d/%-2d | %7.3f s (basis %.3f, detach %.3f, cut %.3f)%s\n",
                 name.c_str(), s.genus, s.faces_before, normal_form ? 1 : 0, s.vertices_before, s.vertices_after,
                 100.0 * (s.vertices_after - s.vertices_before) / s.vertices_before, s.crossings, s.steiner_vertices,
                 s.band_splits, s.chord_splits, s.collapsed, s.precondition_splits, s.normal_form_rounds, s.crosses ? (s.raced ? " (crosses, raced)" : " (crosses)") : s.raced ? " (raced)" : "", s.round_chord_splits, s.straightened,
-                s.slides, s.slide_trials, s.slides_failed ? " failed" : "",
+                s.slides, s.slide_trials, s.slides_failed ? " failed" : "", s.redrawn,
                 s.roots_tried,
                 s.congestion_best_round, s.congestion_rounds, s.seconds_total,
                 s.seconds_basis, s.seconds_detach, s.seconds_cut, s.locality_ordered ? " renumbered" : "");

@@ -697,6 +697,19 @@ Slid slides_system(const TriMesh& mesh, const std::vector<Vec3d>& positions, con
   return out;
 }
 
+// Step 3d on the rounds' or crosses' system (tightened): its loops redrawn between their own
+// corners or inside their handles (redraw_loops, up to 3 passes). Returns the redraws kept.
+int redraw_system(CutResult& res, bool parallel) {
+  SlideState st{std::move(res.surface), std::move(res.loops), {}};
+  st.word = root_word(st.rs.mesh, res.root, st.loops);
+  const int kept = redraw_loops(st, res.root, 3, parallel);
+  res.surface = std::move(st.rs);
+  res.loops = std::move(st.loops);
+  res.stats.slide_splits += st.splits;
+  res.stats.collapsed += st.collapsed;
+  return kept;
+}
+
 // Keeps step 3c's system instead of res's (tightened) if it has fewer vertices; res's stats get
 // what step 3c did either way.
 void keep_fewer(Slid& slid, CutResult& res) {
@@ -713,6 +726,7 @@ void keep_fewer(Slid& slid, CutResult& res) {
     res.stats.seconds_detach = rounds.seconds_detach;
     res.stats.slides = slid.slides;
     res.stats.slide_splits = slid.state.splits;
+    res.stats.redrawn = slid.state.redrawn;
     res.stats.collapsed += slid.state.collapsed;
   }
   res.stats.slide_trials = slid.trials;
@@ -753,6 +767,7 @@ CutResult cut_in_given_order(const TriMesh& mesh, const std::vector<Vec3d>& posi
         [&] {
           normal_form_system(mesh, positions, unit, options, genus, t_start, res);
           tighten();
+          if (slides) res.stats.redrawn = redraw_system(res, options.parallel);
         },
         [&] {
           if (slides) slid = slides_system(mesh, positions, unit, options, genus);

@@ -225,6 +225,7 @@ struct SlideState {
   Word word;
   int splits = 0;     // chords split by the slides drawn (split_like_copy)
   int collapsed = 0;  // constructed vertices their tightening removed
+  int redrawn = 0;    // loops redrawn between their own corners (redraw_loops)
   long loop_vertices() const {
     long n = 0;
     for (const auto& l : loops) n += static_cast<long>(l.size());
@@ -245,13 +246,30 @@ Word root_word(const TriMesh& M, int root, const std::vector<std::vector<int>>& 
 // O(n + chords + tightening).
 bool draw_slide(SlideState& st, int root, const Slide& s);
 
+// Redraws loops one at a time where that saves vertices (step 3d). Loop x, with letters p (x)
+// and q (x^-1) in st.word, is drawn again on copies (draw_slide) by these moves:
+// - the slide {p, p + 1, x}: the shortest arc between x's own two wedges once x is removed, which
+//   reads the same word up to rotation (every simple arc there does, handle_slides.h);
+// - if st.word is in commutator blocks, every slide of x whose word is in blocks too (x becomes
+//   x y^+-1 or the like inside its handle), one per resulting word up to rotation.
+// The best copy (fewest vertices, then loop vertices, then the first move) replaces st if it has
+// fewer vertices, or as many and fewer loop vertices. A loop drawn before later slides moved the
+// others often finds a path that crosses fewer chords (couplingdown's normal form by slides:
+// 2,086 vertices without, 1,982 with; bench/README.md, step 3d). Passes over x = 0 .. 2g-1 until
+// one keeps nothing, at most max_passes; each loop's moves are drawn in two halves on two threads
+// if `parallel` (the same choice either way). Returns the redraws kept (also added to
+// st.redrawn). Pre: as draw_slide. O(max_passes 2g (m (n + chords + tightening) + g^3)) for m
+// moves per loop (1, or about 5 in blocks).
+int redraw_loops(SlideState& st, int root, int max_passes, bool parallel);
+
 // The handles formed greedily, one per step: while some loops are not in commutator blocks, each
 // linked pair X .. Y .. X^-1 .. Y^-1 of them is a candidate from each of its letters (the two-slide
 // formation of plan_handle_slides: first {X, the corner after X^-1, Y}, then from the corner before
 // the new Y^-1 to the one before the new Y, replacing X). Every candidate's first slide is drawn on
 // a copy of st; the 6 best (ranked by vertices + loop vertices / 4, then vertices, loop vertices,
 // candidate order: long loops are walls that make later slides long) get their second, and the best
-// of those so ranked is kept. Candidates are drawn in two halves on two threads if `parallel`,
+// of those so ranked is kept, its loops then redrawn in one pass of redraw_loops (after the last
+// step: up to kFinalRedrawPasses). Candidates are drawn in two halves on two threads if `parallel`,
 // merged in candidate order (the same choice either way). At most g steps (each adds a block and
 // keeps the others: Internal otherwise), each of at most (4g)^2 + 6 drawn slides. True: st's word
 // is in commutator blocks, *slides = the slides kept, *trials = the slides drawn. False (st

@@ -157,3 +157,46 @@ TEST_CASE("a loop system already in blocks takes no slide") {
   CHECK(trials == 0);
   CHECK(s.st.rs.mesh.num_vertices() == before);
 }
+
+TEST_CASE("redrawing loops keeps their word, or a word in blocks, and never adds vertices (step 3d)") {
+  // The slides plan_handle_slides gives for generated genus-6 greedy loops, drawn without step
+  // 3c's choices: redrawing that system loop by loop lowers its vertex count, and the result is
+  // checked like any drawn system, the same on one thread as on two.
+  Start s = greedy_start(6, 4000, 6);
+  const Word greedy_word = s.st.word;
+  REQUIRE(commutator_rotation(greedy_word) < 0);
+  {
+    // Not in blocks: only each loop's own corners are tried, so the word stays up to rotation.
+    SlideState st = s.st;
+    const int before = st.rs.mesh.num_vertices();
+    const int kept = redraw_loops(st, s.root, 2, true);
+    CHECK(st.redrawn == kept);
+    CHECK(reads(st, s.root, greedy_word));
+    CHECK(st.rs.mesh.num_vertices() <= before);
+    CHECK(igm_test::loop_violation(st.rs.mesh, st.loops, s.root, 6) == "");
+    CHECK(igm_test::refinement_violation(s.in, st.rs, true) == "");
+  }
+  for (const Slide& sl : plan_handle_slides(s.st.word)) REQUIRE(draw_slide(s.st, s.root, sl));
+  REQUIRE(commutator_rotation(s.st.word) >= 0);
+  SlideState one = s.st, two = s.st;
+  const int before = one.rs.mesh.num_vertices(), splits = one.splits, collapsed = one.collapsed;
+  const int kept = redraw_loops(one, s.root, 3, false);
+  MESSAGE("genus 6, slides as planned: " << before << " vertices, " << one.rs.mesh.num_vertices() << " after "
+                                         << kept << " redraws");
+  CHECK(kept > 0);
+  CHECK(one.redrawn == kept);
+  CHECK(one.rs.mesh.num_vertices() < before);
+  CHECK(one.rs.mesh.num_vertices() == before + (one.splits - splits) - (one.collapsed - collapsed));
+  CHECK(commutator_rotation(one.word) >= 0);
+  CHECK(reads(one, s.root, one.word));
+  CHECK(igm_test::loop_violation(one.rs.mesh, one.loops, s.root, 6) == "");
+  CHECK(igm_test::refinement_violation(s.in, one.rs, true) == "");
+  CHECK(redraw_loops(two, s.root, 3, true) == kept);
+  CHECK(two.word == one.word);
+  CHECK(two.loops == one.loops);
+  CHECK(two.rs.mesh.num_vertices() == one.rs.mesh.num_vertices());
+  // No pass, no redraw.
+  SlideState none = s.st;
+  CHECK(redraw_loops(none, s.root, 0, true) == 0);
+  CHECK(none.loops == s.st.loops);
+}

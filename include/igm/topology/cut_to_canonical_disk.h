@@ -107,8 +107,9 @@ struct CutOptions {
   /// whichever of the two systems has fewer vertices once tightened (the rounds' or crosses' on
   /// ties). It costs about 1 microsecond x F g^2 more (about 6 g^2 slides drawn on copies) and
   /// often adds far fewer vertices (generated genus 10 on 100k faces: 1.1 % instead of 8.6 %, in
-  /// 7.5 s instead of 2.2 s). -1: where F g^2 <= 1e7 and F g^3 <= 1.6e8, 0: never, 1: always;
-  /// other values are InvalidArgument.
+  /// 7.5 s instead of 2.2 s). Where it runs, the loops of both systems are also redrawn one by
+  /// one between their own corners while that saves vertices (the same word; step 3d). -1: where
+  /// F g^2 <= 1e7 and F g^3 <= 1.6e8, 0: never, 1: always; other values are InvalidArgument.
   int slides = -1;
   /// From this many vertices on, the steps run on a copy of the mesh renumbered for memory
   /// locality (step 0) and the result is given back in the caller's vertex ids; 0: always, -1:
@@ -139,9 +140,11 @@ struct CutStats {
   int straightened = 0;         // of those, split diagonals inside input faces removed again (step 3b)
   bool crosses = false;         // the normal form came from the crosses construction
   int slides = 0;               // handle slides of the kept normal form (step 3c; 0: not slides)
-  int slide_splits = 0;         // chords those slides' loops split (their collapses: `collapsed`)
+  int slide_splits = 0;         // chords split by those slides and by step 3d's redraws (their
+                                // collapses: `collapsed`)
   long long slide_trials = 0;   // slides drawn on copies to choose them (step 3c; 0: not run)
   bool slides_failed = false;   // step 3c ran and some step could draw none of its candidates
+  int redrawn = 0;              // loops of the kept system redrawn with fewer vertices (step 3d)
   bool raced = false;           // a lone candidate ran both constructions (step 3, Best)
   bool locality_ordered = false;  // the steps ran on the mesh renumbered by step 0
   // Exact points of crossings made on two threads (CutOptions::parallel, at least 1024 in one
