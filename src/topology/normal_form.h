@@ -255,9 +255,9 @@ bool draw_slide(SlideState& st, int root, const Slide& s);
 // The best copy (fewest vertices, then loop vertices, then the first move) replaces st if it has
 // fewer vertices, or as many and fewer loop vertices. A loop drawn before later slides moved the
 // others often finds a path that crosses fewer chords (couplingdown's normal form by slides:
-// 2,086 vertices without, 1,982 with; bench/README.md, step 3d). Passes over x = 0 .. 2g-1 until
-// one keeps nothing, at most max_passes; each loop's moves are drawn in two halves on two threads
-// if `parallel` (the same choice either way). Returns the redraws kept (also added to
+// 2,086 vertices without, 1,969 with; bench/README.md, step 3d). Passes over the loops, longest
+// first (ties by id), until one keeps nothing, at most max_passes; each loop's moves are drawn in
+// two halves on two threads if `parallel` (the same choice either way). Returns the redraws kept (also added to
 // st.redrawn). Pre: as draw_slide. O(max_passes 2g (m (n + chords + tightening) + g^3)) for m
 // moves per loop (1, or about 5 in blocks).
 int redraw_loops(SlideState& st, int root, int max_passes, bool parallel);
@@ -268,8 +268,8 @@ int redraw_loops(SlideState& st, int root, int max_passes, bool parallel);
 // the new Y^-1 to the one before the new Y, replacing X). Every candidate's first slide is drawn on
 // a copy of st; the 6 best (ranked by vertices + loop vertices / 4, then vertices, loop vertices,
 // candidate order: long loops are walls that make later slides long) get their second, and the best
-// of those so ranked is kept, its loops then redrawn in one pass of redraw_loops (after the last
-// step: up to kFinalRedrawPasses). Candidates are drawn in two halves on two threads if `parallel`,
+// of those so ranked is kept. After the last step the loops are redrawn (redraw_loops, up to 3
+// passes). Candidates are drawn in two halves on two threads if `parallel`,
 // merged in candidate order (the same choice either way). At most g steps (each adds a block and
 // keeps the others: Internal otherwise), each of at most (4g)^2 + 6 drawn slides. True: st's word
 // is in commutator blocks, *slides = the slides kept, *trials = the slides drawn. False (st
