@@ -698,11 +698,11 @@ Slid slides_system(const TriMesh& mesh, const std::vector<Vec3d>& positions, con
 }
 
 // Step 3d on the rounds' or crosses' system (tightened): its loops redrawn between their own
-// corners or inside their handles (redraw_loops, up to 3 passes). Returns the redraws kept.
+// corners or inside their handles (redraw_loops, kRedrawPasses). Returns the redraws kept.
 int redraw_system(CutResult& res, bool parallel) {
   SlideState st{std::move(res.surface), std::move(res.loops), {}};
   st.word = root_word(st.rs.mesh, res.root, st.loops);
-  const int kept = redraw_loops(st, res.root, 3, parallel);
+  const int kept = redraw_loops(st, res.root, kRedrawPasses, parallel);
   res.surface = std::move(st.rs);
   res.loops = std::move(st.loops);
   res.stats.slide_splits += st.splits;

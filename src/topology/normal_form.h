@@ -225,7 +225,7 @@ struct SlideState {
   Word word;
   int splits = 0;     // chords split by the slides drawn (split_like_copy)
   int collapsed = 0;  // constructed vertices their tightening removed
-  int redrawn = 0;    // loops redrawn between their own corners (redraw_loops)
+  int redrawn = 0;    // redraws redraw_loops kept
   long loop_vertices() const {
     long n = 0;
     for (const auto& l : loops) n += static_cast<long>(l.size());
@@ -257,10 +257,14 @@ bool draw_slide(SlideState& st, int root, const Slide& s);
 // others often finds a path that crosses fewer chords (couplingdown's normal form by slides:
 // 2,086 vertices without, 1,969 with; bench/README.md, step 3d). Passes over the loops, longest
 // first (ties by id), until one keeps nothing, at most max_passes; each loop's moves are drawn in
-// two halves on two threads if `parallel` (the same choice either way). Returns the redraws kept (also added to
-// st.redrawn). Pre: as draw_slide. O(max_passes 2g (m (n + chords + tightening) + g^3)) for m
-// moves per loop (1, or about 5 in blocks).
+// two halves on two threads if `parallel` (the same choice either way). Returns the redraws kept
+// (also added to st.redrawn). Pre: as draw_slide. O(max_passes 2g (m (n + chords + tightening) +
+// g^3)) for m moves per loop (1, or about 5 in blocks).
 int redraw_loops(SlideState& st, int root, int max_passes, bool parallel);
+
+// redraw_loops' passes where step 3d runs: after step 3c's last step and on the rounds' or
+// crosses' system. More find nothing on couplingdown (2 passes already end at 1,969 vertices).
+inline constexpr int kRedrawPasses = 3;
 
 // The handles formed greedily, one per step: while some loops are not in commutator blocks, each
 // linked pair X .. Y .. X^-1 .. Y^-1 of them is a candidate from each of its letters (the two-slide
@@ -268,9 +272,9 @@ int redraw_loops(SlideState& st, int root, int max_passes, bool parallel);
 // the new Y^-1 to the one before the new Y, replacing X). Every candidate's first slide is drawn on
 // a copy of st; the 6 best (ranked by vertices + loop vertices / 4, then vertices, loop vertices,
 // candidate order: long loops are walls that make later slides long) get their second, and the best
-// of those so ranked is kept. After the last step the loops are redrawn (redraw_loops, up to 3
-// passes). Candidates are drawn in two halves on two threads if `parallel`,
-// merged in candidate order (the same choice either way). At most g steps (each adds a block and
+// of those so ranked is kept. After the last step the loops are redrawn (redraw_loops,
+// kRedrawPasses). Candidates are drawn in two halves on two threads if `parallel`, merged in
+// candidate order (the same choice either way). At most g steps (each adds a block and
 // keeps the others: Internal otherwise), each of at most (4g)^2 + 6 drawn slides. True: st's word
 // is in commutator blocks, *slides = the slides kept, *trials = the slides drawn. False (st
 // unchanged): at some step no candidate could be drawn (generated genus 10 on 2k faces, seed 2).
