@@ -1,12 +1,13 @@
 // Topology stage measurements: time and mesh growth of cut_to_canonical_disk.
 // Usage: igm_bench_topology [shared_dir] [--normal-form-all] [--crosses|--rounds] [--serial]
 //                           [--no-tighten] [--no-slides] [--congestion-rounds N] [--nf-roots N]
-//                           [--no-locality-order] [--only NAME|g3|g20|g40]
+//                           [--no-locality-order] [--only NAME|g3|g10|g20|g40]
 // Growth is broken down by source: crossings, Steiner, band, chord and pre-condition splits, and
 // the normal form's rounds (marked "(crosses)" where the crosses construction won, "raced" where a
 // lone root candidate ran both constructions side by side) and chord splits, and "slides k/t" (step
 // 3c: the k handle slides of the kept normal form, 0 if the rounds or crosses were kept, of t
-// drawn to choose them; "failed" where a step could draw none). The normal form is
+// drawn to choose them; "failed" where a step could draw none; "after" where it ran after the rounds
+// or crosses, past CutOptions::slides_budget, for their growth). The normal form is
 // measured on every mesh; --normal-form-all is accepted and changes nothing (it added the 1M-face
 // g20's, ~10 s before stop 27, 4.6-5 s since); --only runs one mesh, with and without it;
 // --nf-roots N sets CutOptions::normal_form_roots (default: automatic; cheese gets 1, --nf-roots 11
@@ -22,7 +23,9 @@
 // Under each line: the ring-capacity floor (topology/ring_bound.h) at the chosen root, the vertices
 // any loop system through it must add; without the normal form on meshes of <= 3,000 vertices also
 // the least floor over every root. --only g40 runs a generated genus 40 on 1M faces (not in the
-// default run: ~12 s with the normal form), which gets the crosses alone (genus >= 30).
+// default run: ~12 s with the normal form), which gets the crosses alone (genus >= 30); --only g10
+// a generated genus 10 on 200k faces (not in the default run: ~12 s with the normal form), past
+// the slides' budget, where they run after the rounds for the rounds' growth.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -94,12 +97,12 @@ void run(const std::string& name, const Input& in, bool normal_form) {
     CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
     const auto& s = r.stats;
     std::printf("%-24s g=%-4d F=%-8d nf=%d  V %8d -> %8d (+%6.1f%%) | crossings %6d steiner %5d band %4d chord %5d"
-                " collapsed %5d precond %6d | rounds %3d%s chords %6d - %6d | slides %2d/%-4lld%s redrawn %2d | roots %2d"
+                " collapsed %5d precond %6d | rounds %3d%s chords %6d - %6d | slides %2d/%-4lld%s%s redrawn %2d | roots %2d"
                 " congestion %2d/%-2d | %7.3f s (basis %.3f, detach %.3f, cut %.3f)%s\n",
                 name.c_str(), s.genus, s.faces_before, normal_form ? 1 : 0, s.vertices_before, s.vertices_after,
                 100.0 * (s.vertices_after - s.vertices_before) / s.vertices_before, s.crossings, s.steiner_vertices,
                 s.band_splits, s.chord_splits, s.collapsed, s.precondition_splits, s.normal_form_rounds, s.crosses ? (s.raced ? " (crosses, raced)" : " (crosses)") : s.raced ? " (raced)" : "", s.round_chord_splits, s.straightened,
-                s.slides, s.slide_trials, s.slides_failed ? " failed" : "", s.redrawn,
+                s.slides, s.slide_trials, s.slides_failed ? " failed" : "", s.slides_after ? " after" : "", s.redrawn,
                 s.roots_tried,
                 s.congestion_best_round, s.congestion_rounds, s.seconds_total,
                 s.seconds_basis, s.seconds_detach, s.seconds_cut, s.locality_ordered ? " renumbered" : "");
@@ -146,7 +149,7 @@ int main(int argc, char** argv) {
     run(name, in, false);
     run(name, in, true);
   }
-  if (!only.empty() && only != "g3" && only != "g20" && only != "g40") return 0;
+  if (!only.empty() && only != "g3" && only != "g10" && only != "g20" && only != "g40") return 0;
   if (only.empty() || only == "g3") {
     Input in = generated(3, 52000);
     run("generated g3 52k faces", in, false);
@@ -156,6 +159,11 @@ int main(int argc, char** argv) {
     Input in = generated(20, 1000000);
     run("generated g20 1M faces", in, false);
     run("generated g20 1M faces", in, true);
+  }
+  if (only == "g10") {
+    Input in = generated(10, 200000);
+    run("generated g10 200k faces", in, false);
+    run("generated g10 200k faces", in, true);
   }
   if (only == "g40") {
     Input in = generated(40, 1000000);

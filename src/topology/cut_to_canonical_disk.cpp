@@ -652,19 +652,31 @@ bool greedy_system(const TriMesh& mesh, const std::vector<Vec3d>& positions, con
   return tightened;
 }
 
-// Whether step 3c runs (CutOptions::slides): with the normal form, Best and the tightening on;
-// for -1 where F g^2 <= kSlidesBudget and F g^3 <= kSlidesBudgetCubed. About 5 g^2 slides are
-// drawn (4 per linked pair per step), each on a copy of the surface: O(F) each, about 1
-// microsecond x F g^2 in all on the bench machine (generated genus 10 on 100k faces: 7.5 s
-// instead of 2.2 s, for 1.1 % growth instead of 8.6 %); with many loops a drawing's word checks
-// and tightening grow with g as well (genus 20 on 5k faces: 1,758 slides in 6.9 s).
-constexpr double kSlidesBudget = 1e7, kSlidesBudgetCubed = 1.6e8;
-bool use_slides(const TriMesh& mesh, const CutOptions& options, int genus) {
+// Whether and how step 3c runs (CutOptions::slides): with the normal form, Best and the tightening
+// on; for -1 beside step 3 where F g^2 <= B and F g^3 <= 16 B (B = CutOptions::slides_budget), and
+// after it, if its growth calls for it (slides_after_growth), where both are at most 4x that.
+// About 5 g^2 slides are drawn (4 per linked pair per step), each on a copy of the surface: O(F)
+// each, about 1 microsecond x F g^2 in all on the bench machine (generated genus 10 on 100k faces:
+// 7.5 s instead of 2.2 s, for 1.1 % growth instead of 8.6 %); with many loops a drawing's word
+// checks and tightening grow with g as well (genus 20 on 5k faces: 1,758 slides in 6.9 s).
+enum class SlidesRun { No, Beside, IfGrown };
+SlidesRun slides_run(const TriMesh& mesh, const CutOptions& options, int genus) {
   if (!options.normal_form || options.construction != CutOptions::Construction::Best || !options.tighten ||
       options.slides == 0)
-    return false;
-  const double f = mesh.num_faces();
-  return options.slides == 1 || (f * genus * genus <= kSlidesBudget && f * genus * genus * genus <= kSlidesBudgetCubed);
+    return SlidesRun::No;
+  if (options.slides == 1) return SlidesRun::Beside;
+  const double f = mesh.num_faces(), g = genus, b = options.slides_budget;
+  if (f * g * g <= b && f * g * g * g <= 16 * b) return SlidesRun::Beside;
+  if (f * g * g <= 4 * b && f * g * g * g <= 64 * b) return SlidesRun::IfGrown;
+  return SlidesRun::No;
+}
+
+// Past the budget, step 3c runs after step 3 if step 3's system added more than 2 % of the
+// input's vertices: the growth the normal form should stay under on g <= 10, which the rounds
+// pass on finer meshes than the budget covers (generated genus 10: 8.6 %, 7.4 %, 6.3 % on 100k,
+// 200k, 400k faces; genus 8: 2.0 % and 2.4 % on 200k and 400k; bench/README.md, step 3c).
+bool slides_after_growth(int vertices_before, int vertices_now) {
+  return 100LL * (vertices_now - vertices_before) > 2LL * vertices_before;
 }
 
 // Step 3c: the greedy system of steps 1-2b (same options), tightened, brought into blocks by
@@ -760,21 +772,29 @@ CutResult cut_in_given_order(const TriMesh& mesh, const std::vector<Vec3d>& posi
     // Step 3 and, where it runs, step 3c side by side (two threads with CutOptions::parallel; each
     // may use two more), then the fewer vertices: the same result either way. An error of step 3
     // is rethrown first (run_pair).
-    const bool slides = use_slides(mesh, options, genus);
+    const SlidesRun run = slides_run(mesh, options, genus);
+    const bool beside = run == SlidesRun::Beside;
     Slid slid;
     run_pair(
-        options.parallel && slides,
+        options.parallel && beside,
         [&] {
           normal_form_system(mesh, positions, unit, options, genus, t_start, res);
           tighten();
-          if (slides) res.stats.redrawn = redraw_system(res, options.parallel);
+          if (beside) res.stats.redrawn = redraw_system(res, options.parallel);
         },
         [&] {
-          if (slides) slid = slides_system(mesh, positions, unit, options, genus);
+          if (beside) slid = slides_system(mesh, positions, unit, options, genus);
         });
-    if (slides) {
+    // Past the budget: steps 3d and 3c as beside, after step 3 and only for its growth.
+    const bool after = run == SlidesRun::IfGrown && slides_after_growth(nv0, rs.mesh.num_vertices());
+    if (after)
+      run_pair(
+          options.parallel, [&] { res.stats.redrawn = redraw_system(res, options.parallel); },
+          [&] { slid = slides_system(mesh, positions, unit, options, genus); });
+    if (beside || after) {
       keep_fewer(slid, res);
-      res.stats.seconds_detach = seconds_since(t_start);  // both steps, side by side
+      res.stats.slides_after = after;
+      res.stats.seconds_detach = seconds_since(t_start);  // both steps
     }
   } else {
     tightened = greedy_system(mesh, positions, unit, options, genus, t_start, res);
@@ -897,6 +917,9 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
   if (options.slides < -1 || options.slides > 1)
     throw Error(ErrorKind::InvalidArgument,
                 "CutOptions::slides must be -1 (automatic), 0 or 1, got " + std::to_string(options.slides));
+  if (!(options.slides_budget >= 0) || !std::isfinite(options.slides_budget))
+    throw Error(ErrorKind::InvalidArgument,
+                "CutOptions::slides_budget must be finite and >= 0, got " + std::to_string(options.slides_budget));
   if (options.locality_order_min_vertices < -1)
     throw Error(ErrorKind::InvalidArgument, "CutOptions::locality_order_min_vertices must be >= -1 (-1: never), got " +
                                                 std::to_string(options.locality_order_min_vertices));

@@ -653,10 +653,11 @@ TEST_CASE("from genus 30 on the crosses run alone, and below it a fine mesh's lo
     REQUIRE(in.mesh.num_faces() >= 2000L * g);
     CutOptions o;
     o.normal_form_roots = 1;
+    o.slides = 0;  // the constructions alone (genus 20 here would run step 3c after the rounds)
     const CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
     CHECK_FALSE(r.stats.raced);
     CHECK(r.stats.crosses == crosses);
-    CHECK(r.stats.slide_trials == 0);  // F g^2 > 2e6: no step 3c
+    CHECK(r.stats.slide_trials == 0);
     CHECK(r.loops.size() == 2u * g);
     CHECK(r.sides.size() == 4u * g);
     CHECK(in_normal_form(r));
@@ -973,7 +974,7 @@ TEST_CASE("step 3c: the greedy loops brought into blocks by slides are the cut w
   CHECK(rounds.stats.redrawn == 0);
   CHECK(r.stats.vertices_after < rounds.stats.vertices_after);
   MESSAGE("genus 4: slides " << r.stats.vertices_after << " vertices, rounds " << rounds.stats.vertices_after);
-  // Off the budget (F g^2 > 2e6) step 3c does not run; slides = 1 runs it anyway.
+  // slides = 1 runs step 3c whatever the budget (past it: the next test).
   Input coarse = generated(2, 600, 2);
   o.slides = 1;
   o.parallel = true;
@@ -984,6 +985,55 @@ TEST_CASE("step 3c: the greedy loops brought into blocks by slides are the cut w
     CAPTURE(bad);
     o.slides = bad;
     check_invalid(coarse, o, "slides");
+  }
+}
+
+TEST_CASE("step 3c past its budget runs after step 3, only where step 3 added more than 2 % of the input") {
+  // CutOptions::slides_budget set from each mesh's F g^2. At a third of it, step 3c is past the
+  // budget for running beside step 3 but within the 4x where it runs after step 3, if step 3 grew
+  // the mesh by more than 2 %. All on one thread (check_same_cut).
+  CutOptions o;
+  o.parallel = false;
+  auto fg2 = [](const Input& in, int genus) { return static_cast<double>(in.mesh.num_faces()) * genus * genus; };
+  Input grown = generated(4, 4000, 1);  // the rounds: 2132 vertices on 2052 (3.9 %)
+  o.slides_budget = fg2(grown, 4) / 3;
+  const CutResult after = cut_to_canonical_disk(grown.mesh, grown.positions, o);
+  CHECK(verify_cut(grown, after) == "");
+  CHECK(after.stats.slides_after);
+  CHECK(after.stats.slides > 0);
+  CHECK(after.stats.redrawn > 0);
+  o.slides_budget = fg2(grown, 4);  // within the budget: beside step 3, the same cut
+  const CutResult beside = cut_to_canonical_disk(grown.mesh, grown.positions, o);
+  CHECK_FALSE(beside.stats.slides_after);
+  CHECK(beside.stats.slide_trials == after.stats.slide_trials);
+  check_same_cut(after, beside);
+  o.slides_budget = fg2(grown, 4) / 5;  // past 4x the budget: step 3 alone, as with slides = 0
+  const CutResult past = cut_to_canonical_disk(grown.mesh, grown.positions, o);
+  CHECK(past.stats.slide_trials == 0);
+  CHECK(past.stats.redrawn == 0);
+  CHECK_FALSE(past.stats.slides_after);
+  CHECK(past.surface.mesh.num_vertices() > after.surface.mesh.num_vertices());
+  o.slides = 0;
+  o.slides_budget = fg2(grown, 4);
+  check_same_cut(cut_to_canonical_disk(grown.mesh, grown.positions, o), past);
+  MESSAGE("genus 4 past the budget: " << after.stats.vertices_after << " vertices with step 3c after step 3, "
+                                      << past.stats.vertices_after << " without");
+  // The rounds grow this one by less than 2 %: past the budget step 3c does not run, though
+  // within it, beside step 3, it does.
+  Input fine = generated(2, 4000, 1);
+  o.slides = -1;
+  o.slides_budget = fg2(fine, 2) / 3;
+  const CutResult kept = cut_to_canonical_disk(fine.mesh, fine.positions, o);
+  CHECK(verify_cut(fine, kept) == "");
+  CHECK(100 * (kept.stats.vertices_after - kept.stats.vertices_before) <= 2 * kept.stats.vertices_before);
+  CHECK(kept.stats.slide_trials == 0);
+  CHECK_FALSE(kept.stats.slides_after);
+  o.slides_budget = fg2(fine, 2);
+  CHECK(cut_to_canonical_disk(fine.mesh, fine.positions, o).stats.slide_trials > 0);
+  for (double bad : {-1.0, std::nan(""), HUGE_VAL}) {
+    CAPTURE(bad);
+    o.slides_budget = bad;
+    check_invalid(fine, o, "slides_budget");
   }
 }
 

@@ -27,8 +27,9 @@
 //     g disjoint linked pairs hung from one tree from the root. Each round's word is checked
 //     (Internal if not in blocks); at most g rounds each. 3c (CutOptions::slides) slides: the
 //     detached greedy loops of steps 1-2b brought into blocks by handle slides, each drawn as the
-//     shortest arc between its two corners (normal_form.h); the fewer vertices win. Off, the word
-//     is whatever step 2 gives.
+//     shortest arc between its two corners (normal_form.h); the fewer vertices win. Past its
+//     budget (CutOptions::slides_budget) it runs after step 3, where step 3 added more than 2 %.
+//     Off, the word is whatever step 2 gives.
 //  4. embedding pre-conditions (embed/tutte.h): every interior disk edge joining two vertices of
 //     one polygon side (a root copy lies on its two sides) is split at its midpoint; then no
 //     triangle has three vertices on one side. O(n).
@@ -110,9 +111,15 @@ struct CutOptions {
   /// 7.0 s instead of 2.2 s). Where it runs, the loops of both systems are then also redrawn one
   /// at a time where that saves vertices (step 3d: between the loop's own corners, or by a slide
   /// that keeps the blocks; about 30 % more time, couplingdown 1,969 vertices instead of 2,086).
-  /// -1: where F g^2 <= 1e7 and F g^3 <= 1.6e8, 0: never, 1: always; other values are
-  /// InvalidArgument.
+  /// -1: by slides_budget, 0: never, 1: always; other values are InvalidArgument.
   int slides = -1;
+  /// Where step 3c runs with slides = -1, in units of F g^2 (about 1 microsecond each on the bench
+  /// machine): beside step 3 where F g^2 <= slides_budget and F g^3 <= 16 slides_budget; where both
+  /// are at most 4x that, after step 3, and only if step 3's system (tightened) added more than 2 %
+  /// of the input's vertices (then the fewer vertices win as beside). Generated genus 10 on 200k
+  /// faces: 7.4 % growth without, 0.3 % with, in 11 s instead of 0.4 s. Finite and >= 0, else
+  /// InvalidArgument.
+  double slides_budget = 1e7;
   /// From this many vertices on, the steps run on a copy of the mesh renumbered for memory
   /// locality (step 0) and the result is given back in the caller's vertex ids; 0: always, -1:
   /// never, < -1 is InvalidArgument. The cut is as valid either way but not the same one (ties
@@ -147,6 +154,7 @@ struct CutStats {
   long long slide_trials = 0;   // slides drawn on copies to choose them (step 3c; 0: not run)
   bool slides_failed = false;   // step 3c ran and some step could draw none of its candidates
   int redrawn = 0;              // loops of the kept system redrawn with fewer vertices (step 3d)
+  bool slides_after = false;    // step 3c ran after step 3, past slides_budget, for step 3's growth
   bool raced = false;           // a lone candidate ran both constructions (step 3, Best)
   bool locality_ordered = false;  // the steps ran on the mesh renumbered by step 0
   // Exact points of crossings made on two threads (CutOptions::parallel, at least 1024 in one
