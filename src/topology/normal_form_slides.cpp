@@ -163,7 +163,19 @@ bool draw_slide(SlideState& st, int root, const Slide& s) {
   for (int h : R.he) beside_root[C.target(h)] = 1;
   for (int h : to)
     if (!blocked(C.target(h))) target[C.target(h)] = 1;
-  auto cost = [&](int v) { return 1.0 + (v >= nv ? kMidpointCost : 0.0); };
+  // A path vertex costs kSlideHopCost plus one per wall beside it (each such edge becomes a chord
+  // that later slides and redraws must split to cross), a chord midpoint kMidpointCost instead.
+  std::vector<int> walls_beside(cn, 0);
+  for (int w = 0; w < nv; ++w) {
+    if (!wall[w] || w == root) continue;
+    const int g0 = C.vertex_halfedge(w);
+    int g = g0;
+    do {
+      ++walls_beside[C.target(g)];
+      g = C.next_around_origin(g);
+    } while (g != g0);
+  }
+  auto cost = [&](int v) { return kSlideHopCost + (v >= nv ? kMidpointCost : walls_beside[v]); };
   std::vector<double> dist(cn, INFINITY);
   std::vector<int> par(cn, -1);
   MinQueue pq;

@@ -951,9 +951,9 @@ TEST_CASE("a normal form beyond the growth bound is a typed error, not a blow-up
 
 TEST_CASE("step 3c: the greedy loops brought into blocks by slides are the cut where they keep fewer vertices") {
   // Generated genus 4 on 4000 faces: the rounds end with 2132 vertices once tightened, the slides
-  // of the greedy loops with 2072 after their redraws (step 3d; 2087 without: bench/README.md,
-  // step 3c). The cut is verified like any other; the same on one thread; without step 3c the
-  // rounds' cut comes back, and neither a slide nor a redraw is drawn.
+  // of the greedy loops with 2066 after their redraws (step 3d; bench/README.md, step 3c). The cut
+  // is verified like any other; the same on one thread; without step 3c the rounds' cut comes
+  // back, and neither a slide nor a redraw is drawn.
   Input in = generated(4, 4000, 1);
   CutOptions o;
   const CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
@@ -962,7 +962,7 @@ TEST_CASE("step 3c: the greedy loops brought into blocks by slides are the cut w
   CHECK(r.stats.slides <= 2 * 4);
   CHECK(r.stats.slide_trials > r.stats.slides);
   CHECK_FALSE(r.stats.slides_failed);
-  CHECK(r.stats.redrawn > 0);  // step 3d kept some redraw (the 2087 vertices without it)
+  CHECK(r.stats.redrawn > 0);  // step 3d kept some redraw
   CHECK(r.stats.normal_form_rounds == 0);  // the counts are those of the greedy loops and the slides
   o.parallel = false;
   check_same_cut(cut_to_canonical_disk(in.mesh, in.positions, o), r);
@@ -995,7 +995,7 @@ TEST_CASE("step 3c past its budget runs after step 3, only where step 3 added mo
   CutOptions o;
   o.parallel = false;
   auto fg2 = [](const Input& in, int genus) { return static_cast<double>(in.mesh.num_faces()) * genus * genus; };
-  Input grown = generated(4, 4000, 1);  // the rounds: 2132 vertices on 2052 (3.9 %)
+  Input grown = generated(4, 4000, 1);  // the rounds: 2132 vertices on 2052 (3.9 %), step 3c 2066
   o.slides_budget = fg2(grown, 4) / 3;
   const CutResult after = cut_to_canonical_disk(grown.mesh, grown.positions, o);
   CHECK(verify_cut(grown, after) == "");
