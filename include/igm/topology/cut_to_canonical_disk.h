@@ -107,17 +107,17 @@ struct CutOptions {
   /// steps 1-2b into the normal form by handle slides drawn on the surface (step 3c), and keep
   /// whichever of the two systems has fewer vertices once tightened (the rounds' or crosses' on
   /// ties). It costs about 1 microsecond x F g^2 more (about 6 g^2 slides drawn on copies) and
-  /// often adds far fewer vertices (generated genus 10 on 100k faces: 0.55 % instead of 8.6 %, in
-  /// 7.0 s instead of 2.2 s). Where it runs, the loops of both systems are then also redrawn one
+  /// often adds far fewer vertices (generated genus 10 on 100k faces: 0.5 % instead of 8.6 %, in
+  /// 8.7 s instead of 2.2 s). Where it runs, the loops of both systems are then also redrawn one
   /// at a time where that saves vertices (step 3d: between the loop's own corners, or by a slide
-  /// that keeps the blocks; about 30 % more time, couplingdown 1,969 vertices instead of 2,086).
+  /// that keeps the blocks; about 30 % more time, couplingdown 1,970 vertices instead of 2,086).
   /// -1: by slides_budget, 0: never, 1: always; other values are InvalidArgument.
   int slides = -1;
   /// Where step 3c runs with slides = -1, in units of F g^2 (about 1 microsecond each on the bench
   /// machine): beside step 3 where F g^2 <= slides_budget and F g^3 <= 16 slides_budget; where both
   /// are at most 4x that, after step 3, and only if step 3's system (tightened) added more than 2 %
   /// of the input's vertices (then the fewer vertices win as beside). Generated genus 10 on 200k
-  /// faces: 7.4 % growth without, 0.3 % with, in 11 s instead of 0.4 s. Finite and >= 0, else
+  /// faces: 7.4 % growth without, 0.24 % with, in 13 s instead of 0.4 s. Finite and >= 0, else
   /// InvalidArgument.
   double slides_budget = 1e7;
   /// From this many vertices on, the steps run on a copy of the mesh renumbered for memory
