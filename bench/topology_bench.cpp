@@ -6,8 +6,8 @@
 // the normal form's rounds (marked "(crosses)" where the crosses construction won, "raced" where a
 // lone root candidate ran both constructions side by side) and chord splits, and "slides k/t" (step
 // 3c: the k handle slides of the kept normal form, 0 if the rounds or crosses were kept, of t
-// drawn to choose them; "failed" where a step could draw none; "after" where it ran after the rounds
-// or crosses, past CutOptions::slides_budget, for their growth). The normal form is
+// drawn to choose them; "failed" where a step could draw none; "after" where it ran after the
+// rounds or crosses, past CutOptions::slides_budget, for their growth). The normal form is
 // measured on every mesh; --normal-form-all is accepted and changes nothing (it added the 1M-face
 // g20's, ~10 s before stop 27, 4.6-5 s since); --only runs one mesh, with and without it;
 // --nf-roots N sets CutOptions::normal_form_roots (default: automatic; cheese gets 1, --nf-roots 11

@@ -7,6 +7,7 @@
 #include <exception>
 #include <limits>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -656,9 +657,10 @@ bool greedy_system(const TriMesh& mesh, const std::vector<Vec3d>& positions, con
 // on; for -1 beside step 3 where F g^2 <= B and F g^3 <= 16 B (B = CutOptions::slides_budget), and
 // after it, if its growth calls for it (slides_after_growth), where both are at most 4x that.
 // About 5 g^2 slides are drawn (4 per linked pair per step), each on a copy of the surface: O(F)
-// each, about 1 microsecond x F g^2 in all on the bench machine (generated genus 10 on 100k faces:
-// 7.5 s instead of 2.2 s, for 1.1 % growth instead of 8.6 %); with many loops a drawing's word
-// checks and tightening grow with g as well (genus 20 on 5k faces: 1,758 slides in 6.9 s).
+// each, about 1 microsecond x F g^2 in all on the bench machine (generated genus 10 on 100k faces,
+// seed 1: 8.2 s instead of 1.6 s, for 0.35 % growth instead of 8.6 %); with many loops a drawing's
+// word checks and tightening grow with g as well (genus 20 on 5k faces: 1,758 slides in 6.9 s).
+// Past the budget, at its 4x bounds, up to about 50 s (genus 20 on 80k faces, F g^3 = 6.4e8).
 enum class SlidesRun { No, Beside, IfGrown };
 SlidesRun slides_run(const TriMesh& mesh, const CutOptions& options, int genus) {
   if (!options.normal_form || options.construction != CutOptions::Construction::Best || !options.tighten ||
@@ -917,9 +919,11 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
   if (options.slides < -1 || options.slides > 1)
     throw Error(ErrorKind::InvalidArgument,
                 "CutOptions::slides must be -1 (automatic), 0 or 1, got " + std::to_string(options.slides));
-  if (!(options.slides_budget >= 0) || !std::isfinite(options.slides_budget))
-    throw Error(ErrorKind::InvalidArgument,
-                "CutOptions::slides_budget must be finite and >= 0, got " + std::to_string(options.slides_budget));
+  if (!(std::isfinite(options.slides_budget) && options.slides_budget >= 0)) {
+    std::ostringstream got;
+    got << options.slides_budget;
+    throw Error(ErrorKind::InvalidArgument, "CutOptions::slides_budget must be finite and >= 0, got " + got.str());
+  }
   if (options.locality_order_min_vertices < -1)
     throw Error(ErrorKind::InvalidArgument, "CutOptions::locality_order_min_vertices must be >= -1 (-1: never), got " +
                                                 std::to_string(options.locality_order_min_vertices));

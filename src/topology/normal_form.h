@@ -210,7 +210,7 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
 // replaces loop x by a new loop c from polygon corner i to corner j: with x removed, the surface
 // cut along the other loops is an annulus whose two boundaries hold corners i and j, and any
 // simple arc across it from corner i to corner j cuts it into a disk with the word apply_slide
-// gives (the word depends only on the corners), so c is the shortest such arc: a path from the
+// gives (the word depends only on the corners), so c is the cheapest such arc: a path from the
 // root's wedge of corner i to its wedge of corner j over the vertices on no other loop (x's are
 // free again), none of them beside the root but its two ends, each vertex costing kSlideHopCost
 // plus the number of loop vertices beside it (the chords the arc makes for later slides), crossing
@@ -219,9 +219,9 @@ bool canonical_crosses(CutResult& res, const std::vector<Vec3d>& unit, bool hops
 // (split_like_copy). The loops are then tightened (tighten_loops), which also removes x's old
 // constructed vertices.
 
-// A slide's arc: the cost of a path vertex besides the loop vertices beside it (one each). Hop
-// counts alone (1 and no loop vertices) add 6,231 vertices on 36 generated genus 2-12 meshes
-// against 5,664 (0.25: 5,677, 0.75: 5,651; bench/README.md, step 3c).
+// A slide's arc: a path vertex costs this plus one per loop vertex beside it. Hop counts alone (1
+// and no loop vertices) add 6,231 vertices on 36 generated genus 2-12 meshes against 5,664 (0.25:
+// 5,677, 0.75: 5,651; bench/README.md, stop 33).
 inline constexpr double kSlideHopCost = 0.5;
 
 // The loops, their surface and the word read from the root (one cycle, trace_word's convention).
@@ -254,14 +254,14 @@ bool draw_slide(SlideState& st, int root, const Slide& s);
 
 // Redraws loops one at a time where that saves vertices (step 3d). Loop x, with letters p (x)
 // and q (x^-1) in st.word, is drawn again on copies (draw_slide) by these moves:
-// - the slide {p, p + 1, x}: the shortest arc between x's own two wedges once x is removed, which
+// - the slide {p, p + 1, x}: the cheapest arc between x's own two wedges once x is removed, which
 //   reads the same word up to rotation (every simple arc there does, handle_slides.h);
 // - if st.word is in commutator blocks, every slide of x whose word is in blocks too (x becomes
 //   x y^+-1 or the like inside its handle), one per resulting word up to rotation.
 // The best copy (fewest vertices, then loop vertices, then the first move) replaces st if it has
 // fewer vertices, or as many and fewer loop vertices. A loop drawn before later slides moved the
 // others often finds a path that crosses fewer chords (couplingdown's normal form by slides:
-// 2,086 vertices without, 1,969 with; bench/README.md, step 3d). Passes over the loops, longest
+// 2,086 vertices without, 1,969 with, by hop counts; bench/README.md, step 3d). Passes over the loops, longest
 // first (ties by id), until one keeps nothing, at most max_passes; each loop's moves are drawn in
 // two halves on two threads if `parallel` (the same choice either way). Returns the redraws kept
 // (also added to st.redrawn). Pre: as draw_slide. O(max_passes 2g (m (n + chords + tightening) +
@@ -269,7 +269,8 @@ bool draw_slide(SlideState& st, int root, const Slide& s);
 int redraw_loops(SlideState& st, int root, int max_passes, bool parallel);
 
 // redraw_loops' passes where step 3d runs: after step 3c's last step and on the rounds' or
-// crosses' system. More find nothing on couplingdown (2 passes already end at 1,969 vertices).
+// crosses' system. More find nothing on couplingdown (2 passes already end at 1,969 vertices, by
+// hop counts).
 inline constexpr int kRedrawPasses = 3;
 
 // The handles formed greedily, one per step: while some loops are not in commutator blocks, each

@@ -137,7 +137,7 @@ bool draw_slide(SlideState& st, int root, const Slide& s) {
       M, [&](int v) { return wall[v] != 0; }, [&](int, int, int h) { return loop_edge[h] != 0; });
   std::vector<int> mid;
   std::vector<Vec3d> pos_copy;
-  const TriMesh C = split_copy(M, std::vector<Vec3d>(nv, Vec3d{0, 0, 0}), chords, mid, pos_copy);  // hops only
+  const TriMesh C = split_copy(M, std::vector<Vec3d>(nv, Vec3d{0, 0, 0}), chords, mid, pos_copy);  // no lengths used
   const int cn = C.num_vertices();
   // Corner k of the word lies between the ends departures[k] and departures[k] + 1 (ccw): the
   // walk arrives at an end's mate and leaves along the next end clockwise. With x removed, its
@@ -164,7 +164,7 @@ bool draw_slide(SlideState& st, int root, const Slide& s) {
   for (int h : to)
     if (!blocked(C.target(h))) target[C.target(h)] = 1;
   // A path vertex costs kSlideHopCost plus one per wall beside it (each such edge becomes a chord
-  // that later slides and redraws must split to cross), a chord midpoint kMidpointCost instead.
+  // that later slides and redraws must split to cross), a chord midpoint kMidpointCost more.
   std::vector<int> walls_beside(cn, 0);
   for (int w = 0; w < nv; ++w) {
     if (!wall[w] || w == root) continue;
@@ -360,7 +360,7 @@ bool canonical_slides(SlideState& st, int root, bool parallel, int* slides, long
   }
   // The redraws only after the last step: one pass after each step too changes later choices for
   // no gain (36 generated genus 2-12 meshes: 6,180 vertices added against 6,231 without, at 11 %
-  // more time; couplingdown 1,982 against 1,969; bench/README.md, step 3d).
+  // more time; couplingdown 1,982 against 1,969; by hop counts, bench/README.md, step 3d).
   redraw_loops(cur, root, kRedrawPasses, parallel);
   st = std::move(cur);
   if (slides) *slides = made;

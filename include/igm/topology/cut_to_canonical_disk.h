@@ -27,7 +27,7 @@
 //     g disjoint linked pairs hung from one tree from the root. Each round's word is checked
 //     (Internal if not in blocks); at most g rounds each. 3c (CutOptions::slides) slides: the
 //     detached greedy loops of steps 1-2b brought into blocks by handle slides, each drawn as the
-//     shortest arc between its two corners (normal_form.h); the fewer vertices win. Past its
+//     cheapest arc between its two corners (normal_form.h); the fewer vertices win. Past its
 //     budget (CutOptions::slides_budget) it runs after step 3, where step 3 added more than 2 %.
 //     Off, the word is whatever step 2 gives.
 //  4. embedding pre-conditions (embed/tutte.h): every interior disk edge joining two vertices of
@@ -107,8 +107,8 @@ struct CutOptions {
   /// steps 1-2b into the normal form by handle slides drawn on the surface (step 3c), and keep
   /// whichever of the two systems has fewer vertices once tightened (the rounds' or crosses' on
   /// ties). It costs about 1 microsecond x F g^2 more (about 6 g^2 slides drawn on copies) and
-  /// often adds far fewer vertices (generated genus 10 on 100k faces: 0.5 % instead of 8.6 %, in
-  /// 8.7 s instead of 2.2 s). Where it runs, the loops of both systems are then also redrawn one
+  /// often adds far fewer vertices (generated genus 10 on 100k faces: 0.35 % instead of 8.6 %, in
+  /// 8.2 s instead of 1.6 s). Where it runs, the loops of both systems are then also redrawn one
   /// at a time where that saves vertices (step 3d: between the loop's own corners, or by a slide
   /// that keeps the blocks; about 30 % more time, couplingdown 1,970 vertices instead of 2,086).
   /// -1: by slides_budget, 0: never, 1: always; other values are InvalidArgument.
@@ -117,7 +117,8 @@ struct CutOptions {
   /// machine): beside step 3 where F g^2 <= slides_budget and F g^3 <= 16 slides_budget; where both
   /// are at most 4x that, after step 3, and only if step 3's system (tightened) added more than 2 %
   /// of the input's vertices (then the fewer vertices win as beside). Generated genus 10 on 200k
-  /// faces: 7.4 % growth without, 0.24 % with, in 13 s instead of 0.4 s. Finite and >= 0, else
+  /// faces: 7.4 % growth without, 0.24 % with, in 13 s instead of 0.4 s; at the 4x bounds up to
+  /// about 50 s (genus 20 on 80k faces). 0: only with slides = 1. Finite and >= 0, else
   /// InvalidArgument.
   double slides_budget = 1e7;
   /// From this many vertices on, the steps run on a copy of the mesh renumbered for memory
