@@ -249,8 +249,9 @@ Word root_word(const TriMesh& M, int root, const std::vector<std::vector<int>>& 
 // st.splits and st.collapsed count what that added and removed. False (st unchanged) if no path
 // joins the two wedges (a wedge whose free vertices are all walled in, even on the copy).
 // Internal if the drawn loops do not read st.word up to rotation before or after the slide.
-// O(n + chords + tightening).
-bool draw_slide(SlideState& st, int root, const Slide& s);
+// `beside_cost` is the cost of each loop vertex beside a path vertex (1; 0 for hop counts, which a
+// test compares). O(n + chords + tightening).
+bool draw_slide(SlideState& st, int root, const Slide& s, double beside_cost = 1.0);
 
 // Redraws loops one at a time where that saves vertices (step 3d). Loop x, with letters p (x)
 // and q (x^-1) in st.word, is drawn again on copies (draw_slide) by these moves:

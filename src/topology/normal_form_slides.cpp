@@ -118,7 +118,7 @@ Word root_word(const TriMesh& M, int root, const std::vector<std::vector<int>>& 
   return w;
 }
 
-bool draw_slide(SlideState& st, int root, const Slide& s) {
+bool draw_slide(SlideState& st, int root, const Slide& s, double beside_cost) {
   const TriMesh& M = st.rs.mesh;
   const int nv = M.num_vertices(), nh = M.num_halfedges(), x = s.loop;
   // Walls: the root and the other loops; chords: edges joining two walls that no loop uses.
@@ -163,8 +163,8 @@ bool draw_slide(SlideState& st, int root, const Slide& s) {
   for (int h : R.he) beside_root[C.target(h)] = 1;
   for (int h : to)
     if (!blocked(C.target(h))) target[C.target(h)] = 1;
-  // A path vertex costs kSlideHopCost plus one per wall beside it (each such edge becomes a chord
-  // that later slides and redraws must split to cross), a chord midpoint kMidpointCost more.
+  // A path vertex costs kSlideHopCost plus beside_cost per wall beside it (each such edge becomes a
+  // chord that later slides and redraws must split to cross), a chord midpoint kMidpointCost more.
   std::vector<int> walls_beside(cn, 0);
   for (int w = 0; w < nv; ++w) {
     if (!wall[w] || w == root) continue;
@@ -175,7 +175,7 @@ bool draw_slide(SlideState& st, int root, const Slide& s) {
       g = C.next_around_origin(g);
     } while (g != g0);
   }
-  auto cost = [&](int v) { return kSlideHopCost + (v >= nv ? kMidpointCost : walls_beside[v]); };
+  auto cost = [&](int v) { return kSlideHopCost + (v >= nv ? kMidpointCost : beside_cost * walls_beside[v]); };
   std::vector<double> dist(cn, INFINITY);
   std::vector<int> par(cn, -1);
   MinQueue pq;

@@ -158,6 +158,28 @@ TEST_CASE("a loop system already in blocks takes no slide") {
   CHECK(s.st.rs.mesh.num_vertices() == before);
 }
 
+TEST_CASE("a slide's arc that avoids loop vertices adds fewer vertices than the fewest hops") {
+  // The slides plan_handle_slides gives for generated genus-6 greedy loops, drawn twice: with the
+  // default arc cost (each loop vertex beside a path vertex costs 1: the chord it makes for later
+  // arcs) and by hop counts (beside_cost 0). The same words; the default adds fewer vertices
+  // (bench/README.md, stop 33: 36 generated meshes 5,664 against 6,231 with steps 3c-3d), and its
+  // system is checked like any drawn one.
+  Start s = greedy_start(6, 4000, 6);
+  SlideState beside = s.st, hops = s.st;
+  for (const Slide& sl : plan_handle_slides(s.st.word)) {
+    REQUIRE(draw_slide(beside, s.root, sl));
+    REQUIRE(draw_slide(hops, s.root, sl, 0.0));
+  }
+  MESSAGE("genus 6, slides as planned: " << beside.rs.mesh.num_vertices() << " vertices, by hop counts "
+                                         << hops.rs.mesh.num_vertices());
+  CHECK(beside.word == hops.word);
+  CHECK(commutator_rotation(beside.word) >= 0);
+  CHECK(beside.rs.mesh.num_vertices() < hops.rs.mesh.num_vertices());
+  CHECK(reads(beside, s.root, beside.word));
+  CHECK(igm_test::loop_violation(beside.rs.mesh, beside.loops, s.root, 6) == "");
+  CHECK(igm_test::refinement_violation(s.in, beside.rs, true) == "");
+}
+
 TEST_CASE("redrawing loops keeps their word, or a word in blocks, and never adds vertices (step 3d)") {
   // The slides plan_handle_slides gives for generated genus-6 greedy loops, drawn without step
   // 3c's choices: redrawing that system loop by loop lowers its vertex count, and the result is
