@@ -777,22 +777,21 @@ CutResult cut_in_given_order(const TriMesh& mesh, const std::vector<Vec3d>& posi
     const SlidesRun run = slides_run(mesh, options, genus);
     const bool beside = run == SlidesRun::Beside;
     Slid slid;
+    auto redraw = [&] { res.stats.redrawn = redraw_system(res, options.parallel); };  // step 3d
+    auto slide = [&] { slid = slides_system(mesh, positions, unit, options, genus); };  // step 3c
     run_pair(
         options.parallel && beside,
         [&] {
           normal_form_system(mesh, positions, unit, options, genus, t_start, res);
           tighten();
-          if (beside) res.stats.redrawn = redraw_system(res, options.parallel);
+          if (beside) redraw();
         },
         [&] {
-          if (beside) slid = slides_system(mesh, positions, unit, options, genus);
+          if (beside) slide();
         });
     // Past the budget: steps 3d and 3c as beside, after step 3 and only for its growth.
     const bool after = run == SlidesRun::IfGrown && slides_after_growth(nv0, rs.mesh.num_vertices());
-    if (after)
-      run_pair(
-          options.parallel, [&] { res.stats.redrawn = redraw_system(res, options.parallel); },
-          [&] { slid = slides_system(mesh, positions, unit, options, genus); });
+    if (after) run_pair(options.parallel, redraw, slide);
     if (beside || after) {
       keep_fewer(slid, res);
       res.stats.slides_after = after;

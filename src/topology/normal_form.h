@@ -262,11 +262,11 @@ bool draw_slide(SlideState& st, int root, const Slide& s, double beside_cost = 1
 // The best copy (fewest vertices, then loop vertices, then the first move) replaces st if it has
 // fewer vertices, or as many and fewer loop vertices. A loop drawn before later slides moved the
 // others often finds a path that crosses fewer chords (couplingdown's normal form by slides:
-// 2,086 vertices without, 1,969 with, by hop counts; bench/README.md, step 3d). Passes over the loops, longest
-// first (ties by id), until one keeps nothing, at most max_passes; each loop's moves are drawn in
-// two halves on two threads if `parallel` (the same choice either way). Returns the redraws kept
-// (also added to st.redrawn). Pre: as draw_slide. O(max_passes 2g (m (n + chords + tightening) +
-// g^3)) for m moves per loop (1, or about 5 in blocks).
+// 2,086 vertices without, 1,969 with, by hop counts; bench/README.md, step 3d). Passes over the
+// loops, longest first (ties by id), until one keeps nothing, at most max_passes; each loop's
+// moves are drawn in two halves on two threads if `parallel` (the same choice either way).
+// Returns the redraws kept (also added to st.redrawn). Pre: as draw_slide. O(max_passes 2g (m (n
+// + chords + tightening) + g^3)) for m moves per loop (1, or about 5 in blocks).
 int redraw_loops(SlideState& st, int root, int max_passes, bool parallel);
 
 // redraw_loops' passes where step 3d runs: after step 3c's last step and on the rounds' or

@@ -121,8 +121,11 @@ Word root_word(const TriMesh& M, int root, const std::vector<std::vector<int>>& 
 bool draw_slide(SlideState& st, int root, const Slide& s, double beside_cost) {
   const TriMesh& M = st.rs.mesh;
   const int nv = M.num_vertices(), nh = M.num_halfedges(), x = s.loop;
-  // Walls: the root and the other loops; chords: edges joining two walls that no loop uses.
+  // Walls: the root and the other loops; chords: edges joining two walls that no loop uses. Per
+  // vertex, the walls beside it but the root (read for free vertices only, whose neighbours on the
+  // chord-split copy below are these and chord midpoints).
   std::vector<char> wall(nv, 0), loop_edge(nh, 0);
+  std::vector<int> walls_beside(nv, 0);
   wall[root] = 1;
   for (int i = 0; i < static_cast<int>(st.loops.size()); ++i) {
     if (i == x) continue;
@@ -131,6 +134,13 @@ bool draw_slide(SlideState& st, int root, const Slide& s, double beside_cost) {
       wall[L[k]] = 1;
       const int h = find_he(M, L[k], L[(k + 1) % L.size()]);
       loop_edge[h] = loop_edge[M.twin(h)] = 1;
+      if (k == 0) continue;  // the root
+      const int g0 = M.vertex_halfedge(L[k]);
+      int g = g0;
+      do {
+        ++walls_beside[M.target(g)];
+        g = M.next_around_origin(g);
+      } while (g != g0);
     }
   }
   const auto chords = sorted_chords(
@@ -165,16 +175,6 @@ bool draw_slide(SlideState& st, int root, const Slide& s, double beside_cost) {
     if (!blocked(C.target(h))) target[C.target(h)] = 1;
   // A path vertex costs kSlideHopCost plus beside_cost per wall beside it (each such edge becomes a
   // chord that later slides and redraws must split to cross), a chord midpoint kMidpointCost more.
-  std::vector<int> walls_beside(cn, 0);
-  for (int w = 0; w < nv; ++w) {
-    if (!wall[w] || w == root) continue;
-    const int g0 = C.vertex_halfedge(w);
-    int g = g0;
-    do {
-      ++walls_beside[C.target(g)];
-      g = C.next_around_origin(g);
-    } while (g != g0);
-  }
   auto cost = [&](int v) { return kSlideHopCost + (v >= nv ? kMidpointCost : beside_cost * walls_beside[v]); };
   std::vector<double> dist(cn, INFINITY);
   std::vector<int> par(cn, -1);
