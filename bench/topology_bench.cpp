@@ -1,7 +1,7 @@
 // Topology stage measurements: time and mesh growth of cut_to_canonical_disk.
 // Usage: igm_bench_topology [shared_dir] [--normal-form-all] [--crosses|--rounds] [--serial]
 //                           [--no-tighten] [--no-slides] [--congestion-rounds N] [--nf-roots N]
-//                           [--no-locality-order] [--only NAME|g3|g10|g20|g40]
+//                           [--no-locality-order] [--restarts N] [--only NAME|g3|g10|g20|g40]
 // Growth is broken down by source: crossings, Steiner, band, chord and pre-condition splits, and
 // the normal form's rounds (marked "(crosses)" where the crosses construction won, "raced" where a
 // lone root candidate ran both constructions side by side) and chord splits, and "slides k/t" (step
@@ -16,6 +16,8 @@
 // --no-tighten skips the loop tightening (CutOptions::tighten = false), for comparison;
 // --no-slides turns step 3c off (CutOptions::slides = 0);
 // --congestion-rounds N sets CutOptions::congestion_rounds (0: off; default: automatic);
+// --restarts N sets CutOptions::restarts (default 0; -1: automatic): the line then shows
+// "restarts k/n" (the run kept, 0 the first, of the n made on shuffled vertex ids);
 // --no-locality-order runs the steps in the input's own vertex order on every mesh
 // (CutOptions::locality_order_min_vertices = -1; by default meshes of >= 32,768 vertices, here the
 // 1M-face g20, are renumbered first: the line then ends with "renumbered"). The line without the
@@ -82,6 +84,7 @@ int locality_min = CutOptions{}.locality_order_min_vertices;  // --no-locality-o
 int congestion_rounds = -1;                                                // --congestion-rounds N
 int slides = -1;                                                           // --no-slides: 0
 int nf_roots = -1;                                                         // --nf-roots N
+int restarts = 0;                                                          // --restarts N
 
 void run(const std::string& name, const Input& in, bool normal_form) {
   CutOptions o;
@@ -92,20 +95,23 @@ void run(const std::string& name, const Input& in, bool normal_form) {
   o.congestion_rounds = congestion_rounds;
   o.slides = slides;
   o.normal_form_roots = nf_roots;
+  o.restarts = restarts;
   o.locality_order_min_vertices = locality_min;
   try {
     CutResult r = cut_to_canonical_disk(in.mesh, in.positions, o);
     const auto& s = r.stats;
     std::printf("%-24s g=%-4d F=%-8d nf=%d  V %8d -> %8d (+%6.1f%%) | crossings %6d steiner %5d band %4d chord %5d"
                 " collapsed %5d precond %6d | rounds %3d%s chords %6d - %6d | slides %2d/%-4lld%s%s redrawn %2d | roots %2d"
-                " congestion %2d/%-2d | %7.3f s (basis %.3f, detach %.3f, cut %.3f)%s\n",
+                " congestion %2d/%-2d | %7.3f s (basis %.3f, detach %.3f, cut %.3f)%s%s\n",
                 name.c_str(), s.genus, s.faces_before, normal_form ? 1 : 0, s.vertices_before, s.vertices_after,
                 100.0 * (s.vertices_after - s.vertices_before) / s.vertices_before, s.crossings, s.steiner_vertices,
                 s.band_splits, s.chord_splits, s.collapsed, s.precondition_splits, s.normal_form_rounds, s.crosses ? (s.raced ? " (crosses, raced)" : " (crosses)") : s.raced ? " (raced)" : "", s.round_chord_splits, s.straightened,
                 s.slides, s.slide_trials, s.slides_failed ? " failed" : "", s.slides_after ? " after" : "", s.redrawn,
                 s.roots_tried,
                 s.congestion_best_round, s.congestion_rounds, s.seconds_total,
-                s.seconds_basis, s.seconds_detach, s.seconds_cut, s.locality_ordered ? " renumbered" : "");
+                s.seconds_basis, s.seconds_detach, s.seconds_cut, s.locality_ordered ? " renumbered" : "",
+                s.restarts > 0 ? (" | restarts " + std::to_string(s.restart_kept) + "/" + std::to_string(s.restarts)).c_str()
+                               : "");
     // The ring-capacity floor (topology/ring_bound.h): what any loop system through this root must
     // add, and on small meshes the least over every root.
     const RingBound floor_here = ring_capacity_bound(in.mesh, r.root);
@@ -137,6 +143,7 @@ int main(int argc, char** argv) {
     else if (std::strcmp(argv[i], "--no-locality-order") == 0) locality_min = -1;
     else if (std::strcmp(argv[i], "--congestion-rounds") == 0 && i + 1 < argc) congestion_rounds = std::atoi(argv[++i]);
     else if (std::strcmp(argv[i], "--nf-roots") == 0 && i + 1 < argc) nf_roots = std::atoi(argv[++i]);
+    else if (std::strcmp(argv[i], "--restarts") == 0 && i + 1 < argc) restarts = std::atoi(argv[++i]);
     else shared = argv[i];
   }
   for (const char* name : {"eight", "joint", "helmet", "elephant", "anchor", "couplingdown", "cheese"}) {

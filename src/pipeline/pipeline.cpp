@@ -124,6 +124,7 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
   CutOptions cut_options;
   cut_options.root = options.root;
   cut_options.normal_form = options.normal_form;
+  cut_options.restarts = options.restarts;
   CutResult cut = cut_to_canonical_disk(input.mesh, input.positions, cut_options);
   const int g = cut.genus;
   stats.cut = cut.stats;
@@ -133,7 +134,10 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
              format("genus %.0f, root %.0f, %.0f -> %.0f vertices", g, cut.root, stats.input_vertices,
                     stats.refined_vertices) +
                  (options.normal_form ? ", normal form in " + std::to_string(cut.stats.normal_form_rounds) + " rounds"
-                                      : std::string()));
+                                      : std::string()) +
+                 (cut.stats.restarts > 0 ? ", run " + std::to_string(cut.stats.restart_kept) + " of " +
+                                               std::to_string(cut.stats.restarts) + " restarts kept"
+                                         : std::string()));
 
   // --- embed: rational convex 4g-gon, boundary at matched parameters, certified Tutte ---
   t0 = Clock::now();

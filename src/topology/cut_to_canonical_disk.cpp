@@ -821,13 +821,13 @@ CutResult cut_in_given_order(const TriMesh& mesh, const std::vector<Vec3d>& posi
 // unnumbered neighbours in its rotation order from its vertex half-edge; a vertex no search reached
 // starts a new one), faces in the order in which the vertices, in the new order, first meet them
 // (around each in rotation order), every face's corners in their given rotation. O(V + F).
-struct LocalityOrder {
+struct VertexOrder {            // a renumbering: step 0's, or a restart's shuffle
   std::vector<int> old_of_new;  // vertex
   TriMesh mesh;                 // the renumbered mesh
 };
-LocalityOrder locality_order(const TriMesh& mesh) {
+VertexOrder locality_order(const TriMesh& mesh) {
   const int nv = mesh.num_vertices(), nf = mesh.num_faces();
-  LocalityOrder out;
+  VertexOrder out;
   std::vector<int> new_of_old(nv, -1), new_face(nf, -1);
   out.old_of_new.reserve(nv);
   int placed = 0;
@@ -885,6 +885,65 @@ void restore_order(CutResult& res, const std::vector<int>& old_of_new, const std
   for (int& v : res.disk_to_surface) v = old_id(v);
 }
 
+// Steps 1-5 on `mesh` renumbered by `order` (order.mesh), in the caller's ids; `locality` marks
+// the result as step 0's. O(V + F) besides the cut.
+CutResult cut_in_order(const VertexOrder& order, const TriMesh& mesh, const std::vector<Vec3d>& positions,
+                       const CutOptions& options, int genus, bool locality) {
+  const int nv = mesh.num_vertices();
+  std::vector<Vec3d> renumbered(nv);
+  for (int v = 0; v < nv; ++v) renumbered[v] = positions[order.old_of_new[v]];
+  CutOptions o = options;
+  if (o.root >= 0) o.root = static_cast<int>(std::find(order.old_of_new.begin(), order.old_of_new.end(), o.root) - order.old_of_new.begin());
+  CutResult res = cut_in_given_order(order.mesh, renumbered, o, genus);
+  restore_order(res, order.old_of_new, positions);
+  res.stats.locality_ordered = locality;
+  return res;
+}
+
+// How many restarts the cut takes (CutOptions::restarts; -1: clamp(2.5e6 / (F g^2), 0, 7), each
+// about as costly as the first run, whose step 3c costs about F g^2).
+int restart_count(const TriMesh& mesh, const CutOptions& options, int genus) {
+  if (options.restarts >= 0) return options.restarts;
+  const double fg2 = static_cast<double>(mesh.num_faces()) * genus * genus;
+  return static_cast<int>(std::clamp(std::floor(2.5e6 / fg2), 0.0, 7.0));
+}
+
+// Vertex ids shuffled by seed `seed` (Fisher-Yates driven by splitmix64, so the same on every
+// platform): old_of_new and the mesh renumbered by it (faces and half-edges keep their ids). O(V + F).
+VertexOrder shuffled_order(const TriMesh& mesh, std::uint64_t seed) {
+  const int nv = mesh.num_vertices();
+  VertexOrder out;
+  out.old_of_new.resize(static_cast<std::size_t>(nv));
+  for (int v = 0; v < nv; ++v) out.old_of_new[static_cast<std::size_t>(v)] = v;
+  std::uint64_t state = seed;
+  auto next = [&state] {  // splitmix64
+    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  };
+  for (int i = nv - 1; i > 0; --i) {  // nv - 1 swaps; the modulo's bias is irrelevant here
+    const int j = static_cast<int>(next() % static_cast<std::uint64_t>(i + 1));
+    std::swap(out.old_of_new[static_cast<std::size_t>(i)], out.old_of_new[static_cast<std::size_t>(j)]);
+  }
+  std::vector<int> new_of_old(static_cast<std::size_t>(nv));
+  for (int v = 0; v < nv; ++v) new_of_old[static_cast<std::size_t>(out.old_of_new[static_cast<std::size_t>(v)])] = v;
+  std::vector<int> origin = mesh.origins();
+  for (int& v : origin) v = new_of_old[static_cast<std::size_t>(v)];
+  out.mesh = TriMesh::from_halfedges(nv, std::move(origin), mesh.twins());
+  return out;
+}
+
+// Steps 0-5 on the mesh as given (step 0 renumbers it for locality from
+// CutOptions::locality_order_min_vertices vertices on), in the caller's ids.
+CutResult cut_once(const TriMesh& mesh, const std::vector<Vec3d>& positions, const CutOptions& options, int genus) {
+  const int nv = mesh.num_vertices();
+  if (options.locality_order_min_vertices < 0 || nv < options.locality_order_min_vertices)
+    return cut_in_given_order(mesh, positions, options, genus);
+  const VertexOrder order = locality_order(mesh);
+  return cut_in_order(order, mesh, positions, options, genus, true);
+}
+
 }  // namespace
 
 CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& positions,
@@ -926,16 +985,29 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
   if (options.locality_order_min_vertices < -1)
     throw Error(ErrorKind::InvalidArgument, "CutOptions::locality_order_min_vertices must be >= -1 (-1: never), got " +
                                                 std::to_string(options.locality_order_min_vertices));
-  if (options.locality_order_min_vertices < 0 || nv < options.locality_order_min_vertices)
-    return cut_in_given_order(mesh, positions, options, genus);
-  const LocalityOrder order = locality_order(mesh);
-  std::vector<Vec3d> renumbered(nv);
-  for (int v = 0; v < nv; ++v) renumbered[v] = positions[order.old_of_new[v]];
-  CutOptions o = options;
-  if (o.root >= 0) o.root = static_cast<int>(std::find(order.old_of_new.begin(), order.old_of_new.end(), o.root) - order.old_of_new.begin());
-  CutResult res = cut_in_given_order(order.mesh, renumbered, o, genus);
-  restore_order(res, order.old_of_new, positions);
-  res.stats.locality_ordered = true;
+  if (options.restarts < -1)
+    throw Error(ErrorKind::InvalidArgument,
+                "CutOptions::restarts must be >= -1 (-1: automatic), got " + std::to_string(options.restarts));
+  CutResult res = cut_once(mesh, positions, options, genus);
+  // Restarts (CutOptions::restarts): the whole cut again on shuffled ids, the fewest vertices kept
+  // (the earliest on ties). At most restart_count(...) more runs.
+  const int restarts = options.normal_form ? restart_count(mesh, options, genus) : 0;
+  if (restarts > 0 && slides_after_growth(nv, res.surface.mesh.num_vertices())) {
+    int kept = 0, failed = 0;
+    for (int i = 1; i <= restarts; ++i) {
+      try {
+        CutResult r = cut_in_order(shuffled_order(mesh, static_cast<std::uint64_t>(i)), mesh, positions, options, genus,
+                                   false);
+        if (r.surface.mesh.num_vertices() < res.surface.mesh.num_vertices()) res = std::move(r), kept = i;
+      } catch (const Error& e) {
+        if (e.kind() != ErrorKind::Unsupported) throw;
+        ++failed;  // this shuffle's construction passed the growth bounds: not a candidate
+      }
+    }
+    res.stats.restarts = restarts;
+    res.stats.restart_kept = kept;
+    res.stats.restarts_failed = failed;
+  }
   res.stats.seconds_total = seconds_since(t_start);
   return res;
 }

@@ -135,6 +135,30 @@ TEST_CASE("igm run: a memory limit too small for the arrangement exits 2 in the 
   std::filesystem::remove_all(cwd);
 }
 
+TEST_CASE("igm run --normal-form --restarts: the restarts reach the topology stage, the output certifies") {
+  const auto cwd = tmp_dir() / "restarts";
+  const std::string igm_cmd = quote(IGM_CLI_PATH);
+  // Generated genus 4 on ~1000 faces: the normal form adds more than 2 % of its 372 vertices.
+  REQUIRE(in_folder(cwd, igm_cmd + " generate --genus 4 --faces 1000 --seed 1 g4.obj").code == 0);
+  const Run r = in_folder(cwd, igm_cmd + " run g4.obj -o res --resolution 3 --normal-form --restarts 2");
+  CHECK(r.code == 0);
+  CHECK(has(r.out, "of 2 restarts kept"));
+  CHECK(has(r.out, "certified: VALID"));
+  const Run exact = in_folder(cwd, quote(IGM_CERTIFY_CLI_PATH) + " res/g4.igm.exact");
+  CHECK(exact.code == 0);
+  CHECK(has(exact.out, "\"verdict\": \"valid\""));
+  const Run plain = in_folder(cwd, igm_cmd + " run g4.obj -o plain --resolution 3 --normal-form");
+  CHECK(plain.code == 0);
+  CHECK(!has(plain.out, "restarts"));
+  for (const char* a : {" run g4.obj --restarts 2", " run g4.obj --normal-form --restarts 65",
+                        " run g4.obj --normal-form --restarts -1", " run g4.obj --normal-form --restarts"}) {
+    CAPTURE(a);
+    const Run bad = in_folder(cwd, igm_cmd + a);
+    CHECK(bad.code == 2);
+    CHECK(has(bad.err, "--restarts"));
+  }
+}
+
 TEST_CASE("help and usage errors") {
   for (const char* a : {"--help", "help", "-h"}) {
     const Run r = igm(a);

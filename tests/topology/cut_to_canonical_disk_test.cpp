@@ -1111,3 +1111,60 @@ TEST_CASE("shared clean meshes of genus >= 1 are cut into verified disks") {
                    << std::string(r.stats.crosses ? " (crosses)" : "") << " in " << r.stats.seconds_total << " s");
   }
 }
+
+TEST_CASE("restarts on shuffled vertex ids keep the fewest vertices, only where the cut grew by more than 2 %") {
+  // Generated genus 4 on 1000 faces grows by about 3 %: each restart cuts a copy with its vertex
+  // ids shuffled (seed i for restart i), and the result is the fewest vertices of all runs, in the
+  // caller's ids, the earliest on ties.
+  Input in = generated(4, 1000, 1);
+  CutOptions o;
+  o.restarts = 0;
+  const CutResult first = cut_to_canonical_disk(in.mesh, in.positions, o);
+  CHECK(verify_cut(in, first) == "");
+  CHECK(first.stats.restarts == 0);
+  REQUIRE(100 * (first.stats.vertices_after - first.stats.vertices_before) > 2 * first.stats.vertices_before);
+  std::vector<CutResult> with(4);  // with[k]: k restarts
+  with[0] = first;
+  for (int k = 1; k <= 3; ++k) {
+    CAPTURE(k);
+    o.restarts = k;
+    with[k] = cut_to_canonical_disk(in.mesh, in.positions, o);
+    CHECK(verify_cut(in, with[k]) == "");
+    CHECK(with[k].stats.restarts == k);
+    CHECK(with[k].stats.restarts_failed == 0);
+    CHECK(with[k].stats.vertices_after <= with[k - 1].stats.vertices_after);
+    const int kept = with[k].stats.restart_kept;
+    REQUIRE(kept >= 0);
+    REQUIRE(kept <= k);
+    // The kept run is the first with that many vertices, and the runs after it had more or as many.
+    CHECK(with[kept].stats.vertices_after == with[k].stats.vertices_after);
+    if (kept > 0) CHECK(with[kept - 1].stats.vertices_after > with[k].stats.vertices_after);
+    check_same_cut(with[kept], with[k]);
+  }
+  // Some shuffle beats the ids as given here (the cut's ties fall otherwise).
+  CHECK(with[3].stats.vertices_after < first.stats.vertices_after);
+  MESSAGE("genus 4 on 1000 faces: " << first.stats.vertices_after << " vertices, with 3 restarts "
+                                    << with[3].stats.vertices_after << " (restart " << with[3].stats.restart_kept
+                                    << ")");
+  // -1: clamp(2.5e6 / (F g^2), 0, 7) of them.
+  o.restarts = -1;
+  const CutResult automatic = cut_to_canonical_disk(in.mesh, in.positions, o);
+  CHECK(verify_cut(in, automatic) == "");
+  const double fg2 = 16.0 * in.mesh.num_faces();
+  CHECK(automatic.stats.restarts == static_cast<int>(std::min(7.0, std::floor(2.5e6 / fg2))));
+  CHECK(automatic.stats.vertices_after <= with[3].stats.vertices_after);
+  // No restart where the cut added at most 2 %, nor without the normal form.
+  Input fine = generated(3, 600, 1);
+  o.restarts = 3;
+  const CutResult kept = cut_to_canonical_disk(fine.mesh, fine.positions, o);
+  CHECK(verify_cut(fine, kept) == "");
+  CHECK(100 * (kept.stats.vertices_after - kept.stats.vertices_before) <= 2 * kept.stats.vertices_before);
+  CHECK(kept.stats.restarts == 0);
+  o.normal_form = false;
+  const CutResult greedy = cut_to_canonical_disk(in.mesh, in.positions, o);
+  CHECK(verify_cut(in, greedy, false) == "");
+  CHECK(greedy.stats.restarts == 0);
+  o.normal_form = true;
+  o.restarts = -2;
+  check_invalid(in, o, "restarts");
+}

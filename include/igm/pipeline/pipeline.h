@@ -44,6 +44,10 @@ struct PipelineOptions {
   /// 2.37k instead of 2.19k refined vertices; a 1M-face g20 mesh 0.54M instead of 0.51M vertices,
   /// in ~9 s instead of ~3 s; cheese g133 ~150k instead of 27k, by the crosses construction).
   bool normal_form = false;
+  /// With normal_form: CutOptions::restarts, the topology stage run again on this many copies of
+  /// the mesh with shuffled vertex ids where it added more than 2 %, the fewest vertices kept
+  /// (couplingdown with 7: 104 vertices added instead of 129, in 8x the time). 0: none.
+  int restarts = 0;
   /// Genus 0 only: the four cone vertices (input vertex ids) in path order A, B, C, D; empty: the
   /// deterministic default (topology/sphere_cut.h). Bad lists give igm::Error(InvalidArgument).
   std::vector<int> cones;

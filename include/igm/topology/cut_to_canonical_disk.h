@@ -35,6 +35,8 @@
 //     triangle has three vertices on one side. O(n).
 //  5. cut: the disk whose face f is face f of the refined surface; its boundary is one ccw cycle of
 //     4g sides, each from a root copy to the next, labelled (loop, direction) and paired.
+//  6. restarts (CutOptions::restarts, off by default): with the normal form, where steps 0-5 added
+//     more than 2 %, they run again on copies with shuffled vertex ids; the fewest vertices win.
 // Every constructed vertex is an exact point of one input face (SurfacePoint). A failing
 // invariant is igm::Error(Internal), never a silent skip; every loop has a stated bound.
 #include <array>
@@ -121,6 +123,16 @@ struct CutOptions {
   /// about 50 s (genus 20 on 80k faces). 0: only with slides = 1. Finite and >= 0, else
   /// InvalidArgument.
   double slides_budget = 1e7;
+  /// With the normal form: where the cut added more than 2 % of the input's vertices, it runs
+  /// again on this many copies of the mesh with shuffled vertex ids (copy i by the fixed seed i,
+  /// so the result is the same every time), and the fewest vertices win (the earliest on ties).
+  /// The ids break the ties of every search, and on coarse meshes the growth varies with them
+  /// (couplingdown, genus 9 on 1,841 vertices: 93 to 234 vertices added over 40 shuffles; 7
+  /// restarts: 104 instead of 129, in 8x the time). A copy whose construction passes the growth
+  /// bounds (Unsupported) is counted and skipped; the copies are not renumbered by step 0. Each
+  /// run costs about as much as the first, so it is off by default (with -1 the topology tests
+  /// would take 3-10x as long); -1 picks clamp(2.5e6 / (F g^2), 0, 7); < -1 is InvalidArgument.
+  int restarts = 0;
   /// From this many vertices on, the steps run on a copy of the mesh renumbered for memory
   /// locality (step 0) and the result is given back in the caller's vertex ids; 0: always, -1:
   /// never, < -1 is InvalidArgument. The cut is as valid either way but not the same one (ties
@@ -158,6 +170,9 @@ struct CutStats {
   bool slides_after = false;    // step 3c ran after step 3, past slides_budget, for step 3's growth
   bool raced = false;           // a lone candidate ran both constructions (step 3, Best)
   bool locality_ordered = false;  // the steps ran on the mesh renumbered by step 0
+  int restarts = 0;               // runs on shuffled copies (CutOptions::restarts; 0: none ran)
+  int restart_kept = 0;           // the one kept (0: the first run)
+  int restarts_failed = 0;        // of those, runs that passed the growth bounds
   // Exact points of crossings made on two threads (CutOptions::parallel, at least 1024 in one
   // drawing); 0 on one thread.
   long long points_on_two_threads = 0;
@@ -204,7 +219,8 @@ struct CutResult {
 /// congestion_rounds) and, on at most 2e5 faces, drawn to compare; with it
 /// O((K' + R') g log g n log n + crossings) for K' = CutOptions::normal_form_roots roots (x2
 /// metrics if K' > 1; 1 if the root is given) and R' reweighting rounds, n the refined size; with
-/// CutOptions::parallel the candidates take about half that time on two cores.
+/// CutOptions::parallel the candidates take about half that time on two cores. With
+/// CutOptions::restarts = k, up to k + 1 times that.
 CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& positions,
                                 const CutOptions& options = {});
 
