@@ -157,6 +157,7 @@ TEST_CASE("igm run --normal-form --restarts: the restarts reach the topology sta
     CHECK(bad.code == 2);
     CHECK(has(bad.err, "--restarts"));
   }
+  std::filesystem::remove_all(cwd);
 }
 
 TEST_CASE("help and usage errors") {
