@@ -900,12 +900,12 @@ CutResult cut_in_order(const VertexOrder& order, const TriMesh& mesh, const std:
   return res;
 }
 
-// How many restarts the cut takes (CutOptions::restarts; -1: clamp(2.5e6 / (F g^2), 0, 7), each
+// How many restarts the cut takes (CutOptions::restarts; -1: clamp(5e6 / (F g^2), 0, 15), each
 // about as costly as the first run, whose step 3c costs about F g^2).
 int restart_count(const TriMesh& mesh, const CutOptions& options, int genus) {
   if (options.restarts >= 0) return options.restarts;
   const double fg2 = static_cast<double>(mesh.num_faces()) * genus * genus;
-  return static_cast<int>(std::clamp(std::floor(2.5e6 / fg2), 0.0, 7.0));
+  return static_cast<int>(std::clamp(std::floor(5e6 / fg2), 0.0, 15.0));
 }
 
 // Vertex ids shuffled by seed `seed` (Fisher-Yates driven by splitmix64, so the same on every

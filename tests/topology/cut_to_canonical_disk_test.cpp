@@ -1146,12 +1146,12 @@ TEST_CASE("restarts on shuffled vertex ids keep the fewest vertices, only where 
   MESSAGE("genus 4 on 1000 faces: " << first.stats.vertices_after << " vertices, with 3 restarts "
                                     << with[3].stats.vertices_after << " (restart " << with[3].stats.restart_kept
                                     << ")");
-  // -1: clamp(2.5e6 / (F g^2), 0, 7) of them.
+  // -1: clamp(5e6 / (F g^2), 0, 15) of them.
   o.restarts = -1;
   const CutResult automatic = cut_to_canonical_disk(in.mesh, in.positions, o);
   CHECK(verify_cut(in, automatic) == "");
   const double fg2 = 16.0 * in.mesh.num_faces();
-  CHECK(automatic.stats.restarts == static_cast<int>(std::min(7.0, std::floor(2.5e6 / fg2))));
+  CHECK(automatic.stats.restarts == static_cast<int>(std::min(15.0, std::floor(5e6 / fg2))));
   CHECK(automatic.stats.vertices_after <= with[3].stats.vertices_after);
   // No restart where the cut added at most 2 %, nor without the normal form.
   Input fine = generated(3, 600, 1);

@@ -127,11 +127,11 @@ struct CutOptions {
   /// again on this many copies of the mesh with shuffled vertex ids (copy i by the fixed seed i,
   /// so the result is the same every time), and the fewest vertices win (the earliest on ties).
   /// The ids break the ties of every search, and on coarse meshes the growth varies with them
-  /// (couplingdown, genus 9 on 1,841 vertices: 93 to 234 vertices added over 40 shuffles; 7
-  /// restarts: 104 instead of 129, in 8x the time). A copy whose construction passes the growth
+  /// (couplingdown, genus 9 on 1,841 vertices: 93 to 234 vertices added over 40 shuffles; 15
+  /// restarts: 87 instead of 129, in 15x the time). A copy whose construction passes the growth
   /// bounds (Unsupported) is counted and skipped; the copies are not renumbered by step 0. Each
   /// run costs about as much as the first, so it is off by default (with -1 the topology tests
-  /// would take 3-10x as long); -1 picks clamp(2.5e6 / (F g^2), 0, 7); < -1 is InvalidArgument.
+  /// would take 3-10x as long); -1 picks clamp(5e6 / (F g^2), 0, 15); < -1 is InvalidArgument.
   int restarts = 0;
   /// From this many vertices on, the steps run on a copy of the mesh renumbered for memory
   /// locality (step 0) and the result is given back in the caller's vertex ids; 0: always, -1:
