@@ -69,6 +69,13 @@ Run in_folder(const std::filesystem::path& cwd, const std::string& command) {
   return r;
 }
 
+// A fresh working folder tmp_dir() / name holding the mesh `igm generate ARGS` writes.
+std::filesystem::path folder_with_generated(const std::string& name, const std::string& generate_args) {
+  const auto cwd = tmp_dir() / name;
+  REQUIRE(in_folder(cwd, quote(IGM_CLI_PATH) + " generate " + generate_args).code == 0);
+  return cwd;
+}
+
 TEST_CASE("igm without arguments runs the pipeline on a generated genus-2 mesh, igm-certify accepts its files") {
   const auto cwd = tmp_dir() / "default-run";
   const Run r = in_folder(cwd, quote(IGM_CLI_PATH));
@@ -114,9 +121,8 @@ TEST_CASE("igm run: shared torus certified, invalid mesh and bad options exit 2"
 }
 
 TEST_CASE("igm run: a memory limit too small for the arrangement exits 2 in the arrange stage") {
-  const auto cwd = tmp_dir() / "memory";
+  const auto cwd = folder_with_generated("memory", "--genus 4 --faces 2000 --seed 3 g4.obj");
   const std::string igm_cmd = quote(IGM_CLI_PATH);
-  REQUIRE(in_folder(cwd, igm_cmd + " generate --genus 4 --faces 2000 --seed 3 g4.obj").code == 0);
   const Run small = in_folder(cwd, igm_cmd + " run g4.obj -o res --memory-limit-mb 1");
   CHECK(small.code == 2);
   CHECK(has(small.err, "unsupported"));
@@ -136,10 +142,9 @@ TEST_CASE("igm run: a memory limit too small for the arrangement exits 2 in the 
 }
 
 TEST_CASE("igm run --normal-form --restarts: the restarts reach the topology stage, the output certifies") {
-  const auto cwd = tmp_dir() / "restarts";
-  const std::string igm_cmd = quote(IGM_CLI_PATH);
   // Generated genus 4 on ~1000 faces: the normal form adds more than 2 % of its 372 vertices.
-  REQUIRE(in_folder(cwd, igm_cmd + " generate --genus 4 --faces 1000 --seed 1 g4.obj").code == 0);
+  const auto cwd = folder_with_generated("restarts", "--genus 4 --faces 1000 --seed 1 g4.obj");
+  const std::string igm_cmd = quote(IGM_CLI_PATH);
   const Run r = in_folder(cwd, igm_cmd + " run g4.obj -o res --resolution 3 --normal-form --restarts 2");
   CHECK(r.code == 0);
   CHECK(has(r.out, "of 2 restarts kept"));
