@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <exception>
 #include <limits>
+#include <numeric>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -655,7 +656,7 @@ bool greedy_system(const TriMesh& mesh, const std::vector<Vec3d>& positions, con
 
 // Whether and how step 3c runs (CutOptions::slides): with the normal form, Best and the tightening
 // on; for -1 beside step 3 where F g^2 <= B and F g^3 <= 16 B (B = CutOptions::slides_budget), and
-// after it, if its growth calls for it (slides_after_growth), where both are at most 4x that.
+// after it, if its growth calls for it (grew_past_target), where both are at most 4x that.
 // About 5 g^2 slides are drawn (4 per linked pair per step), each on a copy of the surface: O(F)
 // each, about 1 microsecond x F g^2 in all on the bench machine (generated genus 10 on 100k faces,
 // seed 1: 8.2 s instead of 1.6 s, for 0.35 % growth instead of 8.6 %); with many loops a drawing's
@@ -673,11 +674,12 @@ SlidesRun slides_run(const TriMesh& mesh, const CutOptions& options, int genus) 
   return SlidesRun::No;
 }
 
-// Past the budget, step 3c runs after step 3 if step 3's system added more than 2 % of the
-// input's vertices: the growth the normal form should stay under on g <= 10, which the rounds
-// pass on finer meshes than the budget covers (generated genus 10: 8.6 %, 7.4 %, 6.3 % on 100k,
-// 200k, 400k faces; genus 8: 2.0 % and 2.4 % on 200k and 400k; bench/README.md, step 3c).
-bool slides_after_growth(int vertices_before, int vertices_now) {
+// Whether a cut added more than 2 % of the input's vertices: the growth the normal form should
+// stay under on g <= 10. Past its budget step 3c runs after step 3 only then (the rounds pass it
+// on finer meshes than the budget covers: generated genus 10: 8.6 %, 7.4 %, 6.3 % on 100k, 200k,
+// 400k faces; genus 8: 2.0 % and 2.4 % on 200k and 400k; bench/README.md, step 3c), and so do
+// the restarts (CutOptions::restarts).
+bool grew_past_target(int vertices_before, int vertices_now) {
   return 100LL * (vertices_now - vertices_before) > 2LL * vertices_before;
 }
 
@@ -790,7 +792,7 @@ CutResult cut_in_given_order(const TriMesh& mesh, const std::vector<Vec3d>& posi
           if (beside) slide();
         });
     // Past the budget: steps 3d and 3c as beside, after step 3 and only for its growth.
-    const bool after = run == SlidesRun::IfGrown && slides_after_growth(nv0, rs.mesh.num_vertices());
+    const bool after = run == SlidesRun::IfGrown && grew_past_target(nv0, rs.mesh.num_vertices());
     if (after) run_pair(options.parallel, redraw, slide);
     if (beside || after) {
       keep_fewer(slid, res);
@@ -913,8 +915,8 @@ int restart_count(const TriMesh& mesh, const CutOptions& options, int genus) {
 VertexOrder shuffled_order(const TriMesh& mesh, std::uint64_t seed) {
   const int nv = mesh.num_vertices();
   VertexOrder out;
-  out.old_of_new.resize(static_cast<std::size_t>(nv));
-  for (int v = 0; v < nv; ++v) out.old_of_new[static_cast<std::size_t>(v)] = v;
+  out.old_of_new.resize(nv);
+  std::iota(out.old_of_new.begin(), out.old_of_new.end(), 0);
   std::uint64_t state = seed;
   auto next = [&state] {  // splitmix64
     std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
@@ -924,12 +926,12 @@ VertexOrder shuffled_order(const TriMesh& mesh, std::uint64_t seed) {
   };
   for (int i = nv - 1; i > 0; --i) {  // nv - 1 swaps; the modulo's bias is irrelevant here
     const int j = static_cast<int>(next() % static_cast<std::uint64_t>(i + 1));
-    std::swap(out.old_of_new[static_cast<std::size_t>(i)], out.old_of_new[static_cast<std::size_t>(j)]);
+    std::swap(out.old_of_new[i], out.old_of_new[j]);
   }
-  std::vector<int> new_of_old(static_cast<std::size_t>(nv));
-  for (int v = 0; v < nv; ++v) new_of_old[static_cast<std::size_t>(out.old_of_new[static_cast<std::size_t>(v)])] = v;
+  std::vector<int> new_of_old(nv);
+  for (int v = 0; v < nv; ++v) new_of_old[out.old_of_new[v]] = v;
   std::vector<int> origin = mesh.origins();
-  for (int& v : origin) v = new_of_old[static_cast<std::size_t>(v)];
+  for (int& v : origin) v = new_of_old[v];
   out.mesh = TriMesh::from_halfedges(nv, std::move(origin), mesh.twins());
   return out;
 }
@@ -992,7 +994,7 @@ CutResult cut_to_canonical_disk(const TriMesh& mesh, const std::vector<Vec3d>& p
   // Restarts (CutOptions::restarts): the whole cut again on shuffled ids, the fewest vertices kept
   // (the earliest on ties). At most restart_count(...) more runs.
   const int restarts = options.normal_form ? restart_count(mesh, options, genus) : 0;
-  if (restarts > 0 && slides_after_growth(nv, res.surface.mesh.num_vertices())) {
+  if (restarts > 0 && grew_past_target(nv, res.surface.mesh.num_vertices())) {
     int kept = 0, failed = 0;
     for (int i = 1; i <= restarts; ++i) {
       try {
