@@ -8,9 +8,12 @@ namespace igm {
 
 namespace {
 
-bool heavier_first(const std::pair<double, int>& x, const std::pair<double, int>& y) {
-  return x.first != y.first ? x.first > y.first : x.second < y.second;
-}
+// A function object, not a function pointer, so that std::sort inlines the comparison.
+struct HeavierFirst {
+  bool operator()(const std::pair<double, int>& x, const std::pair<double, int>& y) const {
+    return x.first != y.first ? x.first > y.first : x.second < y.second;
+  }
+};
 
 // The radix key: ascending keys are descending weights. -0.0 is mapped to +0.0 first (they compare
 // equal as doubles; their bits differ).
@@ -21,26 +24,37 @@ std::uint64_t key_of(double w) {
   return ~bits;
 }
 
+// From how many items the radix path runs, and from how many its digits are 16 bits wide. Measured
+// on fresh uniform weights (igm_bench_weight_sort), ns per item: 128 items std::sort 40, 8-bit
+// digits 25; 4,096: 66, 16, 41 with 16-bit digits; 65,536: 87, 56, 71; 262,144: 101, 62, 62. On
+// repeated inputs std::sort looks faster below ~8k items (the branch predictor learns the input).
+constexpr std::size_t kRadixMinItems = 128;
+constexpr std::size_t kWideDigitItems = std::size_t{1} << 18;
+
 }  // namespace
 
 void sort_by_weight_descending(std::vector<std::pair<double, int>>& items) {
   const std::size_t n = items.size();
-  bool radix = n >= 4096;
+  bool radix = n >= kRadixMinItems;
   for (std::size_t i = 0; radix && i < n; ++i)
     radix = items[i].first >= 0.0 && (i == 0 || items[i - 1].second < items[i].second);  // NaN fails >= 0
   if (!radix) {
-    std::sort(items.begin(), items.end(), heavier_first);
+    std::sort(items.begin(), items.end(), HeavierFirst{});
     return;
   }
-  // Stable passes from the lowest digit: equal keys keep the ids' ascending input order.
+  // Stable passes from the lowest digit: equal keys keep the ids' ascending input order. Digits of
+  // 16 bits from kWideDigitItems items on (4 passes over 65,536 buckets), of 8 bits below (8 passes
+  // over 256 buckets).
+  const int bits = n >= kWideDigitItems ? 16 : 8;
+  const std::uint64_t mask = (std::uint64_t{1} << bits) - 1;
   std::vector<std::pair<double, int>> tmp(n);
-  for (int pass = 0; pass < 4; ++pass) {
-    const int shift = 16 * pass;
-    auto digit = [shift](const std::pair<double, int>& x) { return (key_of(x.first) >> shift) & 0xffff; };
-    std::vector<std::size_t> start(65537, 0);
+  std::vector<std::size_t> start((std::size_t{1} << bits) + 1);
+  for (int shift = 0; shift < 64; shift += bits) {
+    auto digit = [shift, mask](const std::pair<double, int>& x) { return (key_of(x.first) >> shift) & mask; };
+    std::fill(start.begin(), start.end(), 0);
     for (const auto& x : items) ++start[digit(x) + 1];
     if (std::find(start.begin() + 1, start.end(), n) != start.end()) continue;  // one digit for all
-    for (std::size_t d = 1; d <= 65536; ++d) start[d] += start[d - 1];
+    for (std::size_t d = 1; d < start.size(); ++d) start[d] += start[d - 1];
     for (const auto& x : items) tmp[start[digit(x)]++] = x;
     items.swap(tmp);
   }
