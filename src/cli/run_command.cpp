@@ -31,15 +31,16 @@ bool parse_int(std::string_view s, long long& out) {
 
 int usage(const std::string& message) {
   std::fprintf(stderr,
-               "igm run: %s\nusage: igm run MESH [-o DIR] [--resolution N] [--root V] [--normal-form [--restarts K]]\n"
+               "igm run: %s\nusage: igm run MESH [-o DIR] [--resolution N] [--root V] [--normal-form [--restarts K|auto]]\n"
                "               [--cones A,B,C,D] [--memory-limit-mb M]\n"
                "  writes DIR/NAME.igm.obj, NAME.igm.exact, NAME.quad.obj, NAME.cert.json, NAME.schema.svg\n"
                "  --resolution N  quads per layout quad edge: 3..1024 for genus >= 1, 1..1024 for genus 0\n"
                "  --cones A,B,C,D genus 0: the four cone vertices (0-based input ids) in path order\n"
                "  --memory-limit-mb M  genus >= 1: stop with exit 2 in the arrangement once the rest would\n"
                "                  need more than M MB (default: this machine's memory)\n"
-               "  --restarts K    with --normal-form, 0..64: where the loops added more than 2 %% of the\n"
-               "                  vertices, cut K copies with shuffled vertex ids too, keep the fewest\n",
+               "  --restarts K    with --normal-form, 0..64 or auto: where the loops added more than 2 %% of\n"
+               "                  the vertices, cut K copies with shuffled vertex ids too, keep the fewest\n"
+               "                  (auto: clamp(5e6 / (faces x genus^2), 0, 15) copies)\n",
                message.c_str());
   return kExitInput;
 }
@@ -155,13 +156,17 @@ int run_command(const std::vector<std::string_view>& args) {
         dir = std::string(v);
         continue;
       }
+      if (a == "--restarts" && v == "auto") {
+        options.restarts = -1;  // CutOptions::restarts' automatic count
+        continue;
+      }
       long long n = 0;
       if (!parse_int(v, n)) return usage(std::string(a) + " needs an integer, got '" + std::string(v) + "'");
       if (a == "--resolution") {
         if (n < 1 || n > 1024) return usage("--resolution must be in 1..1024");
         options.resolution = static_cast<int>(n);
       } else if (a == "--restarts") {
-        if (n < 0 || n > 64) return usage("--restarts must be in 0..64");
+        if (n < 0 || n > 64) return usage("--restarts must be in 0..64 or auto");
         options.restarts = static_cast<int>(n);
       } else if (a == "--memory-limit-mb") {
         if (n < 1 || n > (1LL << 40)) return usage("--memory-limit-mb must be in 1..2^40");
@@ -180,7 +185,7 @@ int run_command(const std::vector<std::string_view>& args) {
     }
   }
   if (mesh_path.empty()) return usage("run needs a mesh file");
-  if (options.restarts > 0 && !options.normal_form) return usage("--restarts needs --normal-form");
+  if (options.restarts != 0 && !options.normal_form) return usage("--restarts needs --normal-form");
   try {
     const igm::ValidMesh mesh = igm::load_mesh(mesh_path);
     if (mesh.genus > 0 && options.resolution < 3)

@@ -152,11 +152,17 @@ TEST_CASE("igm run --normal-form --restarts: the restarts reach the topology sta
   const Run exact = in_folder(cwd, quote(IGM_CERTIFY_CLI_PATH) + " res/g4.igm.exact");
   CHECK(exact.code == 0);
   CHECK(has(exact.out, "\"verdict\": \"valid\""));
+  // auto: CutOptions::restarts = -1, clamp(5e6 / (F g^2), 0, 15) = 15 copies on ~1000 faces of genus 4.
+  const Run automatic = in_folder(cwd, igm_cmd + " run g4.obj -o auto --resolution 3 --normal-form --restarts auto");
+  CHECK(automatic.code == 0);
+  CHECK(has(automatic.out, "of 15 restarts kept"));
+  CHECK(has(automatic.out, "certified: VALID"));
   const Run plain = in_folder(cwd, igm_cmd + " run g4.obj -o plain --resolution 3 --normal-form");
   CHECK(plain.code == 0);
   CHECK(!has(plain.out, "restarts"));
   for (const char* a : {" run g4.obj --restarts 2", " run g4.obj --normal-form --restarts 65",
-                        " run g4.obj --normal-form --restarts -1", " run g4.obj --normal-form --restarts"}) {
+                        " run g4.obj --normal-form --restarts -1", " run g4.obj --normal-form --restarts",
+                        " run g4.obj --restarts auto", " run g4.obj --normal-form --restarts automatic"}) {
     CAPTURE(a);
     const Run bad = in_folder(cwd, igm_cmd + a);
     CHECK(bad.code == 2);

@@ -46,7 +46,8 @@ struct PipelineOptions {
   bool normal_form = false;
   /// With normal_form: CutOptions::restarts, the topology stage run again on this many copies of
   /// the mesh with shuffled vertex ids where it added more than 2 %, the fewest vertices kept
-  /// (couplingdown with 15: 87 vertices added instead of 129, in 15x the time). 0: none.
+  /// (couplingdown with 15: 87 vertices added instead of 129, in 15x the time). 0: none; -1:
+  /// automatic, clamp(5e6 / (F g^2), 0, 15) (`igm run --restarts auto`).
   int restarts = 0;
   /// Genus 0 only: the four cone vertices (input vertex ids) in path order A, B, C, D; empty: the
   /// deterministic default (topology/sphere_cut.h). Bad lists give igm::Error(InvalidArgument).
