@@ -24,10 +24,11 @@ std::uint64_t key_of(double w) {
   return ~bits;
 }
 
-// From how many items the radix path runs, and from how many its digits are 16 bits wide. Measured
-// on fresh uniform weights (igm_bench_weight_sort), ns per item: 128 items std::sort 40, 8-bit
-// digits 25; 4,096: 66, 16, 41 with 16-bit digits; 65,536: 87, 56, 71; 262,144: 101, 62, 62. On
-// repeated inputs std::sort looks faster below ~8k items (the branch predictor learns the input).
+// From how many items the radix path runs, and from how many its digits are 16 bits wide. On fresh
+// uniform weights, ns per item, this sort against std::sort (igm_bench_weight_sort): 128 items 40 /
+// 47, 512: 22 / 46, 16k: 53 / 66, 262k: 62 / 85; 8-bit digits against 16-bit (a driver): 4k items
+// 16 / 41, 64k: 56 / 71, 262k: 62 / 62. On one input sorted again and again std::sort looks faster
+// below ~8k items (the branch predictor learns it).
 constexpr std::size_t kRadixMinItems = 128;
 constexpr std::size_t kWideDigitItems = std::size_t{1} << 18;
 
