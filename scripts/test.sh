@@ -4,7 +4,8 @@
 #   2. AddressSanitizer + UndefinedBehaviorSanitizer build (-DIGM_SANITIZE=ON, RelWithDebInfo,
 #      no benchmarks) in ${IGM_ASAN_BUILD_DIR:-build-asan}: every test again (the 1M-face torus
 #      and the cheese included: ~260 s together under the sanitizers; the two normal forms of
-#      ~150k vertices, cheese and a generated genus 200, only in the Release run), with a quarter
+#      ~150k vertices, cheese and a generated genus 200, only in the Release run; the 1M-face
+#      sphere on 250k faces), with a quarter
 #      of the random meshes of tests/random (IGM_RANDOM_SCALE=0.25: ~10x slower under the
 #      sanitizers; the plain run does them all).
 #      IGM_TEST_ASAN=0 skips this part (for quick local runs; CI always runs it).

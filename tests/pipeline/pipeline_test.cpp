@@ -401,8 +401,12 @@ TEST_CASE("genus 0: bad cone lists are typed errors naming the entry") {
 }
 
 TEST_CASE("genus 0: a generated 1M-face sphere is certified") {
-  const ValidMesh m = igm_test::generated_mesh(0, 1000000, 1);
-  REQUIRE(m.mesh.num_faces() >= 900000);
+  // Under the sanitizers 250k faces (the 1M faces took 117 s there, the longest test of the pass);
+  // the Release run takes the 1M.
+  const long faces = igm_test::kSanitized ? 250000 : 1000000;
+  if (igm_test::kSanitized) MESSAGE("the 1M-face sphere is left to the Release run (sanitizers): 250k faces here");
+  const ValidMesh m = igm_test::generated_mesh(0, faces, 1);
+  REQUIRE(m.mesh.num_faces() >= faces * 9 / 10);
   check_sphere(m, 4, {}, false);  // the text round trip is tested on the smaller meshes
 }
 
