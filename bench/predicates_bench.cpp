@@ -2,13 +2,13 @@
 // path forced, plain mpq determinant) on dyadic coordinates of ~60 and ~200 bits in [0, 1], on
 // general rationals, and on exactly collinear dyadic triples (where the filter must fall back).
 // Usage: igm_bench_predicates [calls_per_case [distinct_inputs]]   (defaults 400000, 256: in cache)
-#include <ctime>
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <random>
 #include <vector>
 
+#include "thread_cpu.h"
 #include "igm/exact/predicates.h"
 
 using namespace igm;
@@ -17,12 +17,7 @@ namespace {
 
 volatile long g_sink = 0;
 
-// Thread CPU time (the machine is shared: wall time would count other processes).
-double cpu_ns() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return 1e9 * static_cast<double>(ts.tv_sec) + static_cast<double>(ts.tv_nsec);
-}
+using igm_bench::thread_cpu_ns;
 
 // The minimum over 5 rounds of calls/5 calls each (the least disturbed round).
 template <class F>
@@ -30,10 +25,10 @@ double ns_per_call(std::size_t calls, F&& f) {
   const std::size_t per_round = calls / 5 + 1;
   double best = 1e300;
   for (int round = 0; round < 5; ++round) {
-    const double t0 = cpu_ns();
+    const double t0 = thread_cpu_ns();
     long sum = 0;
     for (std::size_t i = 0; i < per_round; ++i) sum += f(i);
-    const double t1 = cpu_ns();
+    const double t1 = thread_cpu_ns();
     g_sink = g_sink + sum;
     best = std::min(best, (t1 - t0) / static_cast<double>(per_round));
   }

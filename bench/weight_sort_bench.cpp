@@ -6,23 +6,18 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <ctime>
 #include <random>
 #include <utility>
 #include <vector>
 
+#include "thread_cpu.h"
 #include "igm/core/weight_sort.h"
 
 namespace {
 
 using Items = std::vector<std::pair<double, int>>;
 
-// Thread CPU time (the machine is shared: wall time would count other processes).
-double cpu_ns() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return 1e9 * static_cast<double>(ts.tv_sec) + static_cast<double>(ts.tv_nsec);
-}
+using igm_bench::thread_cpu_ns;
 
 }  // namespace
 
@@ -42,13 +37,13 @@ int main(int argc, char** argv) {
     for (long r = 0; r < reps; ++r) {
       for (long i = 0; i < n; ++i) items[static_cast<std::size_t>(i)] = {weight(rng), static_cast<int>(i)};
       Items a = items, b = items;
-      double t0 = cpu_ns();
+      double t0 = thread_cpu_ns();
       igm::sort_by_weight_descending(a);
-      double t1 = cpu_ns();
+      double t1 = thread_cpu_ns();
       std::sort(b.begin(), b.end(), [](const auto& x, const auto& y) {
         return x.first != y.first ? x.first > y.first : x.second < y.second;
       });
-      double t2 = cpu_ns();
+      double t2 = thread_cpu_ns();
       t_lib += t1 - t0, t_std += t2 - t1;
       if (a != b) {
         std::fprintf(stderr, "different orders at %ld items\n", n);
