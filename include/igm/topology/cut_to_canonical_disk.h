@@ -27,9 +27,12 @@
 //     g disjoint linked pairs hung from one tree from the root. Each round's word is checked
 //     (Internal if not in blocks); at most g rounds each. 3c (CutOptions::slides) slides: the
 //     detached greedy loops of steps 1-2b brought into blocks by handle slides, each drawn as the
-//     cheapest arc between its two corners (normal_form.h); the fewer vertices win. Past its
-//     budget (CutOptions::slides_budget) it runs after step 3, where step 3 added more than 2 %.
-//     Off, the word is whatever step 2 gives.
+//     cheapest arc between its two corners (normal_form.h); the fewer vertices win. Where it runs
+//     beside step 3 (within CutOptions::slides_budget) and the root is not given, steps 1-2b come
+//     first and step 3 runs at their root, with both metrics, beside step 3c's slides (generated
+//     genus 2-12, 36 meshes: 4,977 vertices added instead of 5,664 with step 3's own root search,
+//     in about the same time; couplingdown 90 instead of 129). Past its budget it runs after step
+//     3, where step 3 added more than 2 %. Off, the word is whatever step 2 gives.
 //  4. embedding pre-conditions (embed/tutte.h): every interior disk edge joining two vertices of
 //     one polygon side (a root copy lies on its two sides) is split at its midpoint; then no
 //     triangle has three vertices on one side. O(n).
@@ -55,7 +58,8 @@ struct CutOptions {
   /// the least ring deficit of a spread sample, step 1; with it normal_form_roots of them) and two
   /// metrics (3D lengths, hop counts), the pair whose detaching crosses the fewest edges, then the
   /// best of those after the congestion reweighting (with normal_form: whose planned construction
-  /// ends with the fewest vertices).
+  /// ends with the fewest vertices). With the normal form where step 3c runs beside step 3, both
+  /// systems use the root of steps 1-1c (step 3 with both metrics at it).
   int root = -1;
   /// Bring the word into a1 b1 a1^-1 b1^-1 ... (step 3, <= g rounds). Off: the word is whatever the
   /// detached greedy loops give (still 4g sides, paired). The pipeline runs with it off by default
@@ -80,8 +84,9 @@ struct CutOptions {
   /// (at least 1024 of them; each from older points only). The result is the same either way:
   /// candidates go in fixed pairs, merged in order, and every point is the same canonical rational.
   bool parallel = true;
-  /// With the normal form and root = -1: how many roots are tried (each with 3D lengths and hop
-  /// counts; one root: hop counts only). -1 picks clamp(min(2e5 / F, 4e6 / (F g)), 1, 12): a
+  /// With the normal form and root = -1, where step 3c does not run beside step 3 (there step 3
+  /// runs at step 3c's root instead, with both metrics): how many roots are tried (each with 3D
+  /// lengths and hop counts; one root: hop counts only). -1 picks clamp(min(2e5 / F, 4e6 / (F g)), 1, 12): a
   /// candidate costs about its output, which grows with g. >= 1: that many (at most V); 0 or < -1
   /// is InvalidArgument.
   int normal_form_roots = -1;
@@ -127,8 +132,8 @@ struct CutOptions {
   /// again on this many copies of the mesh with shuffled vertex ids (copy i by the fixed seed i,
   /// so the result is the same every time), and the fewest vertices win (the earliest on ties).
   /// The ids break the ties of every search, and on coarse meshes the growth varies with them
-  /// (couplingdown, genus 9 on 1,841 vertices: 93 to 234 vertices added over 40 shuffles; 15
-  /// restarts: 87 instead of 129, in 15x the time). A copy whose construction passes the growth
+  /// (couplingdown, genus 9 on 1,841 vertices: 99 to 195 vertices added over 16 orders of its
+  /// ids; 15 restarts: 87 instead of 90, in 14x the time). A copy whose construction passes the growth
   /// bounds (Unsupported) is counted and skipped; the copies are not renumbered by step 0. Each
   /// run costs about as much as the first, so it is off by default (with -1 the topology tests
   /// would take 3-10x as long); -1 picks clamp(5e6 / (F g^2), 0, 15); < -1 is InvalidArgument.
