@@ -227,32 +227,34 @@ std::vector<int> root_candidates(const TriMesh& mesh, long k) {
   return roots;
 }
 
+// The ring deficit of r (ring_deficit): the sum of max(0, 4g - |ring_j|) over the hop rings ring_1,
+// ring_2, ... around r before the first with at least 4g vertices, each such level a place where
+// the 4g strands leaving r must share vertices (ring_bound.h's floor without its disk test, which
+// the ring search would cost too much for). The search stops after 20,000 vertices:
+// O(min(V, 20000)).
 // Root candidates for the basis without the normal form: the vertex of maximum valence, then of a
 // spread sample (root_candidates, min(V, 50 k) of them) the k - 1 others with the least ring
-// deficit, the sample's order breaking ties. The
-// deficit of r: the sum of max(0, 4g - |ring_j|) over the hop rings ring_1, ring_2, ... around r
-// before the first with at least 4g vertices, each such level a place where the 4g strands leaving
-// r must share vertices (ring_bound.h's floor without its disk test, which the ring search would
-// cost too much for). Each ring search stops after 20,000 vertices: O(50 k min(V, 20000) + V).
+// deficit, the sample's order breaking ties. O(50 k min(V, 20000) + V).
 // Measured: on the shared meshes of genus <= 9 and generated genus 2-12 (16 meshes) the cut adds
 // 1,204 vertices in all instead of 1,595 with the spread candidates (couplingdown 134 -> 106); with
 // the normal form it does not help (couplingdown 300 -> 393), so the normal form keeps the spread.
+long ring_deficit(HopRings& rings, int root, int genus) {
+  long deficit = 0, visited = 1;
+  rings.start(root);
+  while (visited < 20000 && rings.next()) {  // each ring is new: at most 20,000 vertices in all
+    const long size = static_cast<long>(rings.ring().size());
+    visited += size;
+    if (size >= 4L * genus) break;
+    deficit += 4L * genus - size;
+  }
+  return deficit;
+}
 std::vector<int> root_candidates_by_ring_deficit(const TriMesh& mesh, long k, int genus) {
   const int nv = mesh.num_vertices();
   const std::vector<int> sample = root_candidates(mesh, std::min<long>(nv, 50 * k));
   HopRings rings(mesh);
   std::vector<std::pair<long, int>> score;  // (deficit, position in the sample)
-  for (int i = 0; i < static_cast<int>(sample.size()); ++i) {
-    long deficit = 0, visited = 1;
-    rings.start(sample[i]);
-    while (visited < 20000 && rings.next()) {  // each ring is new: at most 20,000 vertices in all
-      const long size = static_cast<long>(rings.ring().size());
-      visited += size;
-      if (size >= 4L * genus) break;
-      deficit += 4L * genus - size;
-    }
-    score.push_back({deficit, i});
-  }
+  for (int i = 0; i < static_cast<int>(sample.size()); ++i) score.push_back({ring_deficit(rings, sample[i], genus), i});
   // The vertex of maximum valence (the sample's first) stays a candidate, the others by deficit.
   std::stable_sort(score.begin() + 1, score.end());
   std::vector<int> roots;
@@ -620,14 +622,28 @@ bool greedy_system(const TriMesh& mesh, const std::vector<Vec3d>& positions, con
       if (planned_vertices(top[j]) < planned_vertices(top[win])) win = j;
     // On meshes of at most 2e5 faces the reweighted candidates are drawn and tightened on copies,
     // and the fewest vertices win instead (the better ranked on ties): the plan does not see
-    // what the tightening will remove. Tightened here even with CutOptions::tighten off, so that
+    // what the tightening will remove. For the normal form's step 3c (and step 3 at its root) only
+    // the candidates of least ring deficit are drawn: the slides' arcs and step 3's loops crowd the
+    // root more than the greedy loops do (couplingdown: roots of deficit 41-42 end with 99-172
+    // added over 8 id orders, mean 118, roots of deficit 48-49 with 108-195, mean 148; over 32
+    // orders 92-155, mean 119, instead of 99-198, mean 132; the 36 generated genus 2-12 meshes
+    // 4,876 instead of 4,977). Tightened here even with CutOptions::tighten off, so that
     // the option does not change the loops chosen; with it on, the winner's copy is the result
     // (not drawn a second time). O(C (n + crossings)).
     if (top.size() > 1 && mesh.num_faces() <= 200000) {
       std::vector<const DetachPlan*> plans;
-      for (const DetachPlan& p : top) plans.push_back(&p);
+      std::vector<std::size_t> idx;  // the plans compared
+      std::vector<long> deficit(top.size(), 0);
+      if (options.normal_form) {
+        HopRings rings(mesh);
+        for (std::size_t j = 0; j < top.size(); ++j) deficit[j] = ring_deficit(rings, top[j].root, genus);
+      }
+      const long least = *std::min_element(deficit.begin(), deficit.end());
+      for (std::size_t j = 0; j < top.size(); ++j)
+        if (deficit[j] == least) idx.push_back(j);
+      for (std::size_t j : idx) plans.push_back(&top[j]);
       DrawnPlan drawn;
-      win = fewest_drawn(plans, positions, options.parallel, options.tighten ? &drawn : nullptr);
+      win = idx[fewest_drawn(plans, positions, options.parallel, options.tighten ? &drawn : nullptr)];
       if (options.tighten) drawn_win = std::move(drawn.tightened), drawn_stats = drawn.drawing;
     }
     P = std::move(top[win]);
@@ -794,8 +810,10 @@ CutResult cut_in_given_order(const TriMesh& mesh, const std::vector<Vec3d>& posi
     // runs at their root with both metrics (normal_form_system's slides_root) beside the slides:
     // on generated genus 2-12 (2k-40k faces, 2 seeds, 36 meshes) 4,977 vertices added instead of
     // 5,664 with step 3's own root candidates, 86.7 s against 85.4 s; couplingdown as given 90
-    // instead of 129, over 16 orders of its ids 99-195 (mean 133) instead of 101-216 (mean 151).
-    // Both roots' systems, the better kept: 4,902 (4,994 with 3D lengths only, in 136 s).
+    // instead of 129, over 16 orders of its ids 99-195 (mean 133) instead of 101-216 (mean 151);
+    // with the greedy root of least ring deficit (greedy_system) 4,876, and couplingdown 86-155
+    // (mean 119) over 32 orders. Both roots' systems, the better kept: 4,902 without that
+    // (4,994 with 3D lengths only, in 136 s).
     const SlidesRun run = slides_run(mesh, options, genus);
     const bool beside = run == SlidesRun::Beside;
     Slid slid;

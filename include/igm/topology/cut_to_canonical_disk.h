@@ -29,9 +29,10 @@
 //     detached greedy loops of steps 1-2b brought into blocks by handle slides, each drawn as the
 //     cheapest arc between its two corners (normal_form.h); the fewer vertices win. Where it runs
 //     beside step 3 (within CutOptions::slides_budget) and the root is not given, steps 1-2b come
-//     first and step 3 runs at their root, with both metrics, beside step 3c's slides (generated
-//     genus 2-12, 36 meshes: 4,977 vertices added instead of 5,664 with step 3's own root search,
-//     in about the same time; couplingdown 90 instead of 129). Past its budget it runs after step
+//     first (their root of least ring deficit among the reweighted candidates) and step 3 runs at
+//     their root, with both metrics, beside step 3c's slides (generated genus 2-12, 36 meshes:
+//     4,876 vertices added instead of 5,664 with step 3's own root search, in about the same
+//     time; couplingdown 90 instead of 129). Past its budget it runs after step
 //     3, where step 3 added more than 2 %. Off, the word is whatever step 2 gives.
 //  4. embedding pre-conditions (embed/tutte.h): every interior disk edge joining two vertices of
 //     one polygon side (a root copy lies on its two sides) is split at its midpoint; then no
@@ -59,7 +60,8 @@ struct CutOptions {
   /// metrics (3D lengths, hop counts), the pair whose detaching crosses the fewest edges, then the
   /// best of those after the congestion reweighting (with normal_form: whose planned construction
   /// ends with the fewest vertices). With the normal form where step 3c runs beside step 3, both
-  /// systems use the root of steps 1-1c (step 3 with both metrics at it).
+  /// systems use the root of steps 1-1c (step 3 with both metrics at it), chosen there among the
+  /// reweighted candidates of least ring deficit (congestion_candidates).
   int root = -1;
   /// Bring the word into a1 b1 a1^-1 b1^-1 ... (step 3, <= g rounds). Off: the word is whatever the
   /// detached greedy loops give (still 4g sides, paired). The pipeline runs with it off by default
@@ -99,10 +101,11 @@ struct CutOptions {
   /// tightened win). -1 picks clamp(2e6 / F, 1, 500) (with the normal form clamp(1e6 / F, 0,
   /// 250), all of them run, none past 2e5 faces), 0 turns it off, < -1 is InvalidArgument.
   int congestion_rounds = -1;
-  /// Without the normal form and with root = -1: how many of the best ranked root candidates
-  /// (by their first plan) are reweighted; the fewest vertices once drawn and tightened win (even
-  /// with tighten off, so that it does not change the choice; on meshes of more than 2e5 faces
-  /// the fewest planned). >= 1.
+  /// Without the normal form (and for step 3c's greedy loops) and with root = -1: how many of the
+  /// best ranked root candidates (by their first plan) are reweighted; the fewest vertices once
+  /// drawn and tightened win (even with tighten off, so that it does not change the choice; on
+  /// meshes of more than 2e5 faces the fewest planned); on at most 2e5, for step 3c, only among
+  /// those of least ring deficit (the hop rings' shortfall of 4g vertices near the root). >= 1.
   int congestion_candidates = 4;
   /// The raise per round and per extra strand through a vertex, in the metric's unit (the mean
   /// edge length, or one hop). Must be finite and > 0 when congestion_rounds != 0.
@@ -132,8 +135,8 @@ struct CutOptions {
   /// again on this many copies of the mesh with shuffled vertex ids (copy i by the fixed seed i,
   /// so the result is the same every time), and the fewest vertices win (the earliest on ties).
   /// The ids break the ties of every search, and on coarse meshes the growth varies with them
-  /// (couplingdown, genus 9 on 1,841 vertices: 99 to 195 vertices added over 16 orders of its
-  /// ids; 15 restarts: 87 instead of 90, in 14x the time). A copy whose construction passes the growth
+  /// (couplingdown, genus 9 on 1,841 vertices: 90 as given, 86 to 155 vertices added over 32
+  /// other orders of its ids; 15 restarts do not beat its 90, in 14x the time). A copy whose construction passes the growth
   /// bounds (Unsupported) is counted and skipped; the copies are not renumbered by step 0. Each
   /// run costs about as much as the first, so it is off by default (with -1 the topology tests
   /// would take 3-10x as long); -1 picks clamp(5e6 / (F g^2), 0, 15); < -1 is InvalidArgument.
