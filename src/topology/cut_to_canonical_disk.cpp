@@ -227,17 +227,11 @@ std::vector<int> root_candidates(const TriMesh& mesh, long k) {
   return roots;
 }
 
-// The ring deficit of r (ring_deficit): the sum of max(0, 4g - |ring_j|) over the hop rings ring_1,
-// ring_2, ... around r before the first with at least 4g vertices, each such level a place where
-// the 4g strands leaving r must share vertices (ring_bound.h's floor without its disk test, which
-// the ring search would cost too much for). The search stops after 20,000 vertices:
+// The ring deficit of r: the sum of max(0, 4g - |ring_j|) over the hop rings ring_1, ring_2, ...
+// around r before the first with at least 4g vertices, each such level a place where the 4g strands
+// leaving r must share vertices (ring_bound.h's floor without its disk test, which the ring search
+// would cost too much for). `rings` on the mesh; the search stops after 20,000 vertices:
 // O(min(V, 20000)).
-// Root candidates for the basis without the normal form: the vertex of maximum valence, then of a
-// spread sample (root_candidates, min(V, 50 k) of them) the k - 1 others with the least ring
-// deficit, the sample's order breaking ties. O(50 k min(V, 20000) + V).
-// Measured: on the shared meshes of genus <= 9 and generated genus 2-12 (16 meshes) the cut adds
-// 1,204 vertices in all instead of 1,595 with the spread candidates (couplingdown 134 -> 106); with
-// the normal form it does not help (couplingdown 300 -> 393), so the normal form keeps the spread.
 long ring_deficit(HopRings& rings, int root, int genus) {
   long deficit = 0, visited = 1;
   rings.start(root);
@@ -249,6 +243,15 @@ long ring_deficit(HopRings& rings, int root, int genus) {
   }
   return deficit;
 }
+
+// Root candidates for the basis without the normal form (and for step 3c's start): the vertex of
+// maximum valence, then of a spread sample (root_candidates, min(V, 50 k) of them) the k - 1 others
+// with the least ring deficit, the sample's order breaking ties. O(50 k min(V, 20000) + V).
+// Measured: on the shared meshes of genus <= 9 and generated genus 2-12 (16 meshes) the cut adds
+// 1,204 vertices in all instead of 1,595 with the spread candidates (couplingdown 134 -> 106); with
+// the normal form (step 3's own candidates) it does not help (couplingdown 300 -> 393; stop 36,
+// with steps 3c-3d: the 36 generated meshes 5,664 -> 5,593, couplingdown 129 either way), so step
+// 3 keeps the spread.
 std::vector<int> root_candidates_by_ring_deficit(const TriMesh& mesh, long k, int genus) {
   const int nv = mesh.num_vertices();
   const std::vector<int> sample = root_candidates(mesh, std::min<long>(nv, 50 * k));
@@ -554,7 +557,8 @@ void normal_form_system(const TriMesh& mesh, const std::vector<Vec3d>& positions
   res.stats.seconds_detach = seconds_since(t_start);
 }
 
-// Steps 1, 1c and 2 (without the normal form): the root and metric (the given root, or among
+// Steps 1, 1c and 2 (without the normal form, or as step 3c's start with options.normal_form, which
+// changes only the drawn comparison below): the root and metric (the given root, or among
 // deterministic candidates ranked by their planned crossings), the congestion reweighting of the
 // best ranked and the detaching of the kept plan: fills res.root, res.loops, res.surface and
 // res.stats. Returns true if the loops are already tightened (the drawn comparison kept them).

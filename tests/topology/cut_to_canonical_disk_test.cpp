@@ -1113,8 +1113,9 @@ TEST_CASE("step 3c's greedy loops, and step 3 beside them, take a root of least 
     const CutResult greedy = cut_to_canonical_disk(in.mesh, in.positions, o);
     CHECK(nf.root != greedy.root);
     CHECK(deficit(in.mesh, nf.root, g) < deficit(in.mesh, greedy.root, g));
-    MESSAGE("genus " << g << ": root " << nf.root << " (deficit " << deficit(in.mesh, nf.root, g) << ") with the normal form, "
-                     << greedy.root << " (deficit " << deficit(in.mesh, greedy.root, g) << ") without");
+    MESSAGE("genus " << g << ": root " << nf.root << " (deficit " << deficit(in.mesh, nf.root, g)
+                     << ") with the normal form, " << greedy.root << " (deficit "
+                     << deficit(in.mesh, greedy.root, g) << ") without");
   }
 }
 

@@ -32,8 +32,8 @@
 //     first (their root of least ring deficit among the reweighted candidates) and step 3 runs at
 //     their root, with both metrics, beside step 3c's slides (generated genus 2-12, 36 meshes:
 //     4,876 vertices added instead of 5,664 with step 3's own root search, in about the same
-//     time; couplingdown 90 instead of 129). Past its budget it runs after step
-//     3, where step 3 added more than 2 %. Off, the word is whatever step 2 gives.
+//     time; couplingdown 90 instead of 129). Past its budget it runs after step 3, where step 3
+//     added more than 2 %. Off, the word is whatever step 2 gives.
 //  4. embedding pre-conditions (embed/tutte.h): every interior disk edge joining two vertices of
 //     one polygon side (a root copy lies on its two sides) is split at its midpoint; then no
 //     triangle has three vertices on one side. O(n).
@@ -88,9 +88,9 @@ struct CutOptions {
   bool parallel = true;
   /// With the normal form and root = -1, where step 3c does not run beside step 3 (there step 3
   /// runs at step 3c's root instead, with both metrics): how many roots are tried (each with 3D
-  /// lengths and hop counts; one root: hop counts only). -1 picks clamp(min(2e5 / F, 4e6 / (F g)), 1, 12): a
-  /// candidate costs about its output, which grows with g. >= 1: that many (at most V); 0 or < -1
-  /// is InvalidArgument.
+  /// lengths and hop counts; one root: hop counts only). -1 picks clamp(min(2e5 / F, 4e6 / (F g)),
+  /// 1, 12): a candidate costs about its output, which grows with g. >= 1: that many (at most V);
+  /// 0 or < -1 is InvalidArgument.
   int normal_form_roots = -1;
   /// After the root and metric are chosen, the basis (with the normal form: the rounds of step
   /// 3a; not the crosses) is recomputed up to this many times with the metric raised at the
@@ -136,8 +136,9 @@ struct CutOptions {
   /// so the result is the same every time), and the fewest vertices win (the earliest on ties).
   /// The ids break the ties of every search, and on coarse meshes the growth varies with them
   /// (couplingdown, genus 9 on 1,841 vertices: 90 as given, 86 to 155 vertices added over 32
-  /// other orders of its ids; 15 restarts do not beat its 90, in 14x the time). A copy whose construction passes the growth
-  /// bounds (Unsupported) is counted and skipped; the copies are not renumbered by step 0. Each
+  /// other orders of its ids; 15 restarts do not beat its 90, in 14x the time). A copy whose
+  /// construction passes the growth bounds (Unsupported) is counted and skipped; the copies are
+  /// not renumbered by step 0. Each
   /// run costs about as much as the first, so it is off by default (with -1 the topology tests
   /// would take 3-10x as long); -1 picks clamp(5e6 / (F g^2), 0, 15); < -1 is InvalidArgument.
   int restarts = 0;
