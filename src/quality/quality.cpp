@@ -488,12 +488,12 @@ std::string to_json(const QuadQuality& q) {
 std::string summary_line(const IgmQuality& igm, const QuadQuality& quads) {
   char distance[64] = "distance not measured";
   if (quads.distance_measured)
-    std::snprintf(distance, sizeof distance, "distance max %.2g %%", 100 * quads.distance_max);
+    std::snprintf(distance, sizeof distance, "distance max %.3g %%", 100 * quads.distance_max);
   char line[512];
   std::snprintf(line, sizeof line,
                 "quads %d: SJ median %.2f p5 %.2f min %.2f, <0.5 %.1f %%, <=0 %.1f %%, angle dev "
                 "median %.1f deg, area/input %.3f, smallest half %.0f %%, %s; IGM conformal p99 "
-                "%.2g, area p99 %.2g",
+                "%.3g, area p99 %.3g",
                 quads.quads, quads.sj_median, quads.sj_p5, quads.sj_min, 100 * quads.sj_below_half,
                 100 * quads.sj_nonpositive, quads.angle_deviation_median, quads.area_ratio,
                 100 * quads.smallest_half_area, distance, igm.conformal.p99, igm.area.p99);
