@@ -6,7 +6,7 @@
 // on the segment of two others, scale it by 1e300 / 1e-300, send it to +-1e308, zero it). The
 // combinatorics stay those of a closed genus-g surface, so:
 //   validate() must accept it with genus g, and compute_igm must return an output that BOTH
-//   certifier reports accept, with genus g and 5g (1 for a torus, 2 for a sphere) N x N quads.
+//   certifier reports accept, with genus g and N x N quads per layout quad (2 cells for a sphere).
 // No igm::Error is accepted (the mesh is valid by construction; with kGenus0Certifies false only
 // Unsupported for genus 0 was; with the normal form, Unsupported for its growth bound is): any igm::Error, any other exception, a rejected output, a crash
 // or a hang is a finding (abort).
@@ -92,14 +92,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   o.resolution = resolution;
   o.root = root_bytes == 0xFFFF ? -1 : static_cast<int>(root_bytes % static_cast<std::uint64_t>(mesh.mesh.num_vertices()));
   o.max_witnesses = 3;
+  o.quality = false;
   o.normal_form = (flags & 0x40) != 0;
   try {
     const igm::PipelineResult r = igm::compute_igm(mesh, o);
     if (s.genus == 0 && !kGenus0Certifies) finding("genus 0 accepted: set kGenus0Certifies = true", s, "");
     if (!r.igm_report.valid()) finding("IGM rejected by the certifier", s, igm::certify::summary(r.igm_report).c_str());
     if (!r.quad_report.valid()) finding("quads rejected by the certifier", s, igm::certify::summary(r.quad_report).c_str());
-    // Layout quads: 2 for a sphere ([0,2] x [0,1]), 1 for a torus, 5g from genus 2.
-    const int layout = s.genus == 0 ? 2 : s.genus == 1 ? 1 : 5 * s.genus;
+    // Layout quads: 2 for a sphere ([0,2] x [0,1]), else the default layout's.
+    const int layout = s.genus == 0 ? 2 : igm::layout_quad_count(o.layout, s.genus);
     if (r.igm_report.genus != s.genus || r.quad_report.genus != s.genus ||
         static_cast<int>(r.quads.quads.size()) != layout * resolution * resolution)
       finding("wrong genus or quad count", s, "");

@@ -39,8 +39,9 @@ int cmd_generate(const Args& args);
 int cmd_run(const Args& args) { return igm_cli::run_command(args); }
 
 const Command kCommands[] = {
-    {"run", "igm run MESH [-o DIR] [--resolution N] [--root V] [--normal-form [--restarts K|auto]]\n"
-            "        [--cones A,B,C,D] [--memory-limit-mb M]\n"
+    {"run", "igm run MESH [-o DIR] [--quads Q | --edge-length H | --resolution N] [--layout spread|kite|paper]\n"
+            "        [--map tutte|affine] [--root V] [--normal-form [--restarts K|auto]] [--cones A,B,C,D]\n"
+            "        [--memory-limit-mb M]\n"
             "                                the whole pipeline: certified IGM, quad mesh, certificate, schema picture\n"
             "                                (genus 0: four pi-cones, --cones picks them as 0-based vertex ids)\n"
             "                                (writes DIR/NAME.igm.obj .igm.exact .quad.obj .cert.json .schema.svg; DIR=out)",

@@ -3,6 +3,7 @@
 #include <sys/resource.h>
 
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <chrono>
 #include <cstdio>
@@ -31,18 +32,33 @@ bool parse_int(std::string_view s, long long& out) {
 
 int usage(const std::string& message) {
   std::fprintf(stderr,
-               "igm run: %s\nusage: igm run MESH [-o DIR] [--resolution N] [--root V] [--normal-form [--restarts K|auto]]\n"
-               "               [--cones A,B,C,D] [--memory-limit-mb M]\n"
+               "igm run: %s\nusage: igm run MESH [-o DIR] [--quads Q | --edge-length H | --resolution N]\n"
+               "               [--layout spread|kite|paper] [--map tutte|affine] [--root V]\n"
+               "               [--normal-form [--restarts K|auto]] [--cones A,B,C,D] [--memory-limit-mb M]\n"
                "  writes DIR/NAME.igm.obj, NAME.igm.exact, NAME.quad.obj, NAME.cert.json, NAME.schema.svg\n"
-               "  --resolution N  quads per layout quad edge: 3..1024 for genus >= 1, 1..1024 for genus 0\n"
+               "  --quads Q       about Q quads (default %lld): each layout edge gets round(length / H) quads,\n"
+               "                  H chosen so that the count is nearest to Q\n"
+               "  --edge-length H quads of 3D edge length about H (in the mesh's units)\n"
+               "  --resolution N  N quads along every layout edge, N x N per layout quad (1..1024; the paper\n"
+               "                  layout needs N >= 3: below, its quad mesh has loops at the root)\n"
+               "  --layout L      the quad layout of the polygonal schema (genus >= 1): spread (default: root\n"
+               "                  of valence 4g, 4g-4 vertices of valence 5), kite (4g at the root and the\n"
+               "                  centre) or paper (Livesu's template: 8g at the root, 3g at the centre)\n"
+               "  --map M         each layout quad mapped onto its rectangle by a Tutte map from its own\n"
+               "                  geometry (tutte, default) or through the disk's map (affine, the paper's)\n"
                "  --cones A,B,C,D genus 0: the four cone vertices (0-based input ids) in path order\n"
                "  --memory-limit-mb M  genus >= 1: stop with exit 2 in the arrangement once the rest would\n"
                "                  need more than M MB (default: this machine's memory)\n"
                "  --restarts K    with --normal-form, 0..64 or auto: where the loops added more than 2 %% of\n"
                "                  the vertices, cut K copies with shuffled vertex ids too, keep the fewest\n"
                "                  (auto: clamp(5e6 / (faces x genus^2), 0, 15) copies)\n",
-               message.c_str());
+               message.c_str(), static_cast<long long>(igm::kDefaultQuads));
   return kExitInput;
+}
+
+bool parse_double(std::string_view s, double& out) {
+  auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
+  return ec == std::errc() && p == s.data() + s.size();
 }
 
 double peak_rss_mb() {
@@ -99,7 +115,10 @@ int run_pipeline(const igm::ValidMesh& mesh, const std::string& name, const std:
       << ", \"faces\": " << st.input_faces << ", \"genus\": " << st.genus << "},\n"
       << "\"certified\": " << (r.certified() ? "true" : "false") << ",\n"
       << "\"stats\": {\"refined_vertices\": " << st.refined_vertices << ", \"output_triangles\": " << st.output_triangles
-      << ", \"layout_quads\": " << st.layout_quads << ", \"quads\": " << st.quads
+      << ", \"layout\": \"" << (st.genus == 0 ? "pillowcase" : igm::to_string(options.layout)) << "\""
+      << ", \"map\": \"" << igm::to_string(options.patch_map) << "\""
+      << ", \"layout_quads\": " << st.layout_quads << ", \"chords\": " << st.chords << ", \"quads\": " << st.quads
+      << ", \"edge_length\": " << st.edge_length
       << ", \"max_uv_bits\": " << st.max_uv_bits << ", \"tutte_iterations\": " << st.tutte.iterations
       << ", \"tutte_flips_double\": " << st.tutte.flips_double << ", \"seconds\": " << total << "},\n"
       << (st.genus == 0 ? "\"genus0\": {\"cones\": [" + std::to_string(st.cones[0]) + ", " + std::to_string(st.cones[1]) +
@@ -110,6 +129,8 @@ int run_pipeline(const igm::ValidMesh& mesh, const std::string& name, const std:
                               ", \"exact_fallback\": " + (st.orbifold.refinement.exact_fallback ? "true" : "false") +
                               "},\n"
                         : std::string())
+      << "\"quality\": {\"igm\": " << igm::to_json(r.igm_quality) << ", \"quads\": " << igm::to_json(r.quad_quality)
+      << "},\n"
       << "\"igm\": " << igm::certify::to_json(r.igm_report) << ",\n"
       << "\"quad\": " << igm::certify::to_json(r.quad_report) << "}\n";
   });
@@ -149,7 +170,28 @@ int run_command(const std::vector<std::string_view>& args) {
       }
       continue;
     }
-    if (a == "-o" || a == "--resolution" || a == "--root" || a == "--memory-limit-mb" || a == "--restarts") {
+    if (a == "--layout" || a == "--map" || a == "--edge-length") {
+      if (i + 1 >= args.size()) return usage(std::string(a) + " needs a value");
+      const std::string_view v = args[++i];
+      if (a == "--layout") {
+        if (v == "spread") options.layout = igm::LayoutKind::Spread;
+        else if (v == "kite") options.layout = igm::LayoutKind::Kite;
+        else if (v == "paper") options.layout = igm::LayoutKind::Paper;
+        else return usage("--layout must be spread, kite or paper, got '" + std::string(v) + "'");
+      } else if (a == "--map") {
+        if (v == "tutte") options.patch_map = igm::PatchMapKind::Tutte;
+        else if (v == "affine") options.patch_map = igm::PatchMapKind::Affine;
+        else return usage("--map must be tutte or affine, got '" + std::string(v) + "'");
+      } else {
+        double h = 0;
+        if (!parse_double(v, h) || !(h > 0) || !std::isfinite(h))
+          return usage("--edge-length needs a positive number, got '" + std::string(v) + "'");
+        options.edge_length = h;
+      }
+      continue;
+    }
+    if (a == "-o" || a == "--resolution" || a == "--root" || a == "--memory-limit-mb" || a == "--restarts" ||
+        a == "--quads") {
       if (i + 1 >= args.size()) return usage(std::string(a) + " needs a value");
       const std::string_view v = args[++i];
       if (a == "-o") {
@@ -165,6 +207,9 @@ int run_command(const std::vector<std::string_view>& args) {
       if (a == "--resolution") {
         if (n < 1 || n > 1024) return usage("--resolution must be in 1..1024");
         options.resolution = static_cast<int>(n);
+      } else if (a == "--quads") {
+        if (n < 1 || n > (1LL << 31)) return usage("--quads must be in 1..2^31");
+        options.quads = n;
       } else if (a == "--restarts") {
         if (n < 0 || n > 64) return usage("--restarts must be in 0..64 or auto");
         options.restarts = static_cast<int>(n);
@@ -185,12 +230,14 @@ int run_command(const std::vector<std::string_view>& args) {
     }
   }
   if (mesh_path.empty()) return usage("run needs a mesh file");
+  if ((options.resolution > 0) + (options.edge_length > 0) + (options.quads > 0) > 1)
+    return usage("give at most one of --quads, --edge-length and --resolution");
   if (options.restarts != 0 && !options.normal_form) return usage("--restarts needs --normal-form");
   try {
     const igm::ValidMesh mesh = igm::load_mesh(mesh_path);
-    if (mesh.genus > 0 && options.resolution < 3)
-      return usage("--resolution must be in 3..1024 for genus >= 1 (below 3 the quad mesh has loops and multi-edges at "
-                   "the root)");
+    if (mesh.genus > 0 && options.layout == igm::LayoutKind::Paper && options.resolution > 0 && options.resolution < 3)
+      return usage("--resolution must be in 3..1024 for the paper layout (below 3 its quad mesh has loops and "
+                   "multi-edges at the root)");
     return run_pipeline(mesh, std::filesystem::path(mesh_path).stem().string(), dir, options);
   } catch (const igm::Error& e) {
     std::fprintf(stderr, "igm: %s: %s\n", mesh_path.c_str(), e.what());

@@ -1,6 +1,7 @@
 #include "igm/embed/orbifold_tutte.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <chrono>
 #include <string>
 
@@ -40,6 +41,11 @@ std::array<int, 2> pillowcase_corner(int i) {
 }
 
 OrbifoldTutteResult orbifold_tutte_embed(const SphereCut& cut, const RefinementOptions& options) {
+  return orbifold_tutte_embed(cut, {}, options);
+}
+
+OrbifoldTutteResult orbifold_tutte_embed(const SphereCut& cut, const std::vector<int>& weights,
+                                         const RefinementOptions& options) {
   const auto t_start = Clock::now();
   OrbifoldTutteResult result;
   OrbifoldTutteStats& st = result.stats;
@@ -49,6 +55,9 @@ OrbifoldTutteResult orbifold_tutte_embed(const SphereCut& cut, const RefinementO
   const int k = static_cast<int>(cut.path.size()) - 1;
   if (nv != m.num_vertices() || nd != nv + k - 1 || k < 3)
     throw Error(ErrorKind::InvalidArgument, "orbifold_tutte_embed: the cut does not match its surface");
+  if (!weights.empty() && static_cast<int>(weights.size()) != m.num_halfedges())
+    throw Error(ErrorKind::InvalidArgument, "orbifold_tutte_embed: " + std::to_string(weights.size()) +
+                                                " weights for " + std::to_string(m.num_halfedges()) + " half-edges");
   const int iB = cut.cone_index[1], iC = cut.cone_index[2];
   if (cut.cone_index[0] != 0 || !(0 < iB && iB < iC && iC < k) || cut.cone_index[3] != k)
     throw Error(ErrorKind::InvalidArgument, "orbifold_tutte_embed: cones not in path order");
@@ -100,15 +109,26 @@ OrbifoldTutteResult orbifold_tutte_embed(const SphereCut& cut, const RefinementO
     if (a.unknown < 0 && b.unknown < 0)
       throw Error(ErrorKind::InvalidArgument, "orbifold_tutte_embed: an edge joins two cones",
                   {m.origin(h), m.target(h)});
-    // Row of a: x_a - s_a s_b x_b = s_a (t_b - t_a); symmetric in a and b.
+    int w = 1;
+    if (!weights.empty()) {
+      w = weights[h];
+      if (w < 1 || weights[tw] != w)
+        throw Error(ErrorKind::InvalidArgument, "orbifold_tutte_embed: edge (" + std::to_string(m.origin(h)) + ", " +
+                                                    std::to_string(m.target(h)) + ") has a non-positive or asymmetric weight",
+                    {m.origin(h), m.target(h)});
+    }
+    // Row of a: w (x_a - s_a s_b x_b) = w s_a (t_b - t_a); symmetric in a and b.
     for (int side = 0; side < 2; ++side) {
       const Chart& p = side == 0 ? a : b;
       const Chart& q = side == 0 ? b : a;
       if (p.unknown < 0) continue;
-      ++S.diag[p.unknown];
-      if (q.unknown >= 0) off.push_back({p.unknown, q.unknown, -p.s * q.s});
-      bx[p.unknown] += p.s * (q.tx - p.tx);
-      by[p.unknown] += p.s * (q.ty - p.ty);
+      if (S.diag[p.unknown] > INT32_MAX - w)
+        throw Error(ErrorKind::Unsupported, "orbifold_tutte_embed: the weights around a vertex sum past 2^31",
+                    {m.origin(h), m.target(h)});
+      S.diag[p.unknown] += w;
+      if (q.unknown >= 0) off.push_back({p.unknown, q.unknown, -p.s * q.s * w});
+      bx[p.unknown] += static_cast<long>(w) * p.s * (q.tx - p.tx);
+      by[p.unknown] += static_cast<long>(w) * p.s * (q.ty - p.ty);
     }
   }
   std::sort(off.begin(), off.end());

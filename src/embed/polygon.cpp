@@ -1,6 +1,8 @@
 #include "igm/embed/polygon.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 #include "igm/core/error.h"
@@ -128,6 +130,91 @@ std::vector<Point2q> place_boundary(const std::vector<Point2q>& corners,
     }
   }
   return out;
+}
+
+std::vector<Point2q> place_boundary_at(const std::vector<Point2q>& corners,
+                                       const std::vector<std::vector<Rational>>& side_params) {
+  const std::size_t n = corners.size();
+  if (n < 3) throw Error(ErrorKind::InvalidArgument, "place_boundary_at: a polygon needs at least 3 corners");
+  if (side_params.size() != n)
+    throw Error(ErrorKind::InvalidArgument, "place_boundary_at: " + std::to_string(side_params.size()) +
+                                                " parameter lists for " + std::to_string(n) + " sides");
+  std::vector<Point2q> out;
+  for (std::size_t s = 0; s < n; ++s) {
+    const auto& t = side_params[s];
+    const auto side = static_cast<std::int64_t>(s);
+    if (t.empty() || sgn(t[0]) != 0)
+      throw Error(ErrorKind::InvalidArgument, "place_boundary_at: the parameters of side " + std::to_string(s) +
+                                                  " do not start at 0",
+                  {side});
+    for (std::size_t i = 1; i < t.size(); ++i)
+      if (t[i] <= t[i - 1] || t[i] >= 1)
+        throw Error(ErrorKind::InvalidArgument, "place_boundary_at: the parameters of side " + std::to_string(s) +
+                                                    " do not increase strictly below 1",
+                    {side});
+    const Point2q& a = corners[s];
+    const Point2q& b = corners[(s + 1) % n];
+    const Rational dx = b.x - a.x, dy = b.y - a.y;
+    out.push_back(a);
+    for (std::size_t i = 1; i < t.size(); ++i) out.push_back(Point2q{Rational(a.x + t[i] * dx), Rational(a.y + t[i] * dy)});
+  }
+  return out;
+}
+
+std::vector<Rational> arc_length_parameters(const std::vector<double>& lengths, int bits) {
+  const std::size_t n = lengths.size();
+  if (n < 1) throw Error(ErrorKind::InvalidArgument, "arc_length_parameters: a chain needs at least one edge");
+  if (bits < 1 || bits > 52)
+    throw Error(ErrorKind::InvalidArgument, "arc_length_parameters: bits must be in 1..52, got " + std::to_string(bits));
+  const std::int64_t one = std::int64_t(1) << bits;
+  if (static_cast<std::uint64_t>(n) > static_cast<std::uint64_t>(one))
+    throw Error(ErrorKind::InvalidArgument, "arc_length_parameters: " + std::to_string(n) +
+                                                " edges need more than " + std::to_string(bits) + " bits");
+  double total = 0;
+  bool usable = true;
+  for (double l : lengths) {
+    if (!std::isfinite(l) || l < 0) usable = false;
+    total += l;
+  }
+  if (!std::isfinite(total) || total <= 0) usable = false;
+  std::vector<std::int64_t> k(n + 1);
+  double run = 0;
+  for (std::size_t i = 0; i <= n; ++i) {
+    const double frac = usable ? run / total : static_cast<double>(i) / static_cast<double>(n);
+    k[i] = std::llround(std::ldexp(std::min(1.0, std::max(0.0, frac)), bits));
+    if (i < n && usable) run += lengths[i];
+  }
+  k[0] = 0;
+  k[n] = one;
+  // Distinct and increasing: up from the start, then down from the end (both bounded by n steps).
+  for (std::size_t i = 1; i < n; ++i) k[i] = std::max(k[i], k[i - 1] + 1);
+  for (std::size_t i = n - 1; i >= 1; --i) {
+    k[i] = std::min(k[i], k[i + 1] - 1);
+    if (i == 1) break;
+  }
+  Integer den;
+  mpz_ui_pow_ui(den.get_mpz_t(), 2, static_cast<unsigned long>(bits));
+  std::vector<Rational> t(n + 1);
+  for (std::size_t i = 0; i <= n; ++i) t[i] = make_rational(Integer(static_cast<long>(k[i])), den);
+  return t;
+}
+
+std::vector<Point2q> rational_circle_polygon(int n, int bits) {
+  if (n < 3 || bits < 1 || bits > 60) throw Error(ErrorKind::InvalidArgument, "rational_circle_polygon: bad arguments");
+  std::vector<Point2q> p;
+  p.reserve(n);
+  const double pi = std::acos(-1.0);
+  Integer den;
+  mpz_ui_pow_ui(den.get_mpz_t(), 2, static_cast<unsigned long>(bits));
+  for (int k = 0; k < n; ++k) {
+    const double theta = 2 * pi * (k + 0.5) / n;
+    const double s = std::tan(theta / 2);  // an initial guess only; the point is exact below
+    const Rational sq = make_rational(Integer(static_cast<long>(std::llround(std::ldexp(s, bits)))), den);
+    const Rational s2 = sq * sq;
+    p.push_back({Rational((1 - s2) / (1 + s2)), Rational(2 * sq / (1 + s2))});
+  }
+  if (!is_strictly_convex_ccw(p)) throw Error(ErrorKind::Internal, "rational_circle_polygon: rounding broke convexity");
+  return p;
 }
 
 }  // namespace igm

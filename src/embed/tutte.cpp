@@ -1,6 +1,8 @@
 #include "igm/embed/tutte.h"
 
 #include <algorithm>
+#include <climits>
+#include <cstdint>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -9,9 +11,10 @@
 #include "igm/embed/exact_refinement.h"
 #include "igm/embed/polygon.h"
 
-// Why the certified solve terminates: A = L_II, the uniform Laplacian restricted to interior
-// vertices, is symmetric positive definite (weakly diagonally dominant, strictly on rows next to
-// the boundary, irreducible because the disk is connected); b holds sums of boundary positions.
+// Why the certified solve terminates: A = L_II, the Laplacian with the uniform or the given
+// positive symmetric integer weights restricted to interior vertices, is symmetric positive
+// definite (weakly diagonally dominant, strictly on rows next to the boundary, irreducible because
+// the disk is connected); b holds weighted sums of boundary positions.
 // By Tutte's theorem in Floater's form (convex boundary traversed once, convex-combination
 // weights, no interior edge between two vertices of one side) the exact solution x* = A^-1 b is
 // an embedding, so the refinement of embed/exact_refinement.cpp (convergence argument there)
@@ -250,6 +253,12 @@ Disk build_and_check_disk(int nv, const std::vector<std::array<int, 3>>& tris,
 TutteResult tutte_embed(int num_vertices, const std::vector<std::array<int, 3>>& triangles,
                         const std::vector<int>& boundary, const std::vector<Point2q>& boundary_uv,
                         const TutteOptions& options) {
+  return tutte_embed(num_vertices, triangles, boundary, boundary_uv, {}, options);
+}
+
+TutteResult tutte_embed(int num_vertices, const std::vector<std::array<int, 3>>& triangles,
+                        const std::vector<int>& boundary, const std::vector<Point2q>& boundary_uv,
+                        const std::vector<int>& weights, const TutteOptions& options) {
   const auto t_start = Clock::now();
   TutteResult result;
   TutteStats& st = result.stats;
@@ -286,6 +295,21 @@ TutteResult tutte_embed(int num_vertices, const std::vector<std::array<int, 3>>&
               " joins two boundary vertices on the same polygon side (split it first)",
           {a, b});
   }
+  const bool weighted = !weights.empty();
+  if (weighted) {
+    if (weights.size() != 3 * triangles.size())
+      bad(std::to_string(weights.size()) + " half-edge weights for " + std::to_string(3 * triangles.size()) +
+              " half-edges",
+          {});
+    for (int h = 0; h < 3 * d.nf; ++h) {
+      const int a = d.origin[h], b = d.target(h);
+      if (d.twin[h] < 0) continue;
+      if (weights[h] < 1) bad("edge " + edge_str(a, b) + " has weight " + std::to_string(weights[h]) + " (needs >= 1)", {a, b});
+      if (weights[h] != weights[d.twin[h]])
+        bad("edge " + edge_str(a, b) + " has different weights on its two half-edges", {a, b});
+    }
+  }
+  auto weight = [&](int h) { return weighted ? weights[h] : 1; };
   // ---------------- interior system ----------------
   const int nv = num_vertices;
   std::vector<int> idx(nv, -1), vert;
@@ -301,26 +325,31 @@ TutteResult tutte_embed(int num_vertices, const std::vector<std::array<int, 3>>&
   st.boundary_vertices = static_cast<int>(boundary.size());
   st.triangles = d.nf;
   // Interior neighbours in CSR; degrees; exact right-hand side on rows next to the boundary.
-  std::vector<int> nb_begin(m + 1, 0), nb;
+  std::vector<int> nb_begin(m + 1, 0), nb, nbw;
   std::vector<int> deg(m);
   std::vector<int> brow;            // interior rows with boundary neighbours
   std::vector<Rational> bx, by;     // their exact right-hand sides
   nb.reserve(3 * static_cast<std::size_t>(d.nf));
   for (int i = 0; i < m; ++i) {
     const int v = vert[i];
-    deg[i] = d.out_begin[v + 1] - d.out_begin[v];  // interior vertex: one out-edge per neighbour
+    std::int64_t sum = 0;  // interior vertex: one out-edge per neighbour
     Rational sx = 0, sy = 0;
     bool touches = false;
     for (int k = d.out_begin[v]; k < d.out_begin[v + 1]; ++k) {
       const int w = d.out_target[k];
-      if (idx[w] >= 0)
+      const int wt = weight(d.out[k]);
+      sum += wt;
+      if (idx[w] >= 0) {
         nb.push_back(idx[w]);
-      else {
+        nbw.push_back(-wt);
+      } else {
         touches = true;
-        sx += boundary_uv[bpos[w]].x;
-        sy += boundary_uv[bpos[w]].y;
+        sx += wt * boundary_uv[bpos[w]].x;
+        sy += wt * boundary_uv[bpos[w]].y;
       }
     }
+    if (sum > INT32_MAX) bad("the weights around vertex " + std::to_string(v) + " sum past 2^31", {v});
+    deg[i] = static_cast<int>(sum);
     nb_begin[i + 1] = static_cast<int>(nb.size());
     if (touches) {
       brow.push_back(i);
@@ -383,7 +412,7 @@ TutteResult tutte_embed(int num_vertices, const std::vector<std::array<int, 3>>&
   system.diag = std::move(deg);
   system.xadj = std::move(nb_begin);
   system.adj = std::move(nb);
-  system.val.assign(system.adj.size(), -1);
+  system.val = std::move(nbw);
   system.rhs_rows = std::move(brow);
   system.rhs_x = std::move(bx);
   system.rhs_y = std::move(by);

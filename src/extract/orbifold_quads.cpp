@@ -8,43 +8,53 @@
 
 namespace igm {
 
-int orbifold_grid_orbits(int N) { return 2 * N * N + 2; }
+int orbifold_grid_orbits(int N) { return orbifold_grid_orbits(N, N); }
+int orbifold_grid_orbits(int nx, int ny) { return 2 * nx * ny + 2; }
 
-int orbifold_grid_orbit(int N, long i, long j) {
-  const long M = 2L * N;
-  i = ((i % M) + M) % M;
-  j = ((j % M) + M) % M;
-  if (j > N) {  // rotation by pi about the origin: (i, j) -> (-i, -j)
-    i = (M - i) % M;
-    j = M - j;
+int orbifold_grid_orbit(int N, long i, long j) { return orbifold_grid_orbit(N, N, i, j); }
+
+int orbifold_grid_orbit(int nx, int ny, long i, long j) {
+  const long Mx = 2L * nx, My = 2L * ny;
+  i = ((i % Mx) + Mx) % Mx;
+  j = ((j % My) + My) % My;
+  if (j > ny) {  // rotation by pi about the origin: (i, j) -> (-i, -j)
+    i = (Mx - i) % Mx;
+    j = My - j;
   }
-  if ((j == 0 || j == N) && i > N) i = M - i;  // bottom and top rows fold about their midpoints
+  if ((j == 0 || j == ny) && i > nx) i = Mx - i;  // bottom and top rows fold about their midpoints
   if (j == 0) return static_cast<int>(i);
-  if (j == N) return static_cast<int>((N + 1) + (N - 1) * M + i);
-  return static_cast<int>((N + 1) + (j - 1) * M + i);
+  if (j == ny) return static_cast<int>((nx + 1) + (ny - 1) * Mx + i);
+  return static_cast<int>((nx + 1) + (j - 1) * Mx + i);
 }
 
 OrbifoldQuadMesh extract_orbifold_quads(const std::vector<std::array<int, 3>>& tris, const std::vector<Point2q>& uv,
                                         int N) {
-  if (N < 1 || N > 4096)
-    throw Error(ErrorKind::InvalidArgument, "resolution must be in 1..4096, got " + std::to_string(N));
+  return extract_orbifold_quads(tris, uv, N, N);
+}
+
+OrbifoldQuadMesh extract_orbifold_quads(const std::vector<std::array<int, 3>>& tris, const std::vector<Point2q>& uv,
+                                        int nx, int ny) {
+  if (nx < 1 || nx > 4096 || ny < 1 || ny > 4096)
+    throw Error(ErrorKind::InvalidArgument, "resolution must be in 1..4096, got " + std::to_string(nx) + " x " +
+                                                std::to_string(ny));
   OrbifoldQuadMesh q;
-  q.resolution = N;
-  const int orbits = orbifold_grid_orbits(N);
+  q.resolution = nx;
+  q.resolution_y = ny;
+  const int orbits = orbifold_grid_orbits(nx, ny);
+  auto orbit = [&](long i, long j) { return orbifold_grid_orbit(nx, ny, i, j); };
   q.grid.assign(orbits, {0, 0});
   q.triangle.assign(orbits, -1);
   q.barycentric.resize(orbits);
-  for (int j = 0; j < N; ++j)
-    for (int i = 0; i < 2 * N; ++i)
-      q.quads.push_back({orbifold_grid_orbit(N, i, j), orbifold_grid_orbit(N, i + 1, j),
-                         orbifold_grid_orbit(N, i + 1, j + 1), orbifold_grid_orbit(N, i, j + 1)});
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < 2 * nx; ++i) q.quads.push_back({orbit(i, j), orbit(i + 1, j), orbit(i + 1, j + 1), orbit(i, j + 1)});
   // Canonical representatives: the lowest (j, i) in the domain.
-  for (int j = N; j >= 0; --j)
-    for (int i = 2 * N; i >= 0; --i) q.grid[orbifold_grid_orbit(N, i, j)] = {i, j};
-  q.cone_vertices = {orbifold_grid_orbit(N, N, 0), orbifold_grid_orbit(N, 0, 0), orbifold_grid_orbit(N, 0, N),
-                     orbifold_grid_orbit(N, N, N)};
+  for (int j = ny; j >= 0; --j)
+    for (int i = 2 * nx; i >= 0; --i) q.grid[orbit(i, j)] = {i, j};
+  q.cone_vertices = {orbit(nx, 0), orbit(0, 0), orbit(0, ny), orbit(nx, ny)};
 
-  const Rational invN(1, N);
+  const int N = std::max(nx, ny);  // the filter's margin below holds for the larger count
+  const int scale[2] = {nx, ny};
+  const Rational inv[2] = {Rational(1, nx), Rational(1, ny)};
   std::vector<Vec2d> uvd(uv.size());  // for the candidate filter only
   for (std::size_t v = 0; v < uv.size(); ++v) uvd[v] = {approximate(uv[v].x), approximate(uv[v].y)};
   int found = 0;
@@ -64,7 +74,7 @@ OrbifoldQuadMesh extract_orbifold_quads(const std::vector<std::array<int, 3>>& t
         hi = std::max(hi, v);
       }
       const double margin = 0x1p-30 * N * (1 + std::max(std::fabs(lo), std::fabs(hi)));
-      const double L = std::ceil(N * lo - margin), H = std::floor(N * hi + margin);  // candidates L..H
+      const double L = std::ceil(scale[d] * lo - margin), H = std::floor(scale[d] * hi + margin);  // candidates L..H
       if (!(L > -0x1p40 && H < 0x1p40))
         throw Error(ErrorKind::Internal, "extract_orbifold_quads: UV of triangle " + std::to_string(f) + " out of range",
                     {static_cast<std::int64_t>(f)});
@@ -73,9 +83,9 @@ OrbifoldQuadMesh extract_orbifold_quads(const std::vector<std::array<int, 3>>& t
     }
     for (long i = range[0][0]; i <= range[0][1]; ++i)
       for (long j = range[1][0]; j <= range[1][1]; ++j) {
-        const int orbit = orbifold_grid_orbit(N, i, j);
-        if (q.triangle[orbit] >= 0) continue;
-        const Point2q p{Rational(i) * invN, Rational(j) * invN};
+        const int o = orbit(i, j);
+        if (q.triangle[o] >= 0) continue;
+        const Point2q p{Rational(i) * inv[0], Rational(j) * inv[1]};
         if (orient2d(a, b, p) == Sign::Negative || orient2d(b, c, p) == Sign::Negative ||
             orient2d(c, a, p) == Sign::Negative)
           continue;
@@ -88,8 +98,8 @@ OrbifoldQuadMesh extract_orbifold_quads(const std::vector<std::array<int, 3>>& t
         if (sgn(total) <= 0)
           throw Error(ErrorKind::Internal, "extract_orbifold_quads: triangle " + std::to_string(f) + " is not positive",
                       {static_cast<std::int64_t>(f)});
-        q.triangle[orbit] = static_cast<int>(f);
-        q.barycentric[orbit] = {Rational(area2(p, b, c) / total), Rational(area2(a, p, c) / total),
+        q.triangle[o] = static_cast<int>(f);
+        q.barycentric[o] = {Rational(area2(p, b, c) / total), Rational(area2(a, p, c) / total),
                                 Rational(area2(a, b, p) / total)};
         ++found;
       }
@@ -98,8 +108,8 @@ OrbifoldQuadMesh extract_orbifold_quads(const std::vector<std::array<int, 3>>& t
     int missing = 0;
     while (q.triangle[missing] >= 0) ++missing;
     throw Error(ErrorKind::Internal, "extract_orbifold_quads: grid point (" + std::to_string(q.grid[missing][0]) + "/" +
-                                         std::to_string(N) + ", " + std::to_string(q.grid[missing][1]) + "/" +
-                                         std::to_string(N) + ") lies in no disk triangle",
+                                         std::to_string(nx) + ", " + std::to_string(q.grid[missing][1]) + "/" +
+                                         std::to_string(ny) + ") lies in no disk triangle",
                 {missing});
   }
   return q;

@@ -7,12 +7,14 @@
 #include <cstdio>
 #include <string>
 
+#include <cmath>
+
 #include "igm/arrange/overlay.h"
-#include "igm/arrange/quad_template.h"
 #include "igm/core/error.h"
 #include "igm/embed/polygon.h"
-#include "igm/extract/quad_extract.h"
-#include "igm/igm/quad_charts.h"
+#include "igm/extract/patch_grid.h"
+#include "igm/igm/patch_mesh.h"
+#include "igm/mesh/scale.h"
 #include "igm/mesh/surface_point.h"
 #include "pipeline_internal.h"
 
@@ -64,6 +66,25 @@ std::size_t triangle_cap(const PipelineOptions& options) {
 
 }  // namespace
 
+void check_sizes(const PipelineOptions& options) {
+  if (options.resolution < 0 || options.resolution > 1024)
+    throw Error(ErrorKind::InvalidArgument, "resolution must be in 1..1024 (or 0: none), got " +
+                                                std::to_string(options.resolution));
+  if (!(options.edge_length >= 0) || !std::isfinite(options.edge_length))
+    throw Error(ErrorKind::InvalidArgument, "the edge length must be positive and finite (or 0: none)");
+  if (options.quads < 0 || options.quads > (std::int64_t(1) << 31))
+    throw Error(ErrorKind::InvalidArgument, "the quad count must be in 1..2^31 (or 0: none), got " +
+                                                std::to_string(options.quads));
+}
+
+SizingOptions sizing_options(const PipelineOptions& options, double scale) {
+  SizingOptions s;
+  if (options.resolution > 0) s.resolution = options.resolution;
+  else if (options.edge_length > 0) s.edge_length = options.edge_length * scale;
+  else s.quads = options.quads > 0 ? options.quads : kDefaultQuads;
+  return s;
+}
+
 void StageReporter::done(const char* name, Clock::time_point t0, std::string detail) {
   StageEvent e{name, seconds_since(t0), std::move(detail)};
   stats.stages.push_back(e);
@@ -90,6 +111,22 @@ void certify_outputs(PipelineResult& result, int genus, const PipelineOptions& o
   result.quad_report = certify::certify_quads(qin, qopt);
 }
 
+void measure_quality(PipelineResult& result, const ValidMesh& input, const PipelineOptions& options,
+                     StageReporter& stage) {
+  if (!options.quality) return;
+  const auto t0 = Clock::now();
+  std::vector<std::array<Vec2d, 3>> uv(result.igm.corner_uv.size());
+  for (std::size_t t = 0; t < uv.size(); ++t)
+    for (int i = 0; i < 3; ++i) uv[t][i] = {approximate(result.igm.corner_uv[t][i].x), approximate(result.igm.corner_uv[t][i].y)};
+  result.igm_quality = measure_igm(result.igm.positions, result.igm.triangles, uv);
+  std::vector<std::array<int, 3>> input_triangles(input.mesh.num_faces());
+  for (int f = 0; f < input.mesh.num_faces(); ++f) input_triangles[f] = input.mesh.face_vertices(f);
+  QuadQualityOptions qo;
+  qo.distance = options.quality_distance;
+  result.quad_quality = measure_quads(result.quads.positions, result.quads.quads, input.positions, input_triangles, qo);
+  stage.done("quality", t0, summary_line(result.igm_quality, result.quad_quality));
+}
+
 std::vector<SurfacePoint> take_locations(RefinedSurface& surface, std::size_t more) {
   std::vector<SurfacePoint> locations;
   locations.reserve(surface.mesh.num_vertices() + more);
@@ -106,8 +143,7 @@ Vec3d position_in_triangle(const IgmMesh& igm, int triangle, const std::array<Ra
 }
 
 PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& options) {
-  if (options.resolution < 1 || options.resolution > 1024)
-    throw Error(ErrorKind::InvalidArgument, "resolution must be in 1..1024, got " + std::to_string(options.resolution));
+  check_sizes(options);
   if (input.genus == 0) return compute_igm_sphere(input, options);  // sphere_pipeline.cpp
   if (!options.cones.empty())
     throw Error(ErrorKind::InvalidArgument, "cones: only a genus-0 mesh takes a cone list (this one has genus " +
@@ -143,25 +179,73 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
   t0 = Clock::now();
   const std::vector<Point2q> corners = canonical_polygon(g);
   const Point2q centre = polygon_centre(corners);
-  std::vector<int> side_counts;
-  for (const BoundarySide& s : cut.sides) side_counts.push_back(static_cast<int>(s.disk_vertices.size()) - 1);
   if (static_cast<int>(cut.sides.size()) != 4 * g || cut.sides.empty() || cut.boundary.empty() ||
       cut.sides[0].disk_vertices.front() != cut.boundary.front())
     throw Error(ErrorKind::Internal, "topology returned a boundary that does not start at side 0");
-  const std::vector<Point2q> boundary_uv = place_boundary(corners, side_counts);
+  RefinedSurface& surface = cut.surface;
   const int num_disk_vertices = static_cast<int>(cut.disk_to_surface.size());
-  TutteResult tutte = tutte_embed(num_disk_vertices, cut.disk_triangles, cut.boundary, boundary_uv, options.tutte);
+  const double scale = unit_scale(input.positions);  // lengths and weights of hostile coordinates stay in range
+  std::vector<Vec3d> disk_positions(num_disk_vertices);
+  for (int v = 0; v < num_disk_vertices; ++v) {
+    const Vec3d p = surface.position(cut.disk_to_surface[v]);
+    disk_positions[v] = {scale * p.x, scale * p.y, scale * p.z};
+  }
+  std::vector<Point2q> boundary_uv;
+  {
+    // Paired sides carry the same surface vertices in opposite orders: the parameters of a side
+    // are computed once and mirrored onto its mate, so both copies of a vertex sit at t and 1 - t.
+    std::vector<std::vector<Rational>> params(cut.sides.size());
+    for (std::size_t s = 0; s < cut.sides.size(); ++s) {
+      const BoundarySide& side = cut.sides[s];
+      const std::size_t n = side.disk_vertices.size() - 1;
+      if (side.mate < static_cast<int>(s)) {
+        const auto& mp = params[side.mate];
+        if (mp.size() != n) throw Error(ErrorKind::Internal, "paired sides have different lengths", {static_cast<std::int64_t>(s)});
+        params[s].resize(n);
+        params[s][0] = 0;
+        for (std::size_t i = 1; i < n; ++i) params[s][i] = 1 - mp[n - i];
+        continue;
+      }
+      std::vector<double> len(n);
+      for (std::size_t i = 0; i < n; ++i)
+        len[i] = options.disk_arc_length
+                     ? scaled_distance(disk_positions[side.disk_vertices[i]], disk_positions[side.disk_vertices[i + 1]], 1)
+                     : 1.0;
+      std::vector<Rational> t = arc_length_parameters(len, 32);
+      t.pop_back();  // the side's last vertex is the next side's corner
+      params[s] = std::move(t);
+    }
+    boundary_uv = place_boundary_at(corners, params);
+  }
+  const std::vector<int> disk_weights = edge_weights(disk_positions, cut.disk_triangles, options.disk_weights);
+  TutteResult tutte = tutte_embed(num_disk_vertices, cut.disk_triangles, cut.boundary, boundary_uv, disk_weights, options.tutte);
   stats.tutte = tutte.stats;
   stage.done("embed", t0,
              format("%.0f interior vertices, %.0f flips in double, %.0f refinement steps, %.0f bits max",
                     tutte.stats.interior_vertices, static_cast<double>(tutte.stats.flips_double),
-                    tutte.stats.iterations, static_cast<double>(tutte.stats.max_bits)));
+                    tutte.stats.iterations, static_cast<double>(tutte.stats.max_bits)) +
+                 ", " + to_string(options.disk_weights) + " weights" +
+                 (options.disk_arc_length ? ", sides by arc length" : ""));
 
-  // --- arrange: overlay the quad template exactly ---
+  // --- arrange: the layout overlaid exactly ---
   t0 = Clock::now();
-  const QuadTemplate layout = make_quad_template(corners, centre);
-  const std::vector<TemplateSegment> layout_segments = template_segments(layout);
-  const std::vector<Segment2> segments = template_geometry(layout, layout_segments);
+  std::vector<int> mates(cut.sides.size());
+  for (std::size_t s = 0; s < cut.sides.size(); ++s) mates[s] = cut.sides[s].mate;
+  LayoutOptions layout_options;
+  layout_options.kind = options.layout;
+  layout_options.rows = options.layout_rows;
+  const QuadLayout layout = make_layout(corners, centre, mates, layout_options);
+  std::vector<Segment2> segments;
+  segments.reserve(layout.edges.size() + layout.quads.size());
+  for (const LayoutEdge& e : layout.edges) segments.push_back({layout.points[e.a], layout.points[e.b]});
+  const bool affine = options.patch_map == PatchMapKind::Affine;
+  std::vector<int> diagonals;
+  if (affine) {
+    diagonals = quad_diagonals(layout);
+    for (std::size_t q = 0; q < layout.quads.size(); ++q)
+      if (diagonals[q] >= 0)
+        segments.push_back({layout.points[layout.quads[q][diagonals[q]]], layout.points[layout.quads[q][diagonals[q] + 2]]});
+  }
   PlanarTriangulation disk{std::move(tutte.uv), cut.disk_triangles};
   // The overlay stops as soon as it would pass what the memory allows the stages after it (its own
   // lower bound: a triangle per new point; its output at the end), instead of building all of it
@@ -175,80 +259,79 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
     if (e.kind() != ErrorKind::Unsupported || overlay_options.max_triangles == 0) throw;
     memory_error(overlay_options.max_triangles, options);
   }
+  stats.layout_quads = static_cast<int>(layout.quads.size());
+  stats.chords = layout.num_chords;
+  stats.layout_edges = layout.num_surface_edges;
   stage.done("arrange", t0,
              format("%.0f layout quads, %.0f crossings, %.0f -> %.0f triangles", static_cast<double>(layout.quads.size()),
                     static_cast<double>(overlay.stats.crossings), static_cast<double>(disk.triangles.size()),
-                    static_cast<double>(overlay.mesh.triangles.size())));
+                    static_cast<double>(overlay.mesh.triangles.size())) +
+                 " (" + to_string(options.layout) + " layout, " + std::to_string(layout.num_chords) + " chords)");
 
-  // --- igm: piecewise-affine map of every layout quad onto the unit square ---
+  // --- igm: the patches glued back into the surface, sized, each mapped onto its rectangle ---
   t0 = Clock::now();
-  QuadCharts charts = compute_quad_charts(layout, overlay);
-  stats.max_uv_bits = charts.max_uv_bits;
-  // Output vertices: overlay vertices below num_disk_vertices are disk vertices, i.e. copies of
-  // surface vertices (the disk boundary gets no new vertex: template segments meet it only at
-  // polygon corners); the others are new interior points, each a vertex of its own. Output
-  // vertex ids: the surface's (input vertices first, then its constructed ones), then the new points.
-  RefinedSurface& surface = cut.surface;
-  const int num_overlay_vertices = static_cast<int>(overlay.mesh.positions.size());
+  PatchMeshInput pin;
+  pin.layout = &layout;
+  pin.overlay = &overlay;
+  pin.num_disk_vertices = num_disk_vertices;
+  pin.disk_to_surface = &cut.disk_to_surface;
+  pin.disk_triangles = &cut.disk_triangles;
+  pin.surface_locations = take_locations(surface, overlay.mesh.positions.size() - num_disk_vertices);
+  pin.input_positions = &surface.input_positions;
+  PatchMesh patches = build_patch_mesh(std::move(pin), !affine);
+  const std::vector<double> lengths = layout_edge_lengths(layout, patches, scale);
+  const Sizing sizing = size_layout(layout, lengths, sizing_options(options, scale));
+  stats.edge_length = sizing.edge_length / scale;
+  PatchMapOptions map_options;
+  map_options.kind = options.patch_map;
+  map_options.weights = options.patch_weights;
+  map_options.tutte = options.tutte;
+  map_options.length_scale = scale;
+  PatchMaps maps = map_patches(layout, patches, sizing, overlay.mesh.positions, map_options);
+  stats.patch_maps = maps.stats;
+  stats.max_uv_bits = maps.stats.max_uv_bits;
   IgmMesh& igm = result.igm;
-  igm.locations = take_locations(surface, num_overlay_vertices - num_disk_vertices);  // surface.point() is not used below
-  std::vector<SurfacePoint>& locations = igm.locations;
-  std::vector<int> out_vertex(num_overlay_vertices);
-  for (int v = 0; v < num_overlay_vertices; ++v) {
-    const VertexOrigin& o = overlay.origin[v];
-    if (v < num_disk_vertices) {
-      out_vertex[v] = cut.disk_to_surface[v];
-      continue;
-    }
-    if (o.input_vertex >= 0 || o.input_triangle < 0)
-      throw Error(ErrorKind::Internal, "overlay vertex " + std::to_string(v) + " has no location in a disk triangle");
-    const auto& tri = cut.disk_triangles[o.input_triangle];
-    out_vertex[v] = static_cast<int>(locations.size());
-    locations.push_back(barycentric_point(locations[cut.disk_to_surface[tri[0]]], locations[cut.disk_to_surface[tri[1]]],
-                                          locations[cut.disk_to_surface[tri[2]]], o.barycentric));
-  }
-  igm.positions.reserve(locations.size());
-  for (int v = 0; v < surface.num_input_vertices; ++v) igm.positions.push_back(surface.input_positions[v]);
-  for (std::size_t v = surface.num_input_vertices; v < locations.size(); ++v)
-    igm.positions.push_back(evaluate(locations[v], surface.input_positions));
-  igm.triangles.reserve(overlay.mesh.triangles.size());
-  for (const auto& t : overlay.mesh.triangles) igm.triangles.push_back({out_vertex[t[0]], out_vertex[t[1]], out_vertex[t[2]]});
-  stats.output_vertices = static_cast<int>(igm.positions.size());
+  igm.triangles.reserve(patches.triangles.size());
+  for (const auto& t : patches.triangles)
+    igm.triangles.push_back({patches.vertex_of[t[0]], patches.vertex_of[t[1]], patches.vertex_of[t[2]]});
+  stats.output_vertices = static_cast<int>(patches.locations.size());
   stats.output_triangles = static_cast<int>(igm.triangles.size());
-  stats.layout_quads = static_cast<int>(layout.quads.size());
   stage.done("igm", t0,
-             format("%.0f triangles (%.2fx input), UV bits max %.0f", stats.output_triangles,
-                    double(stats.output_triangles) / std::max(1, stats.input_faces), double(stats.max_uv_bits)));
+             format("%.0f triangles (%.2fx input), %.0f quads of edge length %.3g", stats.output_triangles,
+                    double(stats.output_triangles) / std::max(1, stats.input_faces), double(sizing.quads),
+                    stats.edge_length) +
+                 ", " + to_string(options.patch_map) + " maps" +
+                 format(", %.0f patches refined, UV bits max %.0f", double(maps.stats.patches_refined),
+                        double(stats.max_uv_bits)));
 
-  // --- extract: N x N quads per layout quad, 3D positions by exact location ---
+  // --- extract: the a x b grid of every layout quad, 3D positions by exact location ---
   t0 = Clock::now();
-  // Sides are glued as the cut says (any one-vertex word: every side is a whole edge of one
-  // layout quad, so the gluing is rigid with an integer translation whatever the word).
-  SidePairing pairing;
-  for (const BoundarySide& s : cut.sides) {
-    pairing.partner.push_back(s.mate);
-    pairing.reversed.push_back(1);
-  }
-  PlanarQuadMesh planar = extract_quads(layout, overlay, charts, options.resolution, pairing);
+  const PatchGrid grid = extract_patch_grids(layout, patches, sizing, maps.corner_uv);
+  igm.positions = std::move(patches.positions);
+  igm.locations = std::move(patches.locations);
+  igm.corner_uv = std::move(maps.corner_uv);
   QuadMesh& quads = result.quads;
-  quads.quads = planar.quads;
-  quads.positions.reserve(planar.vertices.size());
-  for (const QuadVertexLocation& loc : planar.vertices)  // igm triangle i = overlay triangle i, in output ids
-    quads.positions.push_back(position_in_triangle(igm, loc.triangle, loc.barycentric, surface.input_positions));
+  quads.quads = grid.quads;
+  quads.positions.reserve(grid.vertices.size());
+  for (const GridVertex& v : grid.vertices)
+    quads.positions.push_back(position_in_triangle(igm, v.triangle, v.barycentric, surface.input_positions));
   stats.quads = static_cast<int>(quads.quads.size());
-  igm.corner_uv = std::move(charts.uv);  // charts are not needed after extraction
-  stage.done("extract", t0,
-             format("resolution %.0f: %.0f quads, %.0f vertices", options.resolution, stats.quads,
-                    double(quads.positions.size())));
+  stage.done("extract", t0, format("%.0f quads, %.0f vertices", stats.quads, double(quads.positions.size())));
 
   // --- the picture ---
   SchemaDrawing& d = result.schema;
   for (const Point2q& c : corners) d.polygon.push_back(to_vec2d(c));
   for (const BoundarySide& s : cut.sides) d.side_pair.push_back(s.mate);
-  for (std::size_t i = 0; i < segments.size(); ++i)
-    (layout_segments[i].diagonal ? d.diagonals : d.template_edges)
-        .push_back({to_vec2d(segments[i].a), to_vec2d(segments[i].b)});
-  for (const Point2q& p : layout.points) d.cones.push_back(to_vec2d(p));
+  for (const LayoutEdge& e : layout.edges) d.template_edges.push_back({to_vec2d(layout.points[e.a]), to_vec2d(layout.points[e.b])});
+  for (std::size_t q = 0; q < diagonals.size(); ++q)
+    if (diagonals[q] >= 0)
+      d.diagonals.push_back({to_vec2d(layout.points[layout.quads[q][diagonals[q]]]),
+                             to_vec2d(layout.points[layout.quads[q][diagonals[q] + 2]])});
+  {
+    const std::vector<int> valence = layout.valences();
+    for (std::size_t p = 0; p < layout.points.size(); ++p)
+      if (valence[layout.layout_vertex[p]] != 4) d.cones.push_back(to_vec2d(layout.points[p]));
+  }
   for (const auto& t : overlay.mesh.triangles)
     for (int i = 0; i < 3; ++i)
       if (t[i] < t[(i + 1) % 3])
@@ -261,7 +344,7 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
   t0 = Clock::now();
   certify_outputs(result, g, options);
   stage.done("certify", t0, "IGM: " + certify::summary(result.igm_report) + "; quads: " + certify::summary(result.quad_report));
-
+  measure_quality(result, input, options, stage);
   return result;
 }
 

@@ -22,8 +22,20 @@ struct StageReporter {
   void done(const char* name, Clock::time_point t0, std::string detail);
 };
 
+/// Throws igm::Error(InvalidArgument) for a resolution, edge length or quad count out of range.
+void check_sizes(const PipelineOptions& options);
+
+/// The sizing that the options ask for (PipelineOptions: resolution, else edge length, else the quad
+/// count, else kDefaultQuads), for lengths measured on positions multiplied by `scale`.
+SizingOptions sizing_options(const PipelineOptions& options, double scale);
+
 /// compute_igm for input.genus == 0 (options already range-checked by compute_igm).
 PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions& options);
+
+/// With options.quality, measures result.igm and result.quads against the input (quality.h) and
+/// reports a "quality" stage.
+void measure_quality(PipelineResult& result, const ValidMesh& input, const PipelineOptions& options,
+                     StageReporter& stage);
 
 /// Runs the independent certifier on result.igm (checks 1-4) and result.quads (check 5, expected
 /// genus `genus`) and stores both reports in `result`.

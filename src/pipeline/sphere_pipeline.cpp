@@ -1,6 +1,8 @@
 #include "pipeline_internal.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -8,6 +10,8 @@
 #include "igm/embed/orbifold_tutte.h"
 #include "igm/extract/orbifold_quads.h"
 #include "igm/mesh/surface_point.h"
+#include "igm/layout/sizing.h"
+#include "igm/mesh/scale.h"
 #include "igm/topology/sphere_cut.h"
 
 namespace igm {
@@ -54,7 +58,16 @@ PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions&
   ro.max_iterations = options.tutte.max_iterations;
   ro.min_iterations = options.tutte.min_iterations;
   ro.exact_fallback_max_unknowns = options.tutte.exact_fallback_max_interior;
-  OrbifoldTutteResult embedding = orbifold_tutte_embed(cut, ro);
+  const double scale = unit_scale(input.positions);  // lengths and weights of hostile coordinates stay in range
+  std::vector<Vec3d> surface_positions(surface.mesh.num_vertices());
+  for (int v = 0; v < surface.mesh.num_vertices(); ++v) {
+    const Vec3d p = surface.position(v);
+    surface_positions[v] = {scale * p.x, scale * p.y, scale * p.z};
+  }
+  std::vector<std::array<int, 3>> surface_faces(surface.mesh.num_faces());
+  for (int f = 0; f < surface.mesh.num_faces(); ++f) surface_faces[f] = surface.mesh.face_vertices(f);
+  OrbifoldTutteResult embedding =
+      orbifold_tutte_embed(cut, edge_weights(surface_positions, surface_faces, options.patch_weights), ro);
   const OrbifoldTutteStats& es = embedding.stats;
   stats.orbifold = es;
   stats.max_uv_bits = es.max_bits;
@@ -63,7 +76,49 @@ PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions&
                 es.max_bits);
   done("embed", line);
 
-  // --- igm: the embedding is the IGM (transitions x -> +-x + t, t integer; cones at integer points) ---
+  // --- sizing: nx quads per unit of the pillowcase in x, ny in y ---
+  // The mean 3D length of a unit step in x and in y over the domain (area 2): for each disk
+  // triangle with UV edges (a, b), (c, d) and 3D edges P1, P2 the map's columns are
+  // J e_x = (d P1 - b P2) / det and J e_y = (a P2 - c P1) / det, weighted by the UV area det / 2.
+  double lx = 0, ly = 0;
+  for (std::size_t f = 0; f < cut.disk_triangles.size(); ++f) {
+    const auto& t = cut.disk_triangles[f];
+    const Vec2d u0 = to_vec2d(embedding.uv[t[0]]), u1 = to_vec2d(embedding.uv[t[1]]), u2 = to_vec2d(embedding.uv[t[2]]);
+    const Vec3d &p0 = surface_positions[surface_faces[f][0]], &p1 = surface_positions[surface_faces[f][1]],
+                &p2 = surface_positions[surface_faces[f][2]];
+    const double a = u1.x - u0.x, b = u1.y - u0.y, c = u2.x - u0.x, d = u2.y - u0.y;
+    const Vec3d P1{p1.x - p0.x, p1.y - p0.y, p1.z - p0.z}, P2{p2.x - p0.x, p2.y - p0.y, p2.z - p0.z};
+    auto norm = [](double x, double y, double z) { return std::sqrt(x * x + y * y + z * z); };
+    lx += 0.5 * norm(d * P1.x - b * P2.x, d * P1.y - b * P2.y, d * P1.z - b * P2.z);
+    ly += 0.5 * norm(a * P2.x - c * P1.x, a * P2.y - c * P1.y, a * P2.z - c * P1.z);
+  }
+  lx /= 2, ly /= 2;  // per unit of the domain's area 2
+  if (!std::isfinite(lx) || !std::isfinite(ly)) lx = ly = 0;
+  auto counts = [&](double H) {
+    auto c = [&](double l) { return static_cast<int>(std::min(4096.0, std::max(1.0, std::nearbyint(l / H)))); };
+    return std::array<int, 2>{c(lx), c(ly)};
+  };
+  std::array<int, 2> n{options.resolution, options.resolution};
+  if (options.resolution <= 0) {
+    double H = options.edge_length * scale;
+    if (H <= 0) {
+      const std::int64_t target = options.quads > 0 ? options.quads : kDefaultQuads;
+      const double hi = 2 * std::max(lx, ly);
+      H = hi > 0 ? edge_length_for_quads(
+                       [&](double h) {
+                         const auto c = counts(h);
+                         return std::int64_t(2) * c[0] * c[1];
+                       },
+                       hi / 8192, hi, target)
+                 : 1;
+    }
+    n = counts(H);
+    stats.edge_length = H / scale;
+  }
+  stats.grid = n;
+
+  // --- igm: the embedding scaled by (nx, ny) is the IGM (transitions x -> +-x + t, t integer; cones
+  // at integer points): one UV unit per quad ---
   // Output vertices are the surface's: the input vertices, then its constructed ones.
   IgmMesh& igm = result.igm;
   const int nv = surface.mesh.num_vertices(), nf = surface.mesh.num_faces();
@@ -74,24 +129,30 @@ PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions&
   igm.corner_uv.resize(nf);
   for (int f = 0; f < nf; ++f) {
     igm.triangles[f] = surface.mesh.face_vertices(f);
-    for (int i = 0; i < 3; ++i) igm.corner_uv[f][i] = embedding.uv[cut.disk_triangles[f][i]];
+    for (int i = 0; i < 3; ++i) {
+      const Point2q& p = embedding.uv[cut.disk_triangles[f][i]];
+      igm.corner_uv[f][i] = {Rational(p.x * n[0]), Rational(p.y * n[1])};
+    }
   }
+  stats.max_uv_bits = 0;
+  for (const auto& tri : igm.corner_uv)
+    for (const Point2q& p : tri) stats.max_uv_bits = std::max({stats.max_uv_bits, bit_size(p.x), bit_size(p.y)});
   stats.output_vertices = nv;
   stats.output_triangles = nf;
   stats.layout_quads = 2;
   std::snprintf(line, sizeof line, "%d triangles (%.2fx input), UV bits max %zu", nf,
-                double(nf) / std::max(1, stats.input_faces), es.max_bits);
+                double(nf) / std::max(1, stats.input_faces), stats.max_uv_bits);
   done("igm", line);
 
   // --- extract: the 2 N^2 cells of the domain, vertices located exactly ---
-  const OrbifoldQuadMesh grid = extract_orbifold_quads(cut.disk_triangles, embedding.uv, options.resolution);
+  const OrbifoldQuadMesh grid = extract_orbifold_quads(cut.disk_triangles, embedding.uv, n[0], n[1]);
   QuadMesh& quads = result.quads;
   quads.quads = grid.quads;
   quads.positions.reserve(grid.triangle.size());
   for (std::size_t v = 0; v < grid.triangle.size(); ++v)  // igm triangle f = disk triangle f, in output ids
     quads.positions.push_back(position_in_triangle(igm, grid.triangle[v], grid.barycentric[v], surface.input_positions));
   stats.quads = static_cast<int>(quads.quads.size());
-  std::snprintf(line, sizeof line, "resolution %d: %d quads, %zu vertices", options.resolution, stats.quads,
+  std::snprintf(line, sizeof line, "%d x %d per unit: %d quads, %zu vertices", n[0], n[1], stats.quads,
                 quads.positions.size());
   done("extract", line);
 
@@ -109,9 +170,8 @@ PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions&
     for (int i = cut.corners[s]; i <= end; ++i) path.push_back(to_vec2d(embedding.uv[cut.boundary[i % nb]]));
     d.side_paths.push_back(std::move(path));
   }
-  const int N = options.resolution;
-  for (int i = 0; i <= 2 * N; ++i) d.template_edges.push_back({Vec2d{double(i) / N, 0}, Vec2d{double(i) / N, 1}});
-  for (int j = 0; j <= N; ++j) d.template_edges.push_back({Vec2d{0, double(j) / N}, Vec2d{2, double(j) / N}});
+  for (int i = 0; i <= 2 * n[0]; ++i) d.template_edges.push_back({Vec2d{double(i) / n[0], 0}, Vec2d{double(i) / n[0], 1}});
+  for (int j = 0; j <= n[1]; ++j) d.template_edges.push_back({Vec2d{0, double(j) / n[1]}, Vec2d{2, double(j) / n[1]}});
   d.cones = d.polygon;
   std::vector<Vec2d> uvd(embedding.uv.size());
   for (std::size_t v = 0; v < uvd.size(); ++v) uvd[v] = to_vec2d(embedding.uv[v]);
@@ -123,6 +183,7 @@ PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions&
   // --- certify: the independent judge, on both outputs ---
   certify_outputs(result, 0, options);
   done("certify", "IGM: " + certify::summary(result.igm_report) + "; quads: " + certify::summary(result.quad_report));
+  measure_quality(result, input, options, stage);
   return result;
 }
 

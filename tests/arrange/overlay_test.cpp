@@ -127,7 +127,7 @@ TEST_CASE("overlay: invalid segments give typed errors") {
   CHECK(kind_of(concave, {}) == ErrorKind::InvalidArgument);
 }
 
-TEST_CASE("overlay: template on synthetic disks, exact and degenerate (genus 2..12)") {
+TEST_CASE("overlay: the paper layout and its diagonals on synthetic disks, exact and degenerate (genus 2..12)") {
   for (int g = 2; g <= 12; ++g) {
     CAPTURE(g);
     SyntheticDiskOptions o;

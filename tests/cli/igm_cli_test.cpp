@@ -362,3 +362,35 @@ TEST_CASE("igm run on genus 0: the five files, certified by igm-certify, bad con
   const Run named = in_folder(cwd, igm_cmd + " run " + cube + " --cones 0,1,2,8");
   CHECK(has(named.err, "entry 3"));
 }
+
+TEST_CASE("igm run: layouts, sizes and maps from the command line, the quality report in the certificate and on the terminal") {
+  const auto cwd = folder_with_generated("sizes", "--genus 2 --faces 1500 --seed 2 g2.obj");
+  const std::string igm_cmd = quote(IGM_CLI_PATH);
+  const Run spread = in_folder(cwd, igm_cmd + " run g2.obj -o a --quads 2000");
+  CHECK(spread.code == 0);
+  CHECK(has(spread.out, "[quality ]"));
+  CHECK(has(spread.out, "SJ median"));
+  const std::string json = slurp(cwd / "a" / "g2.cert.json");
+  CHECK(has(json, "\"quality\": {\"igm\": {"));
+  CHECK(has(json, "\"sj_median\""));
+  CHECK(has(json, "\"conformal\""));
+  CHECK(has(json, "\"layout\": \"spread\""));
+  // The quad count is written in the certificate's stats: within a quarter of 2000.
+  const auto at = json.find("\"quads\": ");
+  REQUIRE(at != std::string::npos);
+  const long quads = std::atol(json.c_str() + at + 9);
+  CHECK(quads >= 1500);
+  CHECK(quads <= 2500);
+  const Run kite = in_folder(cwd, igm_cmd + " run g2.obj -o b --layout kite --map affine --edge-length 0.8");
+  CHECK(kite.code == 0);
+  CHECK(has(slurp(cwd / "b" / "g2.cert.json"), "\"layout\": \"kite\""));
+  const Run paper = in_folder(cwd, igm_cmd + " run g2.obj -o c --layout paper --resolution 3");
+  CHECK(paper.code == 0);
+  CHECK(has(slurp(cwd / "c" / "g2.cert.json"), "\"quads\": 90"));  // 5g N^2
+  for (const std::string& a : {std::string(" --layout round"), std::string(" --map conformal"), std::string(" --quads 0"),
+                              std::string(" --edge-length -1"), std::string(" --edge-length nan"),
+                              std::string(" --quads 10 --resolution 3"), std::string(" --layout paper --resolution 2")}) {
+    CAPTURE(a);
+    CHECK(in_folder(cwd, igm_cmd + " run g2.obj -o d" + a).code == 2);
+  }
+}

@@ -178,3 +178,38 @@ TEST_CASE("place_boundary: bad arguments are typed errors") {
     CHECK(e.elements() == std::vector<std::int64_t>{1});
   }
 }
+
+TEST_CASE("arc_length_parameters: fractions of the length, rounded, distinct, uniform when lengths are unusable") {
+  const auto t = igm::arc_length_parameters({1, 1, 2}, 8);
+  REQUIRE(t.size() == 4);
+  CHECK(t[0] == 0);
+  CHECK(t[1] == q(1, 4));
+  CHECK(t[2] == q(1, 2));
+  CHECK(t[3] == 1);
+  // Zero-length edges still get distinct parameters, one grid step apart.
+  const auto z = igm::arc_length_parameters({0, 0, 1}, 4);
+  CHECK(z[1] == q(1, 16));
+  CHECK(z[2] == q(2, 16));
+  const auto e = igm::arc_length_parameters({1, 0, 0}, 4);
+  CHECK(e[1] == q(14, 16));
+  CHECK(e[2] == q(15, 16));
+  // All zero, negative or infinite: i / n, rounded.
+  const auto u = igm::arc_length_parameters({0, 0, 0, 0}, 10);
+  CHECK(u[1] == q(1, 4));
+  const auto inf = igm::arc_length_parameters({1, std::numeric_limits<double>::infinity()}, 10);
+  CHECK(inf[1] == q(1, 2));
+  CHECK_THROWS_AS(igm::arc_length_parameters({}, 10), igm::Error);
+  CHECK_THROWS_AS(igm::arc_length_parameters({1, 1, 1}, 1), igm::Error);  // 3 edges need 2 bits
+}
+
+TEST_CASE("place_boundary_at: points at the given parameters, bad parameter lists are typed errors") {
+  const auto sq = igm::canonical_polygon(1);
+  const std::vector<std::vector<Rational>> params = {{0, q(1, 4)}, {0}, {0, q(3, 4)}, {0}};
+  const auto p = igm::place_boundary_at(sq, params);
+  REQUIRE(p.size() == 6);
+  CHECK((p[1].x == q(1, 4) && p[1].y == 0));
+  CHECK((p[4].x == q(1, 4) && p[4].y == 1));  // 3/4 along the top side, which runs right to left
+  CHECK_THROWS_AS(igm::place_boundary_at(sq, {{q(1, 2)}, {0}, {0}, {0}}), igm::Error);
+  CHECK_THROWS_AS(igm::place_boundary_at(sq, {{0, q(1, 2), q(1, 2)}, {0}, {0}, {0}}), igm::Error);
+  CHECK_THROWS_AS(igm::place_boundary_at(sq, {{0, 1}, {0}, {0}, {0}}), igm::Error);
+}

@@ -23,20 +23,46 @@ using igm_test::refinement_violation;
 namespace {
 
 
+// Layout quads and the cones' indices of each layout (layout/quad_layout.h): index k = the number
+// of layout quads at the vertex; every other vertex regular (k = 4). A torus has none.
+int expected_layout_quads(LayoutKind kind, int g) {
+  if (g == 1) return kind == LayoutKind::Kite ? 4 : 1;
+  if (kind == LayoutKind::Paper) return 5 * g;
+  if (kind == LayoutKind::Kite) return 4 * g;
+  const int rows = std::min(g, std::max(1, static_cast<int>(std::lround(std::sqrt(2.0 * g)))));
+  return 8 * g + rows * (2 * g - rows);
+}
+std::map<std::int64_t, std::int64_t> expected_cones(LayoutKind kind, int g) {
+  if (g == 1) return {};
+  if (kind == LayoutKind::Paper) return {{8 * g, 1}, {3 * g, 1}, {3, 3 * g}};
+  if (kind == LayoutKind::Kite) return {{4 * g, 2}};
+  return {{4 * g, 1}, {5, 4 * g - 4}};
+}
+
+// Twice the exact UV area of the IGM: every layout quad fills its a x b rectangle, so this is
+// twice the number of quads when the IGM is on the quad mesh's grid.
+Rational uv_area2(const IgmMesh& igm) {
+  Rational sum = 0;
+  for (const auto& t : igm.corner_uv) sum += (t[1].x - t[0].x) * (t[2].y - t[0].y) - (t[1].y - t[0].y) * (t[2].x - t[0].x);
+  return sum;
+}
+
 // Independent re-check of what a run promises, ending with the certifier on the written files.
-PipelineStats check_run(const ValidMesh& mesh, int resolution, bool normal_form = false, bool check_areas = true) {
-  PipelineOptions options;
-  options.resolution = resolution;
-  options.normal_form = normal_form;
+PipelineStats check_run(const ValidMesh& mesh, PipelineOptions options, bool check_areas = true) {
   const PipelineResult r = compute_igm(mesh, options);
   const int g = mesh.genus;
-  INFO("genus " << g << ", resolution " << resolution);
+  INFO("genus " << g << ", layout " << to_string(options.layout) << ", resolution " << options.resolution);
   CHECK(r.stats.genus == g);
   CHECK(r.igm_report.valid());
   CHECK(r.quad_report.valid());
-  const int layout_quads = g == 1 ? 1 : 5 * g;
-  CHECK(r.stats.layout_quads == layout_quads);
-  CHECK(static_cast<int>(r.quads.quads.size()) == layout_quads * resolution * resolution);
+  CHECK(r.stats.layout_quads == expected_layout_quads(options.layout, g));
+  if (options.resolution > 0) {
+    CHECK(static_cast<int>(r.quads.quads.size()) == r.stats.layout_quads * options.resolution * options.resolution);
+  } else {
+    CHECK(r.quads.quads.size() >= static_cast<std::size_t>(r.stats.layout_quads));
+  }
+  // The IGM is on the quad mesh's grid: one UV unit per quad.
+  CHECK(uv_area2(r.igm) == Rational(2 * static_cast<long>(r.quads.quads.size())));
   REQUIRE(r.igm_report.genus.has_value());
   CHECK(*r.igm_report.genus == g);
   REQUIRE(r.quad_report.genus.has_value());
@@ -48,22 +74,13 @@ PipelineStats check_run(const ValidMesh& mesh, int resolution, bool normal_form 
   const certify::CheckResult* cones = r.igm_report.check(4);
   REQUIRE(cones != nullptr);
   CHECK(cones->passed());
-  // The cones are the layout vertices (paper §6.2), each at an integer point: the root (index
-  // k = 8g), the centre (3g) and the 3g inner points (3); every other vertex is regular (k = 4).
-  // A torus has none.
   CHECK(cones->count("vertices_undetermined") == 0);
   CHECK(cones->count("cones_off_integer_total") == 0);
-  auto vertices_of_index = [&](std::int64_t k) { return cones->histogram.count(k) ? cones->histogram.at(k) : 0; };
-  if (g == 1) {
-    CHECK(cones->count("cones") == 0);
-  } else {
-    CHECK(cones->count("cones") == 2 + 3 * g);
-    CHECK(vertices_of_index(8 * g) == 1);
-    CHECK(vertices_of_index(3 * g) == 1);
-    CHECK(vertices_of_index(3) == 3 * g);
-    CHECK(cones->histogram.size() == 4);
-  }
-  // The schema picture's data: 4g polygon sides paired without fixed points, the template.
+  std::map<std::int64_t, std::int64_t> found;
+  for (const auto& [k, n] : cones->histogram)
+    if (k != 4) found[k] = n;
+  CHECK(found == expected_cones(options.layout, g));
+  // The schema picture's data: 4g polygon sides paired without fixed points, the layout.
   CHECK(static_cast<int>(r.schema.polygon.size()) == 4 * g);
   REQUIRE(static_cast<int>(r.schema.side_pair.size()) == 4 * g);
   for (int s = 0; s < 4 * g; ++s) {
@@ -72,6 +89,9 @@ PipelineStats check_run(const ValidMesh& mesh, int resolution, bool normal_form 
   }
   CHECK(r.schema.template_edges.size() >= static_cast<std::size_t>(4 * g));
   CHECK(r.schema.mesh_edges.size() * 2 >= r.igm.triangles.size());
+  // The quality report measured what was written.
+  CHECK(r.quad_quality.quads == static_cast<int>(r.quads.quads.size()));
+  CHECK(r.igm_quality.triangles == static_cast<int>(r.igm.triangles.size()));
   // The written exact artefact and the double one read back through the certifier's own reader.
   std::ostringstream exact, quads;
   write_igm_obj(exact, r.igm, true);
@@ -83,72 +103,84 @@ PipelineStats check_run(const ValidMesh& mesh, int resolution, bool normal_form 
   return r.stats;
 }
 
-}  // namespace
-
-TEST_CASE("genus 1 generated tori: certified IGM and N x N quads") {
-  for (std::uint64_t seed : {1, 2, 3}) check_run(igm_test::generated_mesh(1, 600 * seed, seed), 2 + int(seed));
+PipelineOptions with_quads(std::int64_t quads, LayoutKind kind = LayoutKind::Spread) {
+  PipelineOptions o;
+  o.quads = quads;
+  o.layout = kind;
+  return o;
 }
 
-TEST_CASE("genus 2..7 generated meshes, odd and even: certified, 5g N^2 quads") {
-  for (int g = 2; g <= 7; ++g) check_run(igm_test::generated_mesh(g, 400 * g, std::uint64_t(g)), 3 + g % 2);
+PipelineOptions with_resolution(int n, LayoutKind kind = LayoutKind::Spread, bool normal_form = false) {
+  PipelineOptions o;
+  o.resolution = n;
+  o.layout = kind;
+  o.normal_form = normal_form;
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("genus 1 generated tori: certified, one patch for the whole torus, N x N quads") {
+  for (std::uint64_t seed : {1, 2, 3}) check_run(igm_test::generated_mesh(1, 600 * seed, seed), with_resolution(2 + int(seed)));
+}
+
+TEST_CASE("genus 2..7 generated meshes, odd and even, every layout: certified, the layout's cones") {
+  for (int g = 2; g <= 7; ++g)
+    for (LayoutKind kind : {LayoutKind::Spread, LayoutKind::Kite, LayoutKind::Paper})
+      check_run(igm_test::generated_mesh(g, 400 * g, std::uint64_t(g)), with_quads(1500, kind));
+}
+
+TEST_CASE("the paper's layout at resolution N keeps its 5g N^2 quads and the affine map still certifies") {
+  for (int g : {2, 3}) {
+    const ValidMesh mesh = igm_test::generated_mesh(g, 400 * g, 7);
+    check_run(mesh, with_resolution(3, LayoutKind::Paper));
+    PipelineOptions affine = with_resolution(4, LayoutKind::Paper);
+    affine.patch_map = PatchMapKind::Affine;
+    check_run(mesh, affine);
+    affine.layout = LayoutKind::Spread;
+    check_run(mesh, affine);
+  }
+  // Below 3 the paper layout's sides are loops at the root: refused, not a broken quad mesh.
+  CHECK_THROWS_AS(compute_igm(igm_test::generated_mesh(2, 600, 1), with_resolution(2, LayoutKind::Paper)), Error);
 }
 
 TEST_CASE("generated genus 12, 25 and 50 (odd and even): certified") {
-  for (int g : {12, 25, 50}) check_run(igm_test::generated_mesh(g, 200 * g, std::uint64_t(g)), 3);
+  for (int g : {12, 25, 50}) check_run(igm_test::generated_mesh(g, 200 * g, std::uint64_t(g)), PipelineOptions{});
 }
 
 TEST_CASE("with the gluing word in normal form (handle slides) the outputs are certified too") {
-  for (int g = 2; g <= 4; ++g) check_run(igm_test::generated_mesh(g, 500 * g, std::uint64_t(40 + g)), 3, true);
+  for (int g = 2; g <= 4; ++g) check_run(igm_test::generated_mesh(g, 500 * g, std::uint64_t(40 + g)), with_resolution(3, LayoutKind::Spread, true));
   // Generated genus 4 on 4000 faces: the cut comes from step 3c (the greedy loops slid into
   // blocks, topology/cut_to_canonical_disk.h), certified like the others.
-  CHECK(check_run(igm_test::generated_mesh(4, 4000, 1), 3, true).cut.slides > 0);
+  CHECK(check_run(igm_test::generated_mesh(4, 4000, 1), with_resolution(3, LayoutKind::Spread, true)).cut.slides > 0);
   IGM_REQUIRE_DATA(dir);
   for (const char* name : {"eight.off", "joint.off", "helmet.off", "anchor.off", "elephant.off", "couplingdown.off"}) {
     INFO(std::string(name));
-    check_run(load_mesh(dir / "meshes" / "clean" / name), 3, true);
+    PipelineOptions o = with_quads(2000);
+    o.normal_form = true;
+    check_run(load_mesh(dir / "meshes" / "clean" / name), o);
   }
 }
 
-namespace {
-
-// At N = 1 (paper §6.2): 5g quads, 2+3g vertices, valences 8g (root), 3g (centre), 3g vertices
-// of valence 3. Every polygon corner is the root, so quads repeat it and the certifier (edges by
-// end points) must reject the quad mesh; the IGM is certified.
-void check_layout_at_resolution_1(const ValidMesh& mesh) {
-  const int g = mesh.genus;
-  INFO("genus " << g);
+TEST_CASE("sizing: --quads Q lands within a quarter of Q from 1,000 to 100,000, --edge-length H gives edges near H") {
+  const ValidMesh mesh = igm_test::generated_mesh(3, 4000, 9);
+  for (std::int64_t q : {1000, 10000, 100000}) {
+    CAPTURE(q);
+    const PipelineStats st = check_run(mesh, with_quads(q), false);
+    CHECK(std::llabs(st.quads - q) <= q / 4);
+  }
+  // Halving the edge length gives about four times the quads.
   PipelineOptions o;
-  o.resolution = 1;
-  const PipelineResult r = compute_igm(mesh, o);
-  CHECK(r.igm_report.valid());
-  CHECK_FALSE(r.quad_report.valid());
-  CHECK(static_cast<int>(r.quads.quads.size()) == 5 * g);
-  CHECK(static_cast<int>(r.quads.positions.size()) == 2 + 3 * g);
-  std::map<int, int> valence;  // vertex -> number of quads around it (= edges on a closed quad mesh)
-  for (const auto& q : r.quads.quads)
-    for (int v : q) ++valence[v];
-  std::map<int, int> histogram;
-  for (const auto& [v, k] : valence) ++histogram[k];
-  CHECK(histogram[8 * g] == 1);
-  CHECK(histogram[3 * g] == 1);
-  CHECK(histogram[3] == 3 * g);
-  CHECK(histogram.size() == 3);
-  CHECK(refinement_violation(mesh, r.igm, true) == "");
-}
-
-}  // namespace
-
-TEST_CASE("resolution 1 layout: 5g quads, 2+3g vertices, valences 8g, 3g and 3g vertices of valence 3") {
-  for (int g : {2, 3, 7}) check_layout_at_resolution_1(igm_test::generated_mesh(g, 300 * g, 11));
-  IGM_REQUIRE_DATA(dir);
-  for (const char* name : {"eight.off", "joint.off", "helmet.off", "anchor.off", "elephant.off", "couplingdown.off"}) {
-    INFO(std::string(name));
-    check_layout_at_resolution_1(load_mesh(dir / "meshes" / "clean" / name));
-  }
-  for (const char* name : {"3torus.off", "double-torus-example.off"}) {
-    INFO(std::string(name));
-    check_layout_at_resolution_1(load_mesh(dir / "meshes" / "polygonal" / name));
-  }
+  o.edge_length = 2.0;
+  const PipelineResult a = compute_igm(mesh, o);
+  o.edge_length = 1.0;
+  const PipelineResult b = compute_igm(mesh, o);
+  CHECK(a.certified());
+  CHECK(b.certified());
+  CHECK(b.stats.edge_length == 1.0);
+  const double ratio = double(b.stats.quads) / a.stats.quads;
+  CHECK(ratio > 3.0);
+  CHECK(ratio < 5.0);
 }
 
 TEST_CASE("both branches report every stage once, in order, through progress and in the stats") {
@@ -164,17 +196,24 @@ TEST_CASE("both branches report every stage once, in order, through progress and
     const std::vector<std::string> expected =
         g == 0 ? std::vector<std::string>{"topology", "embed", "igm", "extract", "certify"}
                : std::vector<std::string>{"topology", "embed", "arrange", "igm", "extract", "certify"};
-    REQUIRE(seen.size() == expected.size());
-    REQUIRE(r.stats.stages.size() == expected.size());
-    for (std::size_t i = 0; i < expected.size(); ++i) {
-      CHECK(seen[i].stage == expected[i]);
-      CHECK(r.stats.stages[i].stage == expected[i]);
+    // The quality report runs after the certifier, on what was certified.
+    const std::vector<std::string> expected_all = [&] {
+      auto e = expected;
+      e.push_back("quality");
+      return e;
+    }();
+    REQUIRE(seen.size() == expected_all.size());
+    REQUIRE(r.stats.stages.size() == expected_all.size());
+    for (std::size_t i = 0; i < expected_all.size(); ++i) {
+      CHECK(seen[i].stage == expected_all[i]);
+      CHECK(r.stats.stages[i].stage == expected_all[i]);
       CHECK(r.stats.stages[i].seconds == seen[i].seconds);
       CHECK(seen[i].seconds >= 0);
       CHECK(!seen[i].detail.empty());
     }
-    // The last stage's line is the certifier's verdict, and the verdict is valid.
-    CHECK(seen.back().detail.find("IGM: ") == 0);
+    // The certifier's line is its verdict, and the verdict is valid; then the quality line.
+    CHECK(seen[expected.size() - 1].detail.find("IGM: ") == 0);
+    CHECK(seen.back().detail.find("SJ median") != std::string::npos);
     CHECK(r.igm_report.valid());
     CHECK(r.quad_report.valid());
   }
@@ -183,9 +222,17 @@ TEST_CASE("both branches report every stage once, in order, through progress and
 TEST_CASE("bad options give typed errors") {
   const ValidMesh torus = igm_test::generated_mesh(1, 200, 5);
   PipelineOptions o;
-  o.resolution = 0;
+  o.resolution = -1;
   CHECK_THROWS_AS(compute_igm(torus, o), Error);
-  o.resolution = 1;
+  o.resolution = 0;
+  o.edge_length = std::nan("");
+  CHECK_THROWS_AS(compute_igm(torus, o), Error);
+  o.edge_length = -1;
+  CHECK_THROWS_AS(compute_igm(torus, o), Error);
+  o.edge_length = 0;
+  o.quads = -5;
+  CHECK_THROWS_AS(compute_igm(torus, o), Error);
+  o.quads = 0;
   o.root = torus.mesh.num_vertices();
   try {
     compute_igm(torus, o);
@@ -237,18 +284,18 @@ TEST_CASE("shared clean meshes of genus >= 1 are certified") {
   for (const char* name : {"mpi_triang.off", "pipe.off", "knot.off", "eight.off", "joint.off", "helmet.off",
                            "anchor.off", "elephant.off", "couplingdown.off"}) {
     INFO(std::string(name));
-    const PipelineStats st = check_run(load_mesh(dir / "meshes" / "clean" / name), 3);
+    const PipelineStats st = check_run(load_mesh(dir / "meshes" / "clean" / name), PipelineOptions{});
     CHECK(st.output_triangles <= 5 * st.input_faces);  // issue 6's size target for g <= 10
   }
   for (const char* name : {"3torus.off", "double-torus-example.off", "hole.off"}) {
     INFO(std::string(name));
-    check_run(load_mesh(dir / "meshes" / "polygonal" / name), 3);  // (3torus: 46 -> 356 triangles, over 5x)
+    check_run(load_mesh(dir / "meshes" / "polygonal" / name), PipelineOptions{});
   }
 }
 
 TEST_CASE("cheese (genus 133, 17.8k faces) is certified") {
   IGM_REQUIRE_DATA(dir);
-  check_run(load_mesh(dir / "meshes" / "clean" / "cheese.off"), 3);
+  check_run(load_mesh(dir / "meshes" / "clean" / "cheese.off"), PipelineOptions{});
 }
 
 TEST_CASE("a generated 1M-face torus: every triangle certified, N x N quads") {
@@ -314,6 +361,8 @@ void check_sphere(const ValidMesh& mesh, int resolution, const std::vector<int>&
   // quads: the 2 N^2 cells of [0,2] x [0,1], 2 N^2 + 2 vertices, the four cones of valence 2
   CHECK(static_cast<int>(r.quads.quads.size()) == 2 * N * N);
   CHECK(static_cast<int>(r.quads.positions.size()) == 2 * N * N + 2);
+  // the IGM is on the quads' grid: [0, 2N] x [0, N], one UV unit per quad
+  CHECK(uv_area2(r.igm) == Rational(4 * N * N));
   REQUIRE(r.quad_report.genus.has_value());
   CHECK(*r.quad_report.genus == 0);
   const certify::CheckResult* c5 = r.quad_report.check(5);
@@ -382,6 +431,27 @@ TEST_CASE("genus 0: the tetrahedron and a 3-vertex sphere at any scale or with c
     pillow.face_begin = {0, 3, 6};
     check_sphere(validate(pillow), 2);
   }
+}
+
+TEST_CASE("genus 0: sized by a quad count or an edge length, a x b quads per unit, the IGM on their grid") {
+  const ValidMesh m = igm_test::generated_mesh(0, 4000, 12);
+  for (std::int64_t q : {1000, 10000}) {
+    PipelineOptions o;
+    o.quads = q;
+    const PipelineResult r = compute_igm(m, o);
+    CHECK(r.certified());
+    CHECK(std::llabs(r.stats.quads - q) <= q / 4);
+    CHECK(r.stats.quads == 2 * r.stats.grid[0] * r.stats.grid[1]);
+    CHECK(uv_area2(r.igm) == Rational(2 * r.stats.quads));
+  }
+  PipelineOptions o;
+  o.edge_length = 0.5;
+  const PipelineResult a = compute_igm(m, o);
+  o.edge_length = 0.25;
+  const PipelineResult b = compute_igm(m, o);
+  CHECK(a.certified());
+  CHECK(b.certified());
+  CHECK(b.stats.quads > 3 * a.stats.quads);
 }
 
 TEST_CASE("genus 0: bad cone lists are typed errors naming the entry") {

@@ -27,7 +27,7 @@ struct Outcome {
 };
 
 // validate -> compute_igm with `root` (-1: default) -> both certifier reports must be valid, with
-// the expected genus and 5g (1 for a torus, 2 for a sphere) N x N quads. Genus 0: see kGenus0Certifies.
+// the expected genus and N x N quads per layout quad (layout_quad_count; 2 cells for a sphere). Genus 0: see kGenus0Certifies.
 // With `files`, the written exact IGM and quad OBJ are also certified through the certifier's reader.
 // With `normal_form`, the one error accepted is Unsupported naming max_normal_form_growth.
 inline Outcome run_pipeline(const igm::PolygonSoup& soup, int expected_genus, int root, bool files = false, int resolution = 3,
@@ -37,6 +37,7 @@ inline Outcome run_pipeline(const igm::PolygonSoup& soup, int expected_genus, in
   REQUIRE(mesh.genus == expected_genus);
   igm::PipelineOptions o;
   o.resolution = resolution;
+  o.quality = false;  // hundreds of meshes: the certificates are the subject here
   o.root = root < 0 ? -1 : root % mesh.mesh.num_vertices();
   o.normal_form = normal_form;
   if (expected_genus == 0 && !kGenus0Certifies) {
@@ -66,9 +67,13 @@ inline Outcome run_pipeline(const igm::PolygonSoup& soup, int expected_genus, in
   REQUIRE(r.quad_report.genus.has_value());
   CHECK(*r.igm_report.genus == expected_genus);
   CHECK(*r.quad_report.genus == expected_genus);
-  // Layout quads: the 2 cells of [0,2] x [0,1] for a sphere, 1 for a torus, 5g from genus 2.
-  const int layout = expected_genus == 0 ? 2 : expected_genus == 1 ? 1 : 5 * expected_genus;
+  // Layout quads: the 2 cells of [0,2] x [0,1] for a sphere, else the default layout's.
+  const int layout = expected_genus == 0 ? 2 : igm::layout_quad_count(o.layout, expected_genus);
   CHECK(static_cast<int>(r.quads.quads.size()) == layout * resolution * resolution);
+  // The IGM is on the quads' grid: its exact UV area is their number.
+  igm::Rational area2 = 0;
+  for (const auto& t : r.igm.corner_uv) area2 += (t[1].x - t[0].x) * (t[2].y - t[0].y) - (t[1].y - t[0].y) * (t[2].x - t[0].x);
+  CHECK(area2 == igm::Rational(2 * static_cast<long>(r.quads.quads.size())));
   if (files) {
     std::ostringstream exact, quads;
     igm::write_igm_obj(exact, r.igm, true);

@@ -55,4 +55,12 @@ struct OrbifoldTutteResult {
 /// adjacent cones). Cost: sparse Cholesky of the free-vertex Laplacian plus the refinement steps.
 OrbifoldTutteResult orbifold_tutte_embed(const SphereCut& cut, const RefinementOptions& options = {});
 
+/// The same with positive symmetric integer weights on the surface's edges (one per half-edge of
+/// cut.surface.mesh, equal on an edge's two halves, >= 1; embed/weights.h): every free vertex at the
+/// weighted mean of its neighbours' lifts. The system stays symmetric positive definite; Aigerman &
+/// Lipman's bijectivity argument holds for positive symmetric weights. Empty: uniform weights.
+/// Throws igm::Error(InvalidArgument) naming the edge for a missing, non-positive or asymmetric weight.
+OrbifoldTutteResult orbifold_tutte_embed(const SphereCut& cut, const std::vector<int>& halfedge_weights,
+                                         const RefinementOptions& options);
+
 }  // namespace igm

@@ -41,4 +41,27 @@ bool is_strictly_convex_ccw(const std::vector<Point2q>& corners);
 std::vector<Point2q> place_boundary(const std::vector<Point2q>& corners,
                                    const std::vector<int>& side_edge_counts);
 
+/// Boundary positions at given parameters: side s receives its vertices at
+/// corners[s] + t (corners[s+1] - corners[s]) for t in side_params[s], which must start with 0 and
+/// increase strictly below 1 (the side's last vertex is the next side's corner). Paired sides get
+/// seamless copies when the parameters of one are 1 - t of the other's, reversed. Returns the
+/// points along the boundary cycle from corner 0. Throws igm::Error(InvalidArgument) naming the
+/// side for parameters that do not start at 0, do not increase strictly or reach 1. Cost O(total).
+std::vector<Point2q> place_boundary_at(const std::vector<Point2q>& corners,
+                                       const std::vector<std::vector<Rational>>& side_params);
+
+/// Parameters 0 = t_0 < t_1 < ... < t_n = 1 of the vertices of a chain of n >= 1 edges with the
+/// given (3D) lengths: t_i is the arc length fraction up to vertex i, rounded to the nearest
+/// multiple of 2^-bits (bits in 1..52), then moved up (from t_1 on) or down (back from t_(n-1)) by
+/// the least multiples that keep consecutive parameters apart, so that zero-length edges still get
+/// distinct parameters. Lengths that are negative, not finite, or sum to zero: uniform i/n.
+/// Throws igm::Error(InvalidArgument) if n < 1, bits is out of range or n > 2^bits. Deterministic.
+/// Cost O(n).
+std::vector<Rational> arc_length_parameters(const std::vector<double>& lengths, int bits = 32);
+
+/// Test and benchmark helper: n corners on the unit circle, exactly rational
+/// ((1-s^2)/(1+s^2), 2s/(1+s^2)) with s a dyadic approximation (`bits` fractional bits) of
+/// tan(theta_k/2), theta_k = 2 pi (k + 1/2) / n; counter-clockwise, strictly convex (checked).
+std::vector<Point2q> rational_circle_polygon(int n, int bits = 24);
+
 }  // namespace igm

@@ -81,4 +81,16 @@ TutteResult tutte_embed(int num_vertices, const std::vector<std::array<int, 3>>&
                         const std::vector<int>& boundary, const std::vector<Point2q>& boundary_uv,
                         const TutteOptions& options = {});
 
+/// The same with positive integer weights: every interior vertex at the weighted mean of its
+/// neighbours. `halfedge_weights` has one entry per half-edge, 3f+i for the edge from corner i to
+/// corner i+1 of triangle f; the two half-edges of an interior edge carry the same weight (the
+/// system stays symmetric positive definite; boundary half-edges are not used), every weight is
+/// >= 1 and each vertex's sum fits an int. Empty: uniform weights. Weights from the 3D geometry:
+/// embed/weights.h. Tutte's theorem holds for any positive weights (Floater 2003), so the
+/// post-condition is the same. Errors as above, plus InvalidArgument naming the edge for a
+/// missing, non-positive or asymmetric weight or a vertex whose weights overflow.
+TutteResult tutte_embed(int num_vertices, const std::vector<std::array<int, 3>>& triangles,
+                        const std::vector<int>& boundary, const std::vector<Point2q>& boundary_uv,
+                        const std::vector<int>& halfedge_weights, const TutteOptions& options = {});
+
 }  // namespace igm

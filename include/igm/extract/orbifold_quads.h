@@ -14,7 +14,8 @@
 namespace igm {
 
 struct OrbifoldQuadMesh {
-  int resolution = 0;
+  int resolution = 0;                          // quads per unit in x (resolution) and y (resolution_y)
+  int resolution_y = 0;
   std::vector<std::array<int, 4>> quads;       // counter-clockwise in UV, 2 N^2
   std::vector<std::array<int, 2>> grid;        // per vertex: canonical grid point (i, j), units 1/N
   std::vector<int> triangle;                   // per vertex: a disk triangle containing it (closed)
@@ -26,6 +27,11 @@ struct OrbifoldQuadMesh {
 /// (i, j) (any integers), as described above. O(1).
 int orbifold_grid_orbits(int resolution);
 int orbifold_grid_orbit(int resolution, long i, long j);
+/// The same with nx quads per unit in x and ny in y: grid point (i, j) in units (1/nx, 1/ny);
+/// 2 nx ny + 2 orbits (i mod 2 nx, j mod 2 ny, (i, j) ~ (-i, -j), the rows j = 0 and j = ny folded
+/// about i = nx).
+int orbifold_grid_orbits(int nx, int ny);
+int orbifold_grid_orbit(int nx, int ny, long i, long j);
 
 /// Builds the quads and locates one representative of every grid orbit exactly in a disk
 /// triangle: each triangle's UV bounding box is scanned (a double filter with a proven margin
@@ -36,5 +42,9 @@ int orbifold_grid_orbit(int resolution, long i, long j);
 /// Cost O(F + grid points) exact predicates (stops when every orbit is found).
 OrbifoldQuadMesh extract_orbifold_quads(const std::vector<std::array<int, 3>>& disk_triangles,
                                         const std::vector<Point2q>& uv, int resolution);
+/// The same with nx quads per unit in x and ny in y (2 nx ny quads): the cells (i/nx, j/ny) +
+/// [0, 1/nx] x [0, 1/ny]. Throws igm::Error(InvalidArgument) for nx or ny outside 1..4096.
+OrbifoldQuadMesh extract_orbifold_quads(const std::vector<std::array<int, 3>>& disk_triangles,
+                                        const std::vector<Point2q>& uv, int nx, int ny);
 
 }  // namespace igm

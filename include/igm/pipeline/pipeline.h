@@ -10,9 +10,14 @@
 #include "certify/certify.h"
 #include "igm/embed/orbifold_tutte.h"
 #include "igm/embed/tutte.h"
+#include "igm/embed/weights.h"
+#include "igm/igm/patch_maps.h"
+#include "igm/layout/quad_layout.h"
+#include "igm/layout/sizing.h"
 #include "igm/mesh/validate.h"
 #include "igm/output/igm_mesh.h"
 #include "igm/output/schema_svg.h"
+#include "igm/quality/quality.h"
 #include "igm/topology/cut_to_canonical_disk.h"
 
 namespace igm {
@@ -30,12 +35,34 @@ struct StageEvent {
   std::string detail;  // one line of numbers for humans
 };
 
+/// The quad count aimed at when no size is given (PipelineOptions): what a user who asks for no
+/// size gets, whatever the input's resolution (docs/layouts.md).
+inline constexpr std::int64_t kDefaultQuads = 10000;
+
 struct PipelineOptions {
-  /// N: the quad mesh has N x N quads per layout quad (N >= 1). For N < 3 the quad mesh has
-  /// loops and multi-edges at the root (inherent to the layout, paper §6.2: every polygon corner
-  /// is the root); the certifier identifies edges by their end points and rejects such a mesh,
-  /// so only N >= 3 gives a certified quad mesh. Genus 0: 2 N^2 quads, certified for every N >= 1.
-  int resolution = 4;
+  /// The size of the quads, by the first of these that is set (layout/sizing.h):
+  ///  - resolution N > 0: every chord (layout edge) gets N quads, N x N per layout quad (the paper's
+  ///    meaning). Genus 0: N per unit of the pillowcase, 2 N^2 quads.
+  ///  - edge_length H > 0: each chord gets round(mean 3D length of its layout edges / H) quads;
+  ///  - quads Q > 0: H is chosen so that the quad count is nearest to Q;
+  ///  - none: quads = kDefaultQuads.
+  /// Every chord gets at least the count that keeps the quad mesh simple (no loop or double edge:
+  /// 3 for the paper's layout, 2 for the kite's spokes, 1 otherwise), so never fewer quads than
+  /// layout quads.
+  int resolution = 0;
+  double edge_length = 0;
+  std::int64_t quads = 0;
+  /// The quad layout of the polygonal schema (genus >= 1; layout/quad_layout.h) and, for the
+  /// spread layout, its inner grid's rows (0: automatic).
+  LayoutKind layout = LayoutKind::Spread;
+  int layout_rows = 0;
+  /// How each layout quad is mapped onto its rectangle (igm/patch_maps.h), with which weights.
+  PatchMapKind patch_map = PatchMapKind::Tutte;
+  WeightKind patch_weights = WeightKind::MeanValue;
+  /// The disk's embedding onto the polygon, which places the layout on the surface: its weights,
+  /// and its boundary vertices at arc-length parameters along the sides (else uniformly).
+  WeightKind disk_weights = WeightKind::MeanValue;
+  bool disk_arc_length = true;
   int root = -1;       // root vertex of the loops (-1: deterministic default); genus 0 has no root (ignored)
   /// Bring the gluing word to the normal form a1 b1 a1^-1 b1^-1 ... (topology step 3).
   /// Validity does not need it: every polygon side is a whole edge of one layout quad mapped onto
@@ -62,6 +89,11 @@ struct PipelineOptions {
   /// lower bound passes the limit (OverlayOptions::max_triangles), instead of running out of
   /// memory minutes later (cheese with the normal form: 36.7M triangles, ~70 GB).
   std::uint64_t memory_limit_bytes = 0;
+  /// Measure the outputs' quality (quality/quality.h; never decides validity): the IGM's
+  /// distortion and the quad mesh's shape, and with quality_distance the two-sided distance
+  /// between the quad mesh and the input (the costly part: ~1 s on 1M input triangles).
+  bool quality = true;
+  bool quality_distance = true;
   std::function<void(const StageEvent&)> progress;  // optional
 };
 
@@ -71,7 +103,12 @@ struct PipelineStats {
   int refined_vertices = 0, refined_faces = 0;  // after the topology stage's splits
   int output_vertices = 0, output_triangles = 0;  // the IGM triangle mesh
   int layout_quads = 0, quads = 0;  // genus 0: the 2 cells of the domain [0,2] x [0,1]
+  int chords = 0;                   // genus >= 1: the layout's chords
+  int layout_edges = 0;             // surface edges of the layout
+  double edge_length = 0;           // the H of the sizing (0 with a resolution)
+  std::array<int, 2> grid{0, 0};    // genus 0: quads per unit of the pillowcase in x and y
   std::size_t max_uv_bits = 0;  // largest bit_size of an exact UV coordinate
+  PatchMapStats patch_maps;
   CutStats cut;
   TutteStats tutte;
   // genus 0 (orbifold Tutte): the cones (vertex ids of the input and of the IGM), the cut, the embedding
@@ -83,24 +120,26 @@ struct PipelineStats {
 
 struct PipelineResult {
   IgmMesh igm;                       // refinement of the input: exact per-corner UV, exact vertex locations
-  QuadMesh quads;                    // N x N quads per layout quad
+  QuadMesh quads;                    // a x b quads per layout quad
   certify::Report igm_report;        // certifier checks 1-4 on `igm`
   certify::Report quad_report;       // certifier check 5 on `quads` (expected genus = input genus)
   SchemaDrawing schema;              // the polygonal schema, for the SVG picture
+  IgmQuality igm_quality;            // with PipelineOptions::quality (else zero)
+  QuadQuality quad_quality;
   PipelineStats stats;
   bool certified() const { return igm_report.valid() && quad_report.valid(); }
 };
 
 /// Computes a certified IGM of a closed orientable mesh (paper §4–5). Genus g >= 1: loops and
-/// cut (topology), rational convex 4g-gon and exact Tutte map (embed), exact overlay of the quad
-/// template (arrange), piecewise-affine map of each layout quad to the unit square (igm), quad
-/// extraction at the requested resolution (extract). Genus 0: cut along a path through four
-/// cones (topology/sphere_cut.h), orbifold Tutte map onto the pillowcase [0,2] x [0,1] with four
-/// pi-cones at integer points (embed/orbifold_tutte.h; the map is the IGM), the 2 N^2 grid cells of
-/// the domain as quads (extract/orbifold_quads.h; valid for every N >= 1). Then the independent
-/// certifier on both outputs. Throws igm::Error(InvalidArgument) for resolution < 1, a bad root or
-/// a bad cone list. Cost: dominated by the embedding and the overlay, about O(n log n) plus the
-/// exact arithmetic.
+/// cut (topology), rational convex 4g-gon and exact (weighted) Tutte map (embed), a quad layout of
+/// the polygon (layout) overlaid exactly (arrange), each layout quad's patch sized into an integer
+/// a x b rectangle (layout/sizing.h) and mapped onto it (igm/patch_maps.h), the rectangles' unit
+/// grids as quads (extract/patch_grid.h). Genus 0: cut along a path through four cones
+/// (topology/sphere_cut.h), orbifold Tutte map onto the pillowcase with four pi-cones at integer
+/// points (embed/orbifold_tutte.h; scaled by integers a, b in x and y, it is the IGM), the 2 a b
+/// unit cells of the domain as quads (extract/orbifold_quads.h). Then the independent certifier on
+/// both outputs. Throws igm::Error(InvalidArgument) for bad sizes, a bad root or a bad cone list.
+/// Cost: dominated by the embedding and the overlay, about O(n log n) plus the exact arithmetic.
 PipelineResult compute_igm(const ValidMesh& mesh, const PipelineOptions& options = {});
 
 }  // namespace igm

@@ -1,0 +1,65 @@
+#pragma once
+// The IGM's triangle mesh before its UVs: the overlay of a quad layout on the embedded disk
+// (arrange/overlay.h), glued back into a refinement of the input surface, each triangle labelled
+// with its layout quad ("patch"), each layout edge with its chain of vertices. The patches' own
+// maps (igm/patch_maps.h) and their grids (extract/patch_grid.h) are computed on it.
+#include <array>
+#include <vector>
+
+#include "igm/arrange/overlay.h"
+#include "igm/layout/quad_layout.h"
+#include "igm/mesh/surface_point.h"
+
+namespace igm {
+
+/// Vertices are numbered twice: "plane ids" are the overlay's vertices (a disk: the glued polygon
+/// sides carry two copies of each vertex on them) followed by the vertices split into patches, and
+/// "surface ids" (vertex_of[plane id]) number the glued surface: the input vertices first, then
+/// the topology stage's constructed points, then the overlay's and the splits' new points.
+struct PatchMesh {
+  std::vector<SurfacePoint> locations;          // per surface vertex: exact point of the input surface
+  std::vector<Vec3d> positions;                 // per surface vertex: evaluate(location)
+  std::vector<int> vertex_of;                   // plane id -> surface id
+  std::vector<std::array<int, 3>> triangles;    // plane ids, counter-clockwise in the plane
+  std::vector<int> triangle_quad;               // per triangle: its layout quad
+  /// Per triangle corner: its overlay vertex (a plane id below num_overlay_vertices), or -1 for a
+  /// vertex split into a patch (the affine maps need plane positions; split vertices have none).
+  int num_overlay_vertices = 0;
+  /// Per layout edge (QuadLayout::edges): plane ids along it from edge.a to edge.b.
+  std::vector<std::vector<int>> edge_chain;
+  /// Per layout point: a plane id of it (a side point has two copies: the one on its own side).
+  std::vector<int> point_vertex;
+  int splits = 0;  // interior edges split because both ends lay on one side of their patch
+};
+
+struct PatchMeshInput {
+  const QuadLayout* layout = nullptr;
+  /// overlay_segments(disk, segments) with segments[e] = layout edge e (from points[a] to points[b])
+  /// for every layout edge e, optionally followed by further segments inside quads (diagonals).
+  const OverlayResult* overlay = nullptr;
+  int num_disk_vertices = 0;                          // overlay vertices below are disk vertices
+  const std::vector<int>* disk_to_surface = nullptr;  // disk vertex -> surface vertex
+  const std::vector<std::array<int, 3>>* disk_triangles = nullptr;  // the overlay's input triangles
+  /// The surface's vertex locations (input vertices, then constructed points): moved into the result.
+  std::vector<SurfacePoint> surface_locations;
+  const std::vector<Vec3d>* input_positions = nullptr;
+};
+
+/// Builds the patch mesh: surface ids for the overlay's vertices (a disk vertex is its surface
+/// vertex; a new point on a polygon side is one vertex with the point it is glued to on the mate
+/// side, checked to be the same exact surface point; every other new point is a vertex of its own),
+/// every triangle's layout quad (a flood fill bounded by the layout edges' chains), every layout
+/// edge's chain, and, when `split_chords`, every interior edge of a patch whose two ends lie on one
+/// side of that patch (a corner lies on two) split at its midpoint, so that each patch meets the
+/// pre-conditions of a Tutte map onto its rectangle (embed/tutte.h). Checks that glued chains
+/// carry the same surface vertices in opposite orders. Throws igm::Error(InvalidArgument) if the
+/// overlay does not match the layout, Internal if an invariant breaks. Cost O(F log F) plus the
+/// exact locations (O(1) GMP operations per new vertex).
+PatchMesh build_patch_mesh(PatchMeshInput input, bool split_chords);
+
+/// The 3D length of every surface edge of the layout (QuadLayout::surface_edge): the length of the
+/// polyline of its chain's positions, multiplied by `scale` (mesh/scale.h). O(vertices on layout
+/// edges).
+std::vector<double> layout_edge_lengths(const QuadLayout& layout, const PatchMesh& mesh, double scale = 1);
+
+}  // namespace igm

@@ -1,0 +1,134 @@
+#include "igm/layout/sizing.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+
+#include "igm/core/error.h"
+
+namespace igm {
+
+namespace {
+
+constexpr int kMaxCount = 1 << 20;
+
+std::int64_t total_quads(const QuadLayout& L, const std::vector<int>& chord_count) {
+  std::int64_t n = 0;
+  for (std::size_t q = 0; q < L.quads.size(); ++q)
+    n += static_cast<std::int64_t>(chord_count[L.chord[L.surface_edge[L.quad_edge[q][0]]]]) *
+         chord_count[L.chord[L.surface_edge[L.quad_edge[q][1]]]];
+  return n;
+}
+
+// Counts for edge length H (H > 0, finite).
+std::vector<int> counts_for(const std::vector<double>& mean, const std::vector<int>& minimum, double H) {
+  std::vector<int> c(mean.size());
+  for (std::size_t k = 0; k < mean.size(); ++k) {
+    const double x = std::nearbyint(mean[k] / H);
+    c[k] = std::max(minimum[k], static_cast<int>(std::min<double>(kMaxCount, std::max(0.0, x))));
+  }
+  return c;
+}
+
+}  // namespace
+
+double edge_length_for_quads(const std::function<std::int64_t(double)>& count, double lo, double hi,
+                             std::int64_t target) {
+  if (!(lo > 0) || !(hi > lo) || !std::isfinite(hi))
+    throw Error(ErrorKind::InvalidArgument, "edge_length_for_quads: needs 0 < lo < hi, finite");
+  double a = std::log(lo), b = std::log(hi);
+  for (int step = 0; step < 200 && b - a > 1e-12; ++step) {
+    const double mid = 0.5 * (a + b);
+    if (count(std::exp(mid)) > target) a = mid;
+    else b = mid;
+  }
+  // count(exp(a)) > target >= count(exp(b)), or an end of [lo, hi]: keep the nearer.
+  const std::int64_t na = count(std::exp(a)), nb = count(std::exp(b));
+  return std::llabs(na - target) < std::llabs(nb - target) ? std::exp(a) : std::exp(b);
+}
+
+std::vector<int> minimum_chord_counts(const QuadLayout& L) {
+  std::vector<int> minimum(L.num_chords, 1);
+  std::map<std::pair<int, int>, std::vector<int>> by_ends;  // layout vertex pair -> surface edges
+  std::vector<char> seen(L.num_surface_edges, 0);
+  for (std::size_t e = 0; e < L.edges.size(); ++e) {
+    const int s = L.surface_edge[e];
+    if (seen[s]) continue;
+    seen[s] = 1;
+    const int a = L.layout_vertex[L.edges[e].a], b = L.layout_vertex[L.edges[e].b];
+    if (a == b) minimum[L.chord[s]] = 3;
+    by_ends[{std::min(a, b), std::max(a, b)}].push_back(s);
+  }
+  for (const auto& [ends, list] : by_ends)
+    if (list.size() > 1)
+      for (int s : list) minimum[L.chord[s]] = std::max(minimum[L.chord[s]], 2);
+  for (std::size_t q = 0; q < L.quads.size(); ++q) {
+    const auto& Q = L.quads[q];
+    if (L.layout_vertex[Q[0]] == L.layout_vertex[Q[2]] || L.layout_vertex[Q[1]] == L.layout_vertex[Q[3]])
+      for (int k = 0; k < 2; ++k) {
+        int& m = minimum[L.chord[L.surface_edge[L.quad_edge[q][k]]]];
+        m = std::max(m, 2);
+      }
+  }
+  return minimum;
+}
+
+Sizing size_layout(const QuadLayout& L, const std::vector<double>& length, const SizingOptions& o) {
+  if (static_cast<int>(length.size()) != L.num_surface_edges)
+    throw Error(ErrorKind::InvalidArgument, "size_layout: one length per surface edge is needed");
+  Sizing s;
+  s.chord_minimum = minimum_chord_counts(L);
+  if (o.resolution > 0) {
+    if (o.resolution > kMaxCount) throw Error(ErrorKind::InvalidArgument, "size_layout: resolution past 2^20");
+    s.chord_count.assign(L.num_chords, o.resolution);
+    for (int c = 0; c < L.num_chords; ++c)
+      if (o.resolution < s.chord_minimum[c])
+        throw Error(ErrorKind::InvalidArgument,
+                    "resolution " + std::to_string(o.resolution) + " is below " + std::to_string(s.chord_minimum[c]) +
+                        ", the least count of chord " + std::to_string(c) + " of the " + to_string(L.kind) +
+                        " layout (fewer would give the quad mesh a loop or a double edge at the root)",
+                    {c});
+  } else {
+    std::vector<double> mean(L.num_chords, 0.0);
+    std::vector<int> members(L.num_chords, 0);
+    for (int e = 0; e < L.num_surface_edges; ++e) {
+      if (!std::isfinite(length[e]) || length[e] < 0)
+        throw Error(ErrorKind::InvalidArgument, "size_layout: surface edge " + std::to_string(e) + " has length " +
+                                                    std::to_string(length[e]),
+                    {e});
+      mean[L.chord[e]] += length[e];
+      ++members[L.chord[e]];
+    }
+    double lo = HUGE_VAL, hi = 0;
+    for (int c = 0; c < L.num_chords; ++c) {
+      mean[c] /= std::max(1, members[c]);
+      if (mean[c] > 0) lo = std::min(lo, mean[c]), hi = std::max(hi, mean[c]);
+    }
+    if (o.edge_length > 0) {
+      if (!std::isfinite(o.edge_length)) throw Error(ErrorKind::InvalidArgument, "size_layout: the edge length is not finite");
+      s.edge_length = o.edge_length;
+    } else if (o.quads > 0) {
+      if (hi <= 0) {
+        s.edge_length = 1;  // no length: every chord at its minimum, whatever H
+      } else {
+        // Below lo / 2^21 every count is at its cap or past any target; above 2 hi at its minimum.
+        s.edge_length = edge_length_for_quads(
+            [&](double H) { return total_quads(L, counts_for(mean, s.chord_minimum, H)); }, std::ldexp(lo, -21), 2 * hi,
+            o.quads);
+      }
+    } else {
+      throw Error(ErrorKind::InvalidArgument, "size_layout: needs a resolution, an edge length or a quad count");
+    }
+    s.chord_count = counts_for(mean, s.chord_minimum, s.edge_length);
+  }
+  s.edge_count.resize(L.num_surface_edges);
+  for (int e = 0; e < L.num_surface_edges; ++e) s.edge_count[e] = s.chord_count[L.chord[e]];
+  s.quad_size.resize(L.quads.size());
+  for (std::size_t q = 0; q < L.quads.size(); ++q)
+    s.quad_size[q] = {s.edge_count[L.surface_edge[L.quad_edge[q][0]]], s.edge_count[L.surface_edge[L.quad_edge[q][1]]]};
+  s.quads = total_quads(L, s.chord_count);
+  return s;
+}
+
+}  // namespace igm
