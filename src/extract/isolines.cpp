@@ -6,7 +6,6 @@
 #include <utility>
 
 #include "igm/core/error.h"
-#include "igm/mesh/surface_point.h"
 #include "isolines_internal.h"
 
 namespace igm {
@@ -15,6 +14,10 @@ namespace {
 
 using isolines::apply;
 using isolines::Charts;
+using isolines::find_grid_points;
+using isolines::find_point;
+using isolines::GridPoint;
+using isolines::GridPoints;
 using isolines::Grid2;
 using isolines::Heading;
 using isolines::in_wedge;
@@ -32,24 +35,9 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 
 bool is_integer(const Rational& q) { return mpz_cmp_ui(q.get_den_mpz_t(), 1) == 0; }
 
-bool equals(const Point2q& p, const Grid2& g) {
-  return mpq_cmp_si(p.x.get_mpq_t(), static_cast<long>(g.x), 1UL) == 0 &&
-         mpq_cmp_si(p.y.get_mpq_t(), static_cast<long>(g.y), 1UL) == 0;
-}
-
 void set_point(Point2q& p, const Grid2& g) {
   mpq_set_si(p.x.get_mpq_t(), static_cast<long>(g.x), 1UL);
   mpq_set_si(p.y.get_mpq_t(), static_cast<long>(g.y), 1UL);
-}
-
-std::int64_t floor_si(const Rational& q, mpz_class& tmp) {
-  mpz_fdiv_q(tmp.get_mpz_t(), q.get_num_mpz_t(), q.get_den_mpz_t());
-  return mpz_get_si(tmp.get_mpz_t());
-}
-
-std::int64_t ceil_si(const Rational& q, mpz_class& tmp) {
-  mpz_cdiv_q(tmp.get_mpz_t(), q.get_num_mpz_t(), q.get_den_mpz_t());
-  return mpz_get_si(tmp.get_mpz_t());
 }
 
 // The seams: per half-edge h (face f, corner i -> i+1) the k and t with uv_g = R^k uv_f + t on both
@@ -63,6 +51,7 @@ void build_seams(Charts& c) {
     const int tw = c.mesh.twin(h);
     const Point2q &a = c.corner(h), &b = c.corner(TriMesh::next(h));    // in h's face
     const Point2q &b2 = c.corner(tw), &a2 = c.corner(TriMesh::next(tw)); // the same ends in the twin's
+    if (a.x == a2.x && a.y == a2.y && b.x == b2.x && b.y == b2.y) continue;  // inside a chart: k = 0, t = 0
     ex = b.x - a.x;
     ey = b.y - a.y;
     gx = b2.x - a2.x;
@@ -91,177 +80,6 @@ void build_seams(Charts& c) {
     c.k[h] = static_cast<signed char>(found);
     c.t[h] = {mpz_get_si(tx.get_num_mpz_t()), mpz_get_si(ty.get_num_mpz_t())};
   }
-}
-
-// A grid point as found: the triangle that owns it, where it lies there, its UV in that chart.
-struct GridPoint {
-  int face = -1;
-  GridPointKind kind = GridPointKind::Face;
-  int local = -1;
-  Grid2 uv;
-};
-
-// Step 1: every grid point once. face_points[face_begin[f] ..) are the points f owns (inside it,
-// or inside a side whose half-edge id is below its twin's), sorted by (y, x) for look-ups.
-struct GridPoints {
-  std::vector<GridPoint> points;
-  std::vector<int> vertex_point;  // per mesh vertex: its grid point or -1
-  std::vector<int> face_begin, face_points;
-  std::int64_t chords = 0;        // rows and columns meeting the closed UV triangles
-  std::int64_t rows = 0;
-};
-
-bool less_yx(const Grid2& a, const Grid2& b) { return a.y != b.y ? a.y < b.y : a.x < b.x; }
-
-// The grid point at target t of triangle g (closed; at corner `corner` if >= 0), or -1.
-int find_point(const Charts& c, const GridPoints& gp, int g, int corner, const Grid2& t, Point2q& scratch) {
-  const std::array<Point2q, 3>& x = (*c.uv)[g];
-  if (corner < 0)
-    for (int i = 0; i < 3; ++i)
-      if (equals(x[i], t)) corner = i;
-  if (corner >= 0) return gp.vertex_point[(*c.triangles)[g][corner]];
-  set_point(scratch, t);
-  int face = g;
-  Grid2 key = t;
-  for (int i = 0; i < 3; ++i) {
-    if (orient2d(x[i], x[(i + 1) % 3], scratch) != Sign::Zero) continue;
-    const int he = 3 * g + i, tw = c.mesh.twin(he);
-    if (tw < he) {  // owned by the twin's triangle: look there, in its chart
-      face = tw / 3;
-      key = apply(c.k[he], t, c.t[he]);
-    }
-    break;
-  }
-  const auto begin = gp.face_points.begin() + gp.face_begin[face], end = gp.face_points.begin() + gp.face_begin[face + 1];
-  const auto it = std::lower_bound(begin, end, key, [&](int p, const Grid2& k) { return less_yx(gp.points[p].uv, k); });
-  if (it == end || gp.points[*it].uv.x != key.x || gp.points[*it].uv.y != key.y) return -1;
-  return *it;
-}
-
-GridPoints find_grid_points(const Charts& c, std::int64_t max_work, IsolineStats& stats) {
-  const int F = static_cast<int>(c.triangles->size());
-  GridPoints gp;
-  gp.vertex_point.assign(c.degree.size(), -1);
-  gp.face_begin.assign(F + 1, 0);
-  std::vector<int> vertex_seen(c.degree.size(), 0);
-  struct Foreign {  // a point inside a side owned by the twin's triangle: checked below
-    int face;
-    int side;
-    Grid2 uv;
-  };
-  std::vector<Foreign> foreign;
-  std::int64_t work = 0;
-  mpz_class tmp;
-  Rational xs[6], x;
-  Point2q p;
-  for (int f = 0; f < F; ++f) {  // bound: F triangles
-    gp.face_begin[f] = static_cast<int>(gp.face_points.size());
-    const std::array<Point2q, 3>& X = (*c.uv)[f];
-    const Rational *ymin = &X[0].y, *ymax = &X[0].y, *xmin = &X[0].x, *xmax = &X[0].x;
-    for (int i = 1; i < 3; ++i) {
-      if (X[i].y < *ymin) ymin = &X[i].y;
-      if (X[i].y > *ymax) ymax = &X[i].y;
-      if (X[i].x < *xmin) xmin = &X[i].x;
-      if (X[i].x > *xmax) xmax = &X[i].x;
-    }
-    const std::int64_t j0 = ceil_si(*ymin, tmp), j1 = floor_si(*ymax, tmp);
-    const std::int64_t i0 = ceil_si(*xmin, tmp), i1 = floor_si(*xmax, tmp);
-    gp.chords += std::max<std::int64_t>(0, j1 - j0 + 1) + std::max<std::int64_t>(0, i1 - i0 + 1);
-    for (std::int64_t j = j0; j <= j1; ++j) {  // bound: the rows of the bounding box (work checked)
-      if (++work > max_work)
-        throw Error(ErrorKind::TooLarge,
-                    "extract_isolines: more than " + std::to_string(max_work) +
-                        " grid points and rows (IsolineOptions::max_grid_work), at triangle " + std::to_string(f),
-                    {f});
-      ++gp.rows;
-      // The row's ends: where it meets the sides (or the corners on it).
-      int n = 0;
-      for (int i = 0; i < 3; ++i) {
-        const Point2q &a = X[i], &b = X[(i + 1) % 3];
-        const int ca = mpq_cmp_si(a.y.get_mpq_t(), static_cast<long>(j), 1UL);
-        const int cb = mpq_cmp_si(b.y.get_mpq_t(), static_cast<long>(j), 1UL);
-        if (ca == 0) xs[n++] = a.x;
-        if ((ca < 0 && cb > 0) || (ca > 0 && cb < 0)) {
-          x = static_cast<long>(j);
-          x -= a.y;
-          x *= b.x - a.x;
-          x /= b.y - a.y;
-          x += a.x;
-          xs[n++] = x;
-        }
-      }
-      if (n == 0) broken("row " + std::to_string(j) + " of triangle " + std::to_string(f) + " meets no side", f);
-      const Rational *lo = &xs[0], *hi = &xs[0];
-      for (int i = 1; i < n; ++i) {
-        if (xs[i] < *lo) lo = &xs[i];
-        if (xs[i] > *hi) hi = &xs[i];
-      }
-      const bool inner_row = mpq_cmp_si(ymin->get_mpq_t(), static_cast<long>(j), 1UL) < 0 &&
-                             mpq_cmp_si(ymax->get_mpq_t(), static_cast<long>(j), 1UL) > 0;
-      const std::int64_t a0 = ceil_si(*lo, tmp), a1 = floor_si(*hi, tmp);
-      for (std::int64_t i = a0; i <= a1; ++i) {  // bound: the row's points (work checked)
-        if (++work > max_work)
-          throw Error(ErrorKind::TooLarge,
-                      "extract_isolines: more than " + std::to_string(max_work) +
-                          " grid points and rows (IsolineOptions::max_grid_work), at triangle " + std::to_string(f),
-                      {f});
-        const Grid2 g{i, j};
-        GridPoint q{f, GridPointKind::Face, -1, g};
-        const bool inner = inner_row && mpq_cmp_si(lo->get_mpq_t(), static_cast<long>(i), 1UL) < 0 &&
-                           mpq_cmp_si(hi->get_mpq_t(), static_cast<long>(i), 1UL) > 0;
-        if (!inner) {
-          for (int k = 0; k < 3 && q.kind == GridPointKind::Face; ++k)
-            if (equals(X[k], g)) q = {f, GridPointKind::Vertex, k, g};
-          if (q.kind == GridPointKind::Face) {
-            set_point(p, g);
-            for (int k = 0; k < 3 && q.kind == GridPointKind::Face; ++k)
-              if (orient2d(X[k], X[(k + 1) % 3], p) == Sign::Zero) q = {f, GridPointKind::Edge, k, g};
-          }
-        }
-        if (q.kind == GridPointKind::Vertex) {
-          const int v = (*c.triangles)[f][q.local];
-          ++vertex_seen[v];
-          if (gp.vertex_point[v] >= 0) continue;
-          gp.vertex_point[v] = static_cast<int>(gp.points.size());
-          gp.points.push_back(q);
-          continue;
-        }
-        if (q.kind == GridPointKind::Edge) {
-          const int he = 3 * f + q.local, tw = c.mesh.twin(he);
-          if (tw < he) {
-            foreign.push_back({tw / 3, tw % 3, apply(c.k[he], g, c.t[he])});
-            continue;
-          }
-        }
-        gp.face_points.push_back(static_cast<int>(gp.points.size()));
-        gp.points.push_back(q);
-      }
-    }
-  }
-  gp.face_begin[F] = static_cast<int>(gp.face_points.size());
-  // Found once: every point inside a side is found from both triangles, the second time (through the
-  // seam) at a point the first one owns; every corner at a grid point, from all its triangles.
-  std::int64_t on_edges = 0;
-  for (const GridPoint& q : gp.points) on_edges += q.kind == GridPointKind::Edge;
-  if (static_cast<std::int64_t>(foreign.size()) != on_edges)
-    broken(std::to_string(on_edges) + " grid points inside edges seen from one side, " + std::to_string(foreign.size()) +
-               " from the other",
-           0);
-  for (const Foreign& fp : foreign) {  // bound: the points inside edges
-    const int q = find_point(c, gp, fp.face, -1, fp.uv, p);
-    if (q < 0 || gp.points[q].kind != GridPointKind::Edge || gp.points[q].local != fp.side)
-      broken("the grid point (" + std::to_string(fp.uv.x) + ", " + std::to_string(fp.uv.y) + ") inside side " +
-                 std::to_string(fp.side) + " of triangle " + std::to_string(fp.face) +
-                 " is not found from that side's triangle",
-             fp.face);
-  }
-  for (std::size_t v = 0; v < c.degree.size(); ++v)  // bound: V
-    if (gp.vertex_point[v] >= 0 && vertex_seen[v] != c.degree[v])
-      broken("vertex " + std::to_string(v) + " is on the grid in " + std::to_string(vertex_seen[v]) + " of its " +
-                 std::to_string(c.degree[v]) + " triangles",
-             static_cast<std::int64_t>(v));
-  stats.rows_scanned = gp.rows;
-  return gp;
 }
 
 // Step 2's start: per grid point its outgoing directions, counter-clockwise; slot s leaves grid
@@ -338,26 +156,20 @@ Slots make_slots(const Charts& c, const GridPoints& gp) {
   return s;
 }
 
-// The slot of grid point p leaving along `at.m` reversed, where a trace arrived (triangle at.face,
-// at its corner at.corner if >= 0, else inside it or one of its sides), or -1.
-int arrival_slot(const Charts& c, const Slots& s, int p, Heading at, Point2q& scratch) {
+// The slot of grid point p leaving along the reverse of a trace's arrival `end`, or -1.
+int arrival_slot(const Charts& c, const Slots& s, int p, const isolines::TraceEnd& end, Point2q& scratch) {
+  Heading at = end.at;
   at.m = (at.m + 2) & 3;
-  const std::array<Point2q, 3>& x = (*c.uv)[at.face];
-  if (at.corner < 0)
-    for (int i = 0; i < 3; ++i)
-      if (equals(x[i], at.target)) at.corner = i;
   if (at.corner >= 0) {
     at = isolines::turn_to_wedge(c, at, false);  // the reverse direction lies in at.face's closed wedge
-  } else {
+  } else if (end.side >= 0) {
+    const std::array<Point2q, 3>& x = (*c.uv)[at.face];
+    const int i = end.side;
     set_point(scratch, at.target);
-    for (int i = 0; i < 3; ++i) {
-      if (orient2d(x[i], x[(i + 1) % 3], scratch) != Sign::Zero) continue;
-      if (!in_wedge(scratch, x[(i + 1) % 3], x[i], at.m)) {  // the reverse points into the twin
-        const int he = 3 * at.face + i;
-        at.m = (at.m + c.k[he]) & 3;
-        at.face = c.mesh.twin(he) / 3;
-      }
-      break;
+    if (!in_wedge(scratch, x[(i + 1) % 3], x[i], at.m)) {  // the reverse points into the twin
+      const int he = 3 * at.face + i;
+      at.m = (at.m + c.k[he]) & 3;
+      at.face = c.mesh.twin(he) / 3;
     }
   }
   for (int q = s.begin[p]; q < s.begin[p + 1]; ++q)  // bound: the valence of p
@@ -400,14 +212,22 @@ IsolineResult extract_isolines(const IsolineInput& input, const IsolineOptions& 
   c.degree.assign(V, 0);
   for (const auto& tri : input.triangles)
     for (int v : tri) ++c.degree[v];
+  c.floors.resize(3 * static_cast<std::size_t>(F));
+  mpz_class fl;
   for (int f = 0; f < F; ++f)  // bound: F
-    for (const Point2q& uv : input.corner_uv[f])
-      for (const Rational* q : {&uv.x, &uv.y})
-        if (mpq_cmp_si(q->get_mpq_t(), kMaxUv, 1UL) > 0 || mpq_cmp_si(q->get_mpq_t(), -kMaxUv, 1UL) < 0)
+    for (int i = 0; i < 3; ++i)
+      for (int axis = 0; axis < 2; ++axis) {
+        const Rational& q = axis == 0 ? input.corner_uv[f][i].x : input.corner_uv[f][i].y;
+        if (mpq_cmp_si(q.get_mpq_t(), kMaxUv, 1UL) > 0 || mpq_cmp_si(q.get_mpq_t(), -kMaxUv, 1UL) < 0)
           throw Error(ErrorKind::TooLarge,
                       "extract_isolines: triangle " + std::to_string(f) + " has a UV coordinate beyond 2^60", {f});
+        mpz_fdiv_q(fl.get_mpz_t(), q.get_num_mpz_t(), q.get_den_mpz_t());
+        c.floors[3 * f + i].floor[axis] = mpz_get_si(fl.get_mpz_t());
+        c.floors[3 * f + i].integer[axis] = is_integer(q);
+      }
   build_seams(c);
-  const GridPoints gp = find_grid_points(c, options.max_grid_work, stats);
+  const GridPoints gp = find_grid_points(c, options.max_grid_work);
+  stats.rows_scanned = gp.rows;
   const int n = static_cast<int>(gp.points.size());
   if (n == 0) broken("no grid point on the surface (a valid IGM has one at least)", 0);
   const Slots s = make_slots(c, gp);
@@ -427,14 +247,14 @@ IsolineResult extract_isolines(const IsolineInput& input, const IsolineOptions& 
     stats.trace_steps += end.steps;
     stats.max_trace_steps = std::max(stats.max_trace_steps, end.steps);
     stats.vertex_crossings += end.vertex_crossings;
-    const int to = find_point(c, gp, end.at.face, end.at.corner, end.at.target, scratch);
+    const int to = find_point(c, gp, end.at.face, end.at.corner, end.side, end.at.target);
     if (to < 0)
       broken("the isoline from grid point " + std::to_string(p) + " along its direction " +
                  std::to_string(q - s.begin[p]) + " ends at (" + std::to_string(end.at.target.x) + ", " +
                  std::to_string(end.at.target.y) + ") of triangle " + std::to_string(end.at.face) +
                  ", which is no grid point found",
              p);
-    arrival[q] = arrival_slot(c, s, to, end.at, scratch);
+    arrival[q] = arrival_slot(c, s, to, end, scratch);
     if (arrival[q] < 0 || arrival[q] == q)
       broken("the isoline from grid point " + std::to_string(p) + " along its direction " +
                  std::to_string(q - s.begin[p]) + " arrives at grid point " + std::to_string(to) +
@@ -482,6 +302,7 @@ IsolineResult extract_isolines(const IsolineInput& input, const IsolineOptions& 
 
   // The output: exact barycentric coordinates, valences, 3D positions.
   out.vertices.resize(n);
+  isolines::FaceFrame frame;
   for (int p = 0; p < n; ++p) {  // bound: grid points
     const GridPoint& q = gp.points[p];
     IsolineQuadVertex& v = out.vertices[p];
@@ -490,20 +311,11 @@ IsolineResult extract_isolines(const IsolineInput& input, const IsolineOptions& 
     v.local = q.local;
     v.uv = {q.uv.x, q.uv.y};
     v.valence = s.begin[p + 1] - s.begin[p];
-    const std::array<Point2q, 3>& x = input.corner_uv[q.face];
     if (q.kind == GridPointKind::Vertex) {
       for (int i = 0; i < 3; ++i) v.barycentric[i] = i == q.local ? 1 : 0;
     } else {
-      // Areas of the sub-triangles over the whole: exact.
-      set_point(scratch, q.uv);
-      auto area2 = [](const Point2q& a, const Point2q& b, const Point2q& d) {
-        Rational r = (b.x - a.x) * (d.y - a.y) - (b.y - a.y) * (d.x - a.x);
-        return r;
-      };
-      const Rational total = area2(x[0], x[1], x[2]);
-      v.barycentric[0] = area2(scratch, x[1], x[2]) / total;
-      v.barycentric[1] = area2(x[0], scratch, x[2]) / total;
-      v.barycentric[2] = 1 - v.barycentric[0] - v.barycentric[1];
+      if (frame.face != q.face) frame.set(q.face, input.corner_uv[q.face]);
+      frame.barycentric(q.uv, v.barycentric);
     }
     if (q.kind == GridPointKind::Vertex) ++stats.grid_points_on_vertices;
     if (q.kind == GridPointKind::Edge) ++stats.grid_points_on_edges;
@@ -514,9 +326,15 @@ IsolineResult extract_isolines(const IsolineInput& input, const IsolineOptions& 
     out.positions.reserve(n);
     for (const IsolineQuadVertex& v : out.vertices) {  // bound: grid points
       const std::array<int, 3>& t = input.triangles[v.triangle];
-      out.positions.push_back(evaluate(barycentric_point(SurfacePoint::vertex(t[0]), SurfacePoint::vertex(t[1]),
-                                                         SurfacePoint::vertex(t[2]), v.barycentric),
-                                       input.positions));
+      const double w[3] = {to_double(v.barycentric[0]), to_double(v.barycentric[1]), to_double(v.barycentric[2])};
+      Vec3d x;
+      for (int i = 0; i < 3; ++i) {
+        const Vec3d& p = input.positions[t[i]];
+        x.x += w[i] * p.x;
+        x.y += w[i] * p.y;
+        x.z += w[i] * p.z;
+      }
+      out.positions.push_back(x);
     }
   }
   stats.seconds_quads = seconds_since(t0);

@@ -30,6 +30,12 @@ inline Grid2 apply(int k, const Grid2& p, const Grid2& t) {
   }
 }
 
+/// A corner's UV as floor and integrality per axis: exact comparisons with integers, no GMP.
+struct CornerFloor {
+  std::int64_t floor[2];
+  bool integer[2];
+};
+
 /// The certified IGM as the walks need it: half-edges (face f owns 3f..3f+2, half-edge 3f+i from
 /// corner i to corner i+1) and per half-edge the seam x -> R^k x + t from its face's chart to its
 /// twin's face's chart.
@@ -40,10 +46,57 @@ struct Charts {
   std::vector<signed char> k;   // per half-edge
   std::vector<Grid2> t;         // per half-edge
   std::vector<int> degree;      // per vertex: its triangles
+  std::vector<CornerFloor> floors;  // per corner (= half-edge leaving it)
 
   const Point2q& corner(int h) const { return (*uv)[h / 3][h % 3]; }
   int vertex(int h) const { return (*triangles)[h / 3][h % 3]; }
 };
+
+/// A triangle's corners as integers over a common denominator: X_i = (x_i, y_i) / d, d the least
+/// common multiple of the six denominators; total = det(x_1 - x_0, x_2 - x_0) > 0.
+struct FaceFrame {
+  int face = -1;
+  mpz_class d, x[3], y[3], total;
+  void set(int f, const std::array<Point2q, 3>& X);
+  /// Exact barycentric coordinates of the integer point p: w_i = det(x_{i+1} - d p, x_{i+2} - d p)
+  /// / total (integer arithmetic, one gcd per weight; canonical).
+  void barycentric(const Grid2& p, std::array<Rational, 3>& w);
+
+ private:
+  mpz_class px, py, s1, s2, n[3];
+};
+
+/// A grid point as found: the triangle that owns it, where it lies there (GridPointKind and
+/// IsolineQuadVertex::local), its integer UV in that triangle's chart.
+struct GridPoint {
+  int face = -1;
+  GridPointKind kind = GridPointKind::Face;
+  int local = -1;
+  Grid2 uv;
+};
+
+/// Every grid point once. face_points[face_begin[f] ..) are the points triangle f owns (inside it,
+/// or inside a side whose half-edge id is below its twin's), sorted by (y, x) for look-ups; a grid
+/// point on a mesh vertex is vertex_point[vertex].
+struct GridPoints {
+  std::vector<GridPoint> points;
+  std::vector<int> vertex_point;  // per mesh vertex: its grid point or -1
+  std::vector<int> face_begin, face_points;
+  std::int64_t chords = 0;        // integer rows and columns meeting the closed UV triangles
+  std::int64_t rows = 0;          // rows scanned
+};
+
+/// Step 1: per triangle the integer rows of its bounding box, each row's exact ends, the integer
+/// points between (closed); each classified on a corner / inside a side / inside. Checks that
+/// every point inside a side is found from the twin's triangle too (through the seam) and every
+/// corner on the grid from all its vertex's triangles; igm::Error(Internal) otherwise, and
+/// igm::Error(TooLarge) past max_work rows and points. Cost O(F + rows + points) exact integer
+/// operations on the corners' numerators.
+GridPoints find_grid_points(const Charts& c, std::int64_t max_work);
+
+/// The grid point at the integer point t of triangle g: its corner `corner` if >= 0, else inside
+/// its side `side` if >= 0, else inside it; -1 if there is none. O(log points of the triangle).
+int find_point(const Charts& c, const GridPoints& gp, int g, int corner, int side, const Grid2& t);
 
 /// Sign of the cross product (a - o) x d_m: > 0 when the axis direction m points to the left
 /// of o -> a. Exact (rational comparisons).
@@ -70,10 +123,12 @@ struct Heading {
 /// away from a grid point) or the ring does not close. Bound: the vertex's degree.
 Heading turn_to_wedge(const Charts& c, Heading h, bool unique);
 
-/// Where a trace ends: the triangle (closed) holding the target, the target's corner there if it
-/// is one (-1 otherwise) and the arrival direction in that triangle's chart.
+/// Where a trace ends: the triangle (closed) holding the target, the arrival direction in its
+/// chart, and where the target lies there: at corner at.corner (>= 0), else inside side `side`
+/// (from corner side to side+1, >= 0), else inside the triangle.
 struct TraceEnd {
   Heading at;
+  int side = -1;
   std::int64_t steps = 0;
   std::int64_t vertex_crossings = 0;
 };

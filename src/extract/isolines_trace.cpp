@@ -11,26 +11,32 @@ namespace {
 
 int sgn3(int c) { return c < 0 ? -1 : (c > 0 ? 1 : 0); }
 int cmpq(const Rational& a, const Rational& b) { return sgn3(cmp(a, b)); }
-int cmp_si(const Rational& a, std::int64_t b) { return sgn3(mpq_cmp_si(a.get_mpq_t(), static_cast<long>(b), 1UL)); }
+// Sign of (coordinate axis of corner h) - v, exact: from the corner's floor and integrality.
+int cmp_corner(const Charts& c, int h, int axis, std::int64_t v) {
+  const CornerFloor& f = c.floors[h];
+  const std::int64_t lo = f.floor[axis];
+  if (lo != v) return lo < v ? -1 : 1;  // lo < v: x < lo + 1 <= v; lo > v: x >= lo > v
+  return f.integer[axis] ? 0 : 1;       // lo == v: x == v, or v < x < v + 1
+}
 
-// Side of x relative to the oriented line through the integer point t with direction d_m: sign of
-// d_m x (x - t), > 0 on the left. Exact.
-int side(const Point2q& x, int m, const Grid2& t) {
+// Side of corner h relative to the oriented line through the integer point t with direction d_m:
+// sign of d_m x (x - t), > 0 on the left. Exact.
+int side(const Charts& c, int h, int m, const Grid2& t) {
   switch (m) {
-    case 0: return cmp_si(x.y, t.y);
-    case 1: return -cmp_si(x.x, t.x);
-    case 2: return -cmp_si(x.y, t.y);
-    default: return cmp_si(x.x, t.x);
+    case 0: return cmp_corner(c, h, 1, t.y);
+    case 1: return -cmp_corner(c, h, 0, t.x);
+    case 2: return -cmp_corner(c, h, 1, t.y);
+    default: return cmp_corner(c, h, 0, t.x);
   }
 }
 
-// Sign of d_m . (x - t): > 0 when x lies ahead of t along d_m. Exact.
-int ahead(const Point2q& x, int m, const Grid2& t) {
+// Sign of d_m . (x - t) for corner h: > 0 when it lies ahead of t along d_m. Exact.
+int ahead(const Charts& c, int h, int m, const Grid2& t) {
   switch (m) {
-    case 0: return cmp_si(x.x, t.x);
-    case 1: return cmp_si(x.y, t.y);
-    case 2: return -cmp_si(x.x, t.x);
-    default: return -cmp_si(x.y, t.y);
+    case 0: return cmp_corner(c, h, 0, t.x);
+    case 1: return cmp_corner(c, h, 1, t.y);
+    case 2: return -cmp_corner(c, h, 0, t.x);
+    default: return -cmp_corner(c, h, 1, t.y);
   }
 }
 
@@ -108,11 +114,11 @@ TraceEnd trace(const Charts& c, Heading h, std::int64_t max_steps, std::int64_t 
              what);
     const std::array<Point2q, 3>& x = (*c.uv)[h.face];
     int s[3];
-    for (int i = 0; i < 3; ++i) s[i] = side(x[i], h.m, h.target);
+    for (int i = 0; i < 3; ++i) s[i] = side(c, 3 * h.face + i, h.m, h.target);
     // Where the line leaves the closed triangle, ahead: along a side (both ends on the line, the
     // triangle on its left) at the side's end; else where the counter-clockwise boundary crosses
     // from the line's right to its left: inside side i, or at corner i.
-    int exit_side = -1, exit_corner = -1;
+    int exit_side = -1, exit_corner = -1, along_side = -1;
     for (int i = 0; i < 3 && exit_corner < 0; ++i) {
       const int j = (i + 1) % 3, l = (i + 2) % 3;
       if (s[i] == 0 && s[j] == 0) {
@@ -121,6 +127,7 @@ TraceEnd trace(const Charts& c, Heading h, std::int64_t max_steps, std::int64_t 
                      std::to_string(h.face) + " outside it",
                  what);
         exit_corner = j;
+        along_side = i;
       }
     }
     for (int i = 0; i < 3 && exit_corner < 0 && exit_side < 0; ++i) {
@@ -134,9 +141,13 @@ TraceEnd trace(const Charts& c, Heading h, std::int64_t max_steps, std::int64_t 
     if (exit_side >= 0) {
       mpq_set_si(target.x.get_mpq_t(), static_cast<long>(h.target.x), 1UL);
       mpq_set_si(target.y.get_mpq_t(), static_cast<long>(h.target.y), 1UL);
-      if (orient2d(x[exit_side], x[(exit_side + 1) % 3], target) != Sign::Negative) {
+      const Sign o = orient2d(x[exit_side], x[(exit_side + 1) % 3], target);
+      if (o != Sign::Negative) {  // the target lies before the exit, or on the exit side
+        // (neither end of the exit side is on the line; strictly between the entry and the exit
+        // the line runs inside the open triangle)
         h.corner = -1;
         r.at = h;
+        r.side = o == Sign::Zero ? exit_side : -1;
         return r;
       }
       const int he = 3 * h.face + exit_side;  // cross the seam into the twin's chart
@@ -145,10 +156,12 @@ TraceEnd trace(const Charts& c, Heading h, std::int64_t max_steps, std::int64_t 
       h.face = c.mesh.twin(he) / 3;
       continue;
     }
-    const int a = ahead(x[exit_corner], h.m, h.target);
-    if (a >= 0) {  // the target lies before the exit corner, or is that corner
+    const int a = ahead(c, 3 * h.face + exit_corner, h.m, h.target);
+    if (a >= 0) {  // the target lies before the exit corner (on the side the line runs along,
+                   // if it does, else inside the triangle), or is that corner
       h.corner = a == 0 ? exit_corner : -1;
       r.at = h;
+      r.side = a > 0 && along_side >= 0 ? along_side : -1;
       return r;
     }
     // Through a mesh vertex that is no grid point: a regular vertex (cones are grid points), where

@@ -364,7 +364,7 @@ IsolineInput skewed_torus(int m) {
 
 }  // namespace
 
-TEST_CASE("isolines: a trace may cross more than F triangles (slivers); the bound C holds") {
+TEST_CASE("isolines: a trace may cross more than F triangles (slivers), within the bound C") {
   const IsolineInput in = skewed_torus(30);
   const IsolineQuads q = extract_checked(in);
   CHECK(q.quads.size() == 9u);

@@ -65,7 +65,9 @@ struct IsolineQuads {
   std::vector<std::array<int, 4>> quad_edges;  // side k of quad q (corner k -> k+1) as an edge id
   int num_edges = 0;
   std::vector<IsolineQuadVertex> vertices;     // exact surface location of every quad vertex
-  std::vector<Vec3d> positions;  // if IsolineInput::positions: the exact point, rounded toward zero
+  /// If IsolineInput::positions: sum w_i p_i over the triangle's corners in doubles (w_i rounded
+  /// toward zero; a grid point on a vertex gets the vertex's position). For display only.
+  std::vector<Vec3d> positions;
   int genus = 0;
   IsolineStats stats;
 };
