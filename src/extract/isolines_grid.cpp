@@ -124,7 +124,9 @@ GridPoints find_grid_points(const Charts& c, std::int64_t max_work) {
     mpz_fdiv_q(hi_x.get_mpz_t(), fr.x[xmax].get_mpz_t(), fr.d.get_mpz_t());
     const std::int64_t j0 = mpz_get_si(lo_y.get_mpz_t()), j1 = mpz_get_si(hi_y.get_mpz_t());
     const std::int64_t i0 = mpz_get_si(lo_x.get_mpz_t()), i1 = mpz_get_si(hi_x.get_mpz_t());
-    gp.chords += std::max<std::int64_t>(0, j1 - j0 + 1) + std::max<std::int64_t>(0, i1 - i0 + 1);
+    // (saturated: a bound, never an overflow)
+    gp.chords = std::min<std::int64_t>(std::int64_t{1} << 62, gp.chords + std::max<std::int64_t>(0, j1 - j0 + 1) +
+                                                                 std::max<std::int64_t>(0, i1 - i0 + 1));
     for (std::int64_t j = j0; j <= j1; ++j) {  // bound: the rows of the bounding box (work checked)
       count_work(f);
       ++gp.rows;

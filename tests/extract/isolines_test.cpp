@@ -369,7 +369,7 @@ TEST_CASE("isolines: a trace may cross more than F triangles (slivers), within t
   const IsolineQuads q = extract_checked(in);
   CHECK(q.quads.size() == 9u);
   CHECK(q.stats.grid_points_on_vertices == 9);
-  CHECK(q.stats.max_trace_steps > static_cast<std::int64_t>(in.triangles.size()));  // 72
+  CHECK(q.stats.max_trace_steps > static_cast<std::int64_t>(in.triangles.size()));  // 120 > 72
   CHECK(q.stats.vertex_crossings > 0);
   CHECK(certify_result(q, 1).valid());
 }
