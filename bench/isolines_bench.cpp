@@ -20,7 +20,9 @@
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
 }  // namespace
 
@@ -30,12 +32,17 @@ int main(int argc, char** argv) {
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     const long v = std::atol(argv[i + 1]);
-    if (a == "--genus") genus = static_cast<int>(v);
-    else if (a == "--faces") faces = v;
-    else if (a == "--quads") quads = v;
-    else if (a == "--repeat") repeat = static_cast<int>(v);
+    if (a == "--genus")
+      genus = static_cast<int>(v);
+    else if (a == "--faces")
+      faces = v;
+    else if (a == "--quads")
+      quads = v;
+    else if (a == "--repeat")
+      repeat = static_cast<int>(v);
     else {
-      std::fprintf(stderr, "usage: igm_bench_isolines [--genus G] [--faces F] [--quads Q] [--repeat R]\n");
+      std::fprintf(stderr,
+                   "usage: igm_bench_isolines [--genus G] [--faces F] [--quads Q] [--repeat R]\n");
       return 2;
     }
   }
@@ -48,8 +55,9 @@ int main(int argc, char** argv) {
     po.resolution = 3;
     auto t0 = Clock::now();
     const igm::PipelineResult r = igm::compute_igm(mesh, po);
-    std::printf("pipeline: genus %d, %d faces -> IGM %zu triangles, %d layout quads, %.2f s\n", genus,
-                mesh.mesh.num_faces(), r.igm.triangles.size(), r.stats.layout_quads, since(t0));
+    std::printf("pipeline: genus %d, %d faces -> IGM %zu triangles, %d layout quads, %.2f s\n",
+                genus, mesh.mesh.num_faces(), r.igm.triangles.size(), r.stats.layout_quads,
+                since(t0));
     // The pipeline's IGM has one UV unit per layout quad (a domain of 2 for genus 0).
     const long scale = std::max(1L, std::lround(std::sqrt(double(quads) / r.stats.layout_quads)));
     igm::IsolineInput in;
@@ -72,14 +80,17 @@ int main(int argc, char** argv) {
         return 1;
       }
       const igm::IsolineStats& s = x.quads->stats;
-      std::printf("run %d: %zu quads, %zu vertices (%lld on vertices, %lld on edges, %lld in faces, %lld cones) "
-                  "in %.3f s (CPU %.3f s): certify %.3f, grid %.3f (%lld rows), trace %.3f (%lld traces, %lld steps, max %lld, "
-                  "bound %lld, %lld vertex crossings), quads+output %.3f\n",
-                  k, x.quads->quads.size(), x.quads->vertices.size(), (long long)s.grid_points_on_vertices,
-                  (long long)s.grid_points_on_edges, (long long)s.grid_points_in_faces, (long long)s.cones, total, cpu,
-                  s.seconds_certify, s.seconds_grid, (long long)s.rows_scanned, s.seconds_trace,
-                  (long long)s.traces, (long long)s.trace_steps, (long long)s.max_trace_steps,
-                  (long long)s.trace_step_bound, (long long)s.vertex_crossings, s.seconds_quads);
+      std::printf(
+          "run %d: %zu quads, %zu vertices (%lld on vertices, %lld on edges, %lld in faces, %lld "
+          "cones) "
+          "in %.3f s (CPU %.3f s): certify %.3f, grid %.3f (%lld rows), trace %.3f (%lld traces, "
+          "%lld steps, max %lld, "
+          "bound %lld, %lld vertex crossings), quads+output %.3f\n",
+          k, x.quads->quads.size(), x.quads->vertices.size(), (long long)s.grid_points_on_vertices,
+          (long long)s.grid_points_on_edges, (long long)s.grid_points_in_faces, (long long)s.cones,
+          total, cpu, s.seconds_certify, s.seconds_grid, (long long)s.rows_scanned, s.seconds_trace,
+          (long long)s.traces, (long long)s.trace_steps, (long long)s.max_trace_steps,
+          (long long)s.trace_step_bound, (long long)s.vertex_crossings, s.seconds_quads);
     }
   } catch (const igm::Error& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

@@ -23,13 +23,14 @@ constexpr int kExitCertified = 0, kExitRejected = 1, kExitInput = 2, kExitIntern
 constexpr std::size_t kWitnessesPrinted = 10;
 
 int usage(const std::string& message) {
-  std::fprintf(stderr,
-               "igm extract: %s\nusage: igm extract IGM.obj|IGM.exact [-o QUAD.obj] [--json REPORT.json]\n"
-               "  the quad mesh of the IGM's integer isolines, located exactly; the IGM is read with\n"
-               "  exact UVs (decimals or p/q) and certified first. Default output: NAME.quad.obj here.\n"
-               "  exit 0 quads certified, 1 the IGM (or the quads) rejected by the certifier, 2 unreadable\n"
-               "  input or usage, 3 internal error\n",
-               message.c_str());
+  std::fprintf(
+      stderr,
+      "igm extract: %s\nusage: igm extract IGM.obj|IGM.exact [-o QUAD.obj] [--json REPORT.json]\n"
+      "  the quad mesh of the IGM's integer isolines, located exactly; the IGM is read with\n"
+      "  exact UVs (decimals or p/q) and certified first. Default output: NAME.quad.obj here.\n"
+      "  exit 0 quads certified, 1 the IGM (or the quads) rejected by the certifier, 2 unreadable\n"
+      "  input or usage, 3 internal error\n",
+      message.c_str());
   return kExitInput;
 }
 
@@ -37,14 +38,15 @@ int usage(const std::string& message) {
 void print_witnesses(const igm::certify::Report& r) {
   for (const igm::certify::CheckResult& c : r.checks) {
     if (c.passed()) continue;
-    std::printf("  check %d %s: %s, %lld offending\n", c.id, c.name.c_str(), igm::certify::to_string(c.status),
-                static_cast<long long>(c.offending));
+    std::printf("  check %d %s: %s, %lld offending\n", c.id, c.name.c_str(),
+                igm::certify::to_string(c.status), static_cast<long long>(c.offending));
     for (std::size_t i = 0; i < c.witnesses.size() && i < kWitnessesPrinted; ++i) {
       const igm::certify::Witness& w = c.witnesses[i];
       std::printf("    %s", w.kind.c_str());
       for (std::int64_t id : w.ids) std::printf(" %lld", static_cast<long long>(id));
       std::printf(": %s", w.reason.c_str());
-      for (const auto& [name, value] : w.values) std::printf(", %s = %s", name.c_str(), value.c_str());
+      for (const auto& [name, value] : w.values)
+        std::printf(", %s = %s", name.c_str(), value.c_str());
       std::printf("\n");
     }
   }
@@ -53,19 +55,23 @@ void print_witnesses(const igm::certify::Report& r) {
 std::string stats_json(const igm::IsolineQuads& q) {
   const igm::IsolineStats& s = q.stats;
   std::ostringstream o;
-  o << "{\"quads\": " << q.quads.size() << ", \"vertices\": " << q.vertices.size() << ", \"edges\": " << q.num_edges
-    << ", \"genus\": " << q.genus << ", \"grid_points_on_vertices\": " << s.grid_points_on_vertices
-    << ", \"grid_points_on_edges\": " << s.grid_points_on_edges << ", \"grid_points_in_faces\": "
-    << s.grid_points_in_faces << ", \"cones\": " << s.cones << ", \"traces\": " << s.traces
-    << ", \"trace_steps\": " << s.trace_steps << ", \"max_trace_steps\": " << s.max_trace_steps
-    << ", \"vertex_crossings\": " << s.vertex_crossings << ", \"seconds\": " << s.seconds_total << "}";
+  o << "{\"quads\": " << q.quads.size() << ", \"vertices\": " << q.vertices.size()
+    << ", \"edges\": " << q.num_edges << ", \"genus\": " << q.genus
+    << ", \"grid_points_on_vertices\": " << s.grid_points_on_vertices
+    << ", \"grid_points_on_edges\": " << s.grid_points_on_edges
+    << ", \"grid_points_in_faces\": " << s.grid_points_in_faces << ", \"cones\": " << s.cones
+    << ", \"traces\": " << s.traces << ", \"trace_steps\": " << s.trace_steps
+    << ", \"max_trace_steps\": " << s.max_trace_steps
+    << ", \"vertex_crossings\": " << s.vertex_crossings << ", \"seconds\": " << s.seconds_total
+    << "}";
   return o.str();
 }
 
 // {"extractor", "exit_code", "extraction": stats or null, "igm": report, "quad": report or null}.
 void write_json(const std::string& path, int code, const igm::certify::Report& igm_report,
                 const igm::IsolineQuads* quads, const igm::certify::Report* quad_report) {
-  std::string s = "{\n\"extractor\": \"igm extract\",\n\"exit_code\": " + std::to_string(code) + ",\n\"extraction\": ";
+  std::string s = "{\n\"extractor\": \"igm extract\",\n\"exit_code\": " + std::to_string(code) +
+                  ",\n\"extraction\": ";
   s += quads ? stats_json(*quads) : std::string("null");
   s += ",\n\"igm\": " + igm::certify::to_json(igm_report) + ",\n\"quad\": ";
   s += quad_report ? igm::certify::to_json(*quad_report) : std::string("null\n");
@@ -107,7 +113,8 @@ int extract_command(const std::vector<std::string_view>& args) {
     bool triangles = obj.ok && obj.mesh.num_faces() > 0;
     for (std::int64_t f = 0; triangles && f < obj.mesh.num_faces(); ++f) {  // bound: F
       triangles = obj.mesh.face_begin[f + 1] - obj.mesh.face_begin[f] == 3;
-      for (std::int64_t k = obj.mesh.face_begin[f]; triangles && k < obj.mesh.face_begin[f + 1]; ++k)
+      for (std::int64_t k = obj.mesh.face_begin[f]; triangles && k < obj.mesh.face_begin[f + 1];
+           ++k)
         triangles = obj.mesh.corner_uv[k] >= 0;
     }
     if (!triangles) {
@@ -135,7 +142,8 @@ int extract_command(const std::vector<std::string_view>& args) {
 
     const auto t0 = std::chrono::steady_clock::now();
     igm::IsolineResult x = igm::extract_isolines(in);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     x.report.source = in_path;
     if (!x.quads) {
       const int code = igm::certify::exit_code(x.report);
@@ -158,14 +166,19 @@ int extract_command(const std::vector<std::string_view>& args) {
     const int code = quad_report.valid() ? kExitCertified : kExitRejected;
     if (!json_path.empty()) write_json(json_path, code, x.report, &q, &quad_report);
     const igm::IsolineStats& s = q.stats;
-    std::printf("%zu quads, %zu vertices (%lld on mesh vertices, %lld on edges, %lld in triangles; %lld cones), "
-                "genus %d, from %zu triangles in %.3f s; wrote %s: %s\n",
-                q.quads.size(), q.vertices.size(), static_cast<long long>(s.grid_points_on_vertices),
-                static_cast<long long>(s.grid_points_on_edges), static_cast<long long>(s.grid_points_in_faces),
-                static_cast<long long>(s.cones), q.genus, in.triangles.size(), seconds, out_path.c_str(),
-                quad_report.valid() ? "certified" : "NOT CERTIFIED");
+    std::printf(
+        "%zu quads, %zu vertices (%lld on mesh vertices, %lld on edges, %lld in triangles; %lld "
+        "cones), "
+        "genus %d, from %zu triangles in %.3f s; wrote %s: %s\n",
+        q.quads.size(), q.vertices.size(), static_cast<long long>(s.grid_points_on_vertices),
+        static_cast<long long>(s.grid_points_on_edges),
+        static_cast<long long>(s.grid_points_in_faces), static_cast<long long>(s.cones), q.genus,
+        in.triangles.size(), seconds, out_path.c_str(),
+        quad_report.valid() ? "certified" : "NOT CERTIFIED");
     if (!quad_report.valid()) {
-      std::printf("  (a coarse grid has loops or multiple edges, which the certifier's quad check refuses)\n");
+      std::printf(
+          "  (a coarse grid has loops or multiple edges, which the certifier's quad check "
+          "refuses)\n");
       print_witnesses(quad_report);
     }
     return code;

@@ -16,9 +16,9 @@ using isolines::apply;
 using isolines::Charts;
 using isolines::find_grid_points;
 using isolines::find_point;
+using isolines::Grid2;
 using isolines::GridPoint;
 using isolines::GridPoints;
-using isolines::Grid2;
 using isolines::Heading;
 using isolines::in_wedge;
 using isolines::kDx;
@@ -27,7 +27,9 @@ using Clock = std::chrono::steady_clock;
 
 constexpr long kMaxUv = 1L << 60;  // |UV coordinate| bound: every integer sum below fits in 64 bits
 
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
 [[noreturn]] void broken(const std::string& what, std::int64_t id) {
   throw Error(ErrorKind::Internal, "extract_isolines: " + what, {id});
@@ -49,9 +51,11 @@ void build_seams(Charts& c) {
   Rational ex, ey, gx, gy, rx, ry, tx, ty;
   for (int h = 0; h < H; ++h) {  // bound: 3F half-edges
     const int tw = c.mesh.twin(h);
-    const Point2q &a = c.corner(h), &b = c.corner(TriMesh::next(h));    // in h's face
-    const Point2q &b2 = c.corner(tw), &a2 = c.corner(TriMesh::next(tw)); // the same ends in the twin's
-    if (a.x == a2.x && a.y == a2.y && b.x == b2.x && b.y == b2.y) continue;  // inside a chart: k = 0, t = 0
+    const Point2q &a = c.corner(h), &b = c.corner(TriMesh::next(h));  // in h's face
+    const Point2q &b2 = c.corner(tw),
+                  &a2 = c.corner(TriMesh::next(tw));  // the same ends in the twin's
+    if (a.x == a2.x && a.y == a2.y && b.x == b2.x && b.y == b2.y)
+      continue;  // inside a chart: k = 0, t = 0
     ex = b.x - a.x;
     ey = b.y - a.y;
     gx = b2.x - a2.x;
@@ -67,13 +71,26 @@ void build_seams(Charts& c) {
       }
       if (rx == gx && ry == gy) found = k;
     }
-    if (found < 0) broken("the edge of half-edge " + std::to_string(h) + " has no rotation seam", h);
+    if (found < 0)
+      broken("the edge of half-edge " + std::to_string(h) + " has no rotation seam", h);
     // t = a2 - R^k a
     switch (found) {
-      case 0: tx = a2.x - a.x; ty = a2.y - a.y; break;
-      case 1: tx = a2.x + a.y; ty = a2.y - a.x; break;
-      case 2: tx = a2.x + a.x; ty = a2.y + a.y; break;
-      default: tx = a2.x - a.y; ty = a2.y + a.x; break;
+      case 0:
+        tx = a2.x - a.x;
+        ty = a2.y - a.y;
+        break;
+      case 1:
+        tx = a2.x + a.y;
+        ty = a2.y - a.x;
+        break;
+      case 2:
+        tx = a2.x + a.x;
+        ty = a2.y + a.y;
+        break;
+      default:
+        tx = a2.x - a.y;
+        ty = a2.y + a.x;
+        break;
     }
     if (!is_integer(tx) || !is_integer(ty))
       broken("the seam of half-edge " + std::to_string(h) + " has no integer translation", h);
@@ -91,7 +108,8 @@ struct Slots {
 };
 
 // Appends the axis directions in the half-open wedge [a - o, b - o) counter-clockwise.
-void add_wedge(Slots& s, int point, int face, const Point2q& o, const Point2q& a, const Point2q& b, const Grid2& at) {
+void add_wedge(Slots& s, int point, int face, const Point2q& o, const Point2q& a, const Point2q& b,
+               const Grid2& at) {
   bool in[4];
   for (int m = 0; m < 4; ++m) in[m] = in_wedge(o, a, b, m);
   int first = 0;
@@ -130,8 +148,10 @@ Slots make_slots(const Charts& c, const GridPoints& gp) {
       set_point(o, other);
       add_wedge(s, p, g, o, (*c.uv)[g][(i + 1) % 3], (*c.uv)[g][i], other);
       if (static_cast<int>(s.point.size()) - s.begin[p] != 4)
-        broken("grid point " + std::to_string(p) + " inside an edge of triangle " + std::to_string(q.face) + " has " +
-                   std::to_string(static_cast<int>(s.point.size()) - s.begin[p]) + " isoline directions, not 4",
+        broken("grid point " + std::to_string(p) + " inside an edge of triangle " +
+                   std::to_string(q.face) + " has " +
+                   std::to_string(static_cast<int>(s.point.size()) - s.begin[p]) +
+                   " isoline directions, not 4",
                p);
     } else {
       // Around the vertex counter-clockwise, each triangle's corner wedge in its own chart.
@@ -141,15 +161,19 @@ Slots make_slots(const Charts& c, const GridPoints& gp) {
         const std::array<Point2q, 3>& y = (*c.uv)[face];
         if (!is_integer(y[corner].x) || !is_integer(y[corner].y))
           broken("vertex " + std::to_string(v) + " is a grid point in one triangle only", v);
-        const Grid2 at{mpz_get_si(y[corner].x.get_num_mpz_t()), mpz_get_si(y[corner].y.get_num_mpz_t())};
+        const Grid2 at{mpz_get_si(y[corner].x.get_num_mpz_t()),
+                       mpz_get_si(y[corner].y.get_num_mpz_t())};
         add_wedge(s, p, face, y[corner], y[(corner + 1) % 3], y[(corner + 2) % 3], at);
         const int tw = c.mesh.twin(3 * face + (corner + 2) % 3);
         face = tw / 3;
         corner = tw % 3;
       }
-      if (face != q.face || corner != q.local) broken("the triangles around vertex " + std::to_string(v) + " do not close", v);
+      if (face != q.face || corner != q.local)
+        broken("the triangles around vertex " + std::to_string(v) + " do not close", v);
       if (static_cast<int>(s.point.size()) == s.begin[p])
-        broken("grid point " + std::to_string(p) + " (vertex " + std::to_string(v) + ") has no isoline direction", p);
+        broken("grid point " + std::to_string(p) + " (vertex " + std::to_string(v) +
+                   ") has no isoline direction",
+               p);
     }
   }
   s.begin.push_back(static_cast<int>(s.point.size()));
@@ -157,11 +181,13 @@ Slots make_slots(const Charts& c, const GridPoints& gp) {
 }
 
 // The slot of grid point p leaving along the reverse of a trace's arrival `end`, or -1.
-int arrival_slot(const Charts& c, const Slots& s, int p, const isolines::TraceEnd& end, Point2q& scratch) {
+int arrival_slot(const Charts& c, const Slots& s, int p, const isolines::TraceEnd& end,
+                 Point2q& scratch) {
   Heading at = end.at;
   at.m = (at.m + 2) & 3;
   if (at.corner >= 0) {
-    at = isolines::turn_to_wedge(c, at, false);  // the reverse direction lies in at.face's closed wedge
+    at = isolines::turn_to_wedge(c, at,
+                                 false);  // the reverse direction lies in at.face's closed wedge
   } else if (end.side >= 0) {
     const std::array<Point2q, 3>& x = (*c.uv)[at.face];
     const int i = end.side;
@@ -183,14 +209,16 @@ IsolineResult extract_isolines(const IsolineInput& input, const IsolineOptions& 
   const auto t_total = Clock::now();
   if (options.max_grid_work < 1 || options.max_grid_work > (std::int64_t{1} << 28))
     throw Error(ErrorKind::InvalidArgument,
-                "IsolineOptions::max_grid_work must be in 1..2^28, got " + std::to_string(options.max_grid_work));
+                "IsolineOptions::max_grid_work must be in 1..2^28, got " +
+                    std::to_string(options.max_grid_work));
   IsolineResult result;
   IsolineStats stats;
   {
     auto t0 = Clock::now();
     certify::IgmInput cin;
     cin.faces = input.triangles;
-    cin.num_vertices = input.positions.empty() ? -1 : static_cast<std::int64_t>(input.positions.size());
+    cin.num_vertices =
+        input.positions.empty() ? -1 : static_cast<std::int64_t>(input.positions.size());
     cin.corner_uv.reserve(3 * input.corner_uv.size());
     for (const auto& tri : input.corner_uv)
       for (const Point2q& uv : tri) cin.corner_uv.push_back({uv.x, uv.y});
@@ -201,7 +229,8 @@ IsolineResult extract_isolines(const IsolineInput& input, const IsolineOptions& 
   }
   if (!result.report.valid()) return result;
 
-  // The certified IGM: closed, manifold, oriented, connected; every UV triangle positive; rigid seams.
+  // The certified IGM: closed, manifold, oriented, connected; every UV triangle positive; rigid
+  // seams.
   auto t0 = Clock::now();
   const int F = static_cast<int>(input.triangles.size());
   int V = static_cast<int>(result.report.num_vertices);
@@ -218,9 +247,12 @@ IsolineResult extract_isolines(const IsolineInput& input, const IsolineOptions& 
     for (int i = 0; i < 3; ++i)
       for (int axis = 0; axis < 2; ++axis) {
         const Rational& q = axis == 0 ? input.corner_uv[f][i].x : input.corner_uv[f][i].y;
-        if (mpq_cmp_si(q.get_mpq_t(), kMaxUv, 1UL) > 0 || mpq_cmp_si(q.get_mpq_t(), -kMaxUv, 1UL) < 0)
+        if (mpq_cmp_si(q.get_mpq_t(), kMaxUv, 1UL) > 0 ||
+            mpq_cmp_si(q.get_mpq_t(), -kMaxUv, 1UL) < 0)
           throw Error(ErrorKind::TooLarge,
-                      "extract_isolines: triangle " + std::to_string(f) + " has a UV coordinate beyond 2^60", {f});
+                      "extract_isolines: triangle " + std::to_string(f) +
+                          " has a UV coordinate beyond 2^60",
+                      {f});
         mpz_fdiv_q(fl.get_mpz_t(), q.get_num_mpz_t(), q.get_den_mpz_t());
         c.floors[3 * f + i].floor[axis] = mpz_get_si(fl.get_mpz_t());
         c.floors[3 * f + i].integer[axis] = is_integer(q);
@@ -250,9 +282,9 @@ IsolineResult extract_isolines(const IsolineInput& input, const IsolineOptions& 
     const int to = find_point(c, gp, end.at.face, end.at.corner, end.side, end.at.target);
     if (to < 0)
       broken("the isoline from grid point " + std::to_string(p) + " along its direction " +
-                 std::to_string(q - s.begin[p]) + " ends at (" + std::to_string(end.at.target.x) + ", " +
-                 std::to_string(end.at.target.y) + ") of triangle " + std::to_string(end.at.face) +
-                 ", which is no grid point found",
+                 std::to_string(q - s.begin[p]) + " ends at (" + std::to_string(end.at.target.x) +
+                 ", " + std::to_string(end.at.target.y) + ") of triangle " +
+                 std::to_string(end.at.face) + ", which is no grid point found",
              p);
     arrival[q] = arrival_slot(c, s, to, end, scratch);
     if (arrival[q] < 0 || arrival[q] == q)
@@ -287,17 +319,21 @@ IsolineResult extract_isolines(const IsolineInput& input, const IsolineOptions& 
       q = s.begin[p] + (a - s.begin[p] + val - 1) % val;
     }
     if (len != 4 || q != q0)
-      broken("the isoline face from grid point " + std::to_string(s.point[q0]) + " along its direction " +
-                 std::to_string(q0 - s.begin[s.point[q0]]) + " is no quad",
+      broken("the isoline face from grid point " + std::to_string(s.point[q0]) +
+                 " along its direction " + std::to_string(q0 - s.begin[s.point[q0]]) +
+                 " is no quad",
              s.point[q0]);
     out.quads.push_back(quad);
     out.quad_edges.push_back(sides);
   }
   const std::int64_t E = 3 * static_cast<std::int64_t>(F) / 2;
   const std::int64_t chi = static_cast<std::int64_t>(V) - E + F;
-  const std::int64_t chi_quads = n - static_cast<std::int64_t>(out.num_edges) + static_cast<std::int64_t>(out.quads.size());
+  const std::int64_t chi_quads =
+      n - static_cast<std::int64_t>(out.num_edges) + static_cast<std::int64_t>(out.quads.size());
   if (chi_quads != chi)
-    broken("the quads have Euler characteristic " + std::to_string(chi_quads) + ", the IGM " + std::to_string(chi), 0);
+    broken("the quads have Euler characteristic " + std::to_string(chi_quads) + ", the IGM " +
+               std::to_string(chi),
+           0);
   out.genus = static_cast<int>((2 - chi) / 2);
 
   // The output: exact barycentric coordinates, valences, 3D positions.
@@ -326,7 +362,8 @@ IsolineResult extract_isolines(const IsolineInput& input, const IsolineOptions& 
     out.positions.reserve(n);
     for (const IsolineQuadVertex& v : out.vertices) {  // bound: grid points
       const std::array<int, 3>& t = input.triangles[v.triangle];
-      const double w[3] = {to_double(v.barycentric[0]), to_double(v.barycentric[1]), to_double(v.barycentric[2])};
+      const double w[3] = {to_double(v.barycentric[0]), to_double(v.barycentric[1]),
+                           to_double(v.barycentric[2])};
       Vec3d x;
       for (int i = 0; i < 3; ++i) {
         const Vec3d& p = input.positions[t[i]];

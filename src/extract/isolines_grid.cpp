@@ -77,8 +77,8 @@ int find_point(const Charts& c, const GridPoints& gp, int g, int corner, int sid
   }
   const auto begin = gp.face_points.begin() + gp.face_begin[face];
   const auto end = gp.face_points.begin() + gp.face_begin[face + 1];
-  const auto it =
-      std::lower_bound(begin, end, key, [&](int p, const Grid2& k) { return less_yx(gp.points[p].uv, k); });
+  const auto it = std::lower_bound(
+      begin, end, key, [&](int p, const Grid2& k) { return less_yx(gp.points[p].uv, k); });
   if (it == end || gp.points[*it].uv.x != key.x || gp.points[*it].uv.y != key.y) return -1;
   return *it;
 }
@@ -100,7 +100,8 @@ GridPoints find_grid_points(const Charts& c, std::int64_t max_work) {
     if (++work > max_work)
       throw Error(ErrorKind::TooLarge,
                   "extract_isolines: more than " + std::to_string(max_work) +
-                      " grid points and rows (IsolineOptions::max_grid_work), at triangle " + std::to_string(f),
+                      " grid points and rows (IsolineOptions::max_grid_work), at triangle " +
+                      std::to_string(f),
                   {f});
   };
   FaceFrame fr;
@@ -125,12 +126,14 @@ GridPoints find_grid_points(const Charts& c, std::int64_t max_work) {
     const std::int64_t j0 = mpz_get_si(lo_y.get_mpz_t()), j1 = mpz_get_si(hi_y.get_mpz_t());
     const std::int64_t i0 = mpz_get_si(lo_x.get_mpz_t()), i1 = mpz_get_si(hi_x.get_mpz_t());
     // (saturated: a bound, never an overflow)
-    gp.chords = std::min<std::int64_t>(std::int64_t{1} << 62, gp.chords + std::max<std::int64_t>(0, j1 - j0 + 1) +
-                                                                 std::max<std::int64_t>(0, i1 - i0 + 1));
+    gp.chords = std::min<std::int64_t>(std::int64_t{1} << 62,
+                                       gp.chords + std::max<std::int64_t>(0, j1 - j0 + 1) +
+                                           std::max<std::int64_t>(0, i1 - i0 + 1));
     for (std::int64_t j = j0; j <= j1; ++j) {  // bound: the rows of the bounding box (work checked)
       count_work(f);
       ++gp.rows;
-      mpz_mul_si(row.get_mpz_t(), fr.d.get_mpz_t(), static_cast<long>(j));  // the row y = j, times d
+      mpz_mul_si(row.get_mpz_t(), fr.d.get_mpz_t(),
+                 static_cast<long>(j));  // the row y = j, times d
       // The row's ends: the corners on it and where it crosses the sides, as num / den (den > 0).
       int n = 0;
       for (int i = 0; i < 3; ++i) {
@@ -154,7 +157,9 @@ GridPoints find_grid_points(const Charts& c, std::int64_t max_work) {
           ++n;
         }
       }
-      if (n == 0) broken("row " + std::to_string(j) + " of triangle " + std::to_string(f) + " meets no side", f);
+      if (n == 0)
+        broken("row " + std::to_string(j) + " of triangle " + std::to_string(f) + " meets no side",
+               f);
       int lo = 0, hi = 0;
       for (int i = 1; i < n; ++i) {  // compare a/b < c/d as a d < c b (b, d > 0)
         t1 = ends[i].num * ends[lo].den;
@@ -184,7 +189,8 @@ GridPoints find_grid_points(const Charts& c, std::int64_t max_work) {
             p.x = static_cast<long>(i);
             p.y = static_cast<long>(j);
             for (int k = 0; k < 3 && q.kind == GridPointKind::Face; ++k)
-              if (orient2d(X[k], X[(k + 1) % 3], p) == Sign::Zero) q = {f, GridPointKind::Edge, k, g};
+              if (orient2d(X[k], X[(k + 1) % 3], p) == Sign::Zero)
+                q = {f, GridPointKind::Edge, k, g};
           }
         }
         if (q.kind == GridPointKind::Vertex) {
@@ -219,15 +225,16 @@ GridPoints find_grid_points(const Charts& c, std::int64_t max_work) {
   for (const Foreign& fp : foreign) {  // bound: the points inside edges
     const int q = find_point(c, gp, fp.face, -1, fp.side, fp.uv);
     if (q < 0 || gp.points[q].kind != GridPointKind::Edge || gp.points[q].local != fp.side)
-      broken("the grid point (" + std::to_string(fp.uv.x) + ", " + std::to_string(fp.uv.y) + ") inside side " +
-                 std::to_string(fp.side) + " of triangle " + std::to_string(fp.face) +
-                 " is not found from that side's triangle",
+      broken("the grid point (" + std::to_string(fp.uv.x) + ", " + std::to_string(fp.uv.y) +
+                 ") inside side " + std::to_string(fp.side) + " of triangle " +
+                 std::to_string(fp.face) + " is not found from that side's triangle",
              fp.face);
   }
   for (std::size_t v = 0; v < c.degree.size(); ++v)  // bound: V
     if (gp.vertex_point[v] >= 0 && vertex_seen[v] != c.degree[v])
-      broken("vertex " + std::to_string(v) + " is on the grid in " + std::to_string(vertex_seen[v]) + " of its " +
-                 std::to_string(c.degree[v]) + " triangles",
+      broken("vertex " + std::to_string(v) + " is on the grid in " +
+                 std::to_string(vertex_seen[v]) + " of its " + std::to_string(c.degree[v]) +
+                 " triangles",
              static_cast<std::int64_t>(v));
   return gp;
 }

@@ -43,9 +43,9 @@ struct Charts {
   const std::vector<std::array<int, 3>>* triangles = nullptr;
   const std::vector<std::array<Point2q, 3>>* uv = nullptr;
   TriMesh mesh;
-  std::vector<signed char> k;   // per half-edge
-  std::vector<Grid2> t;         // per half-edge
-  std::vector<int> degree;      // per vertex: its triangles
+  std::vector<signed char> k;       // per half-edge
+  std::vector<Grid2> t;             // per half-edge
+  std::vector<int> degree;          // per vertex: its triangles
   std::vector<CornerFloor> floors;  // per corner (= half-edge leaving it)
 
   const Point2q& corner(int h) const { return (*uv)[h / 3][h % 3]; }
@@ -82,8 +82,8 @@ struct GridPoints {
   std::vector<GridPoint> points;
   std::vector<int> vertex_point;  // per mesh vertex: its grid point or -1
   std::vector<int> face_begin, face_points;
-  std::int64_t chords = 0;        // integer rows and columns meeting the closed UV triangles
-  std::int64_t rows = 0;          // rows scanned
+  std::int64_t chords = 0;  // integer rows and columns meeting the closed UV triangles
+  std::int64_t rows = 0;    // rows scanned
 };
 
 /// Step 1: per triangle the integer rows of its bounding box, each row's exact ends, the integer

@@ -123,8 +123,8 @@ TraceEnd trace(const Charts& c, Heading h, std::int64_t max_steps, std::int64_t 
       const int j = (i + 1) % 3, l = (i + 2) % 3;
       if (s[i] == 0 && s[j] == 0) {
         if (s[l] <= 0)
-          broken("the isoline from grid point " + std::to_string(what) + " runs along a side of triangle " +
-                     std::to_string(h.face) + " outside it",
+          broken("the isoline from grid point " + std::to_string(what) +
+                     " runs along a side of triangle " + std::to_string(h.face) + " outside it",
                  what);
         exit_corner = j;
         along_side = i;
@@ -136,7 +136,8 @@ TraceEnd trace(const Charts& c, Heading h, std::int64_t max_steps, std::int64_t 
       if (s[i] == 0 && s[l] < 0 && s[j] > 0) exit_corner = i;
     }
     if (exit_side < 0 && exit_corner < 0)
-      broken("the isoline from grid point " + std::to_string(what) + " misses triangle " + std::to_string(h.face),
+      broken("the isoline from grid point " + std::to_string(what) + " misses triangle " +
+                 std::to_string(h.face),
              what);
     if (exit_side >= 0) {
       mpq_set_si(target.x.get_mpq_t(), static_cast<long>(h.target.x), 1UL);

@@ -43,7 +43,8 @@ std::string shell_quote(const std::string& s) {
 struct Folder {
   std::filesystem::path path;
   explicit Folder(const std::string& name)
-      : path(std::filesystem::temp_directory_path() / ("igm-extract-cli-" + std::to_string(::getpid()) + "-" + name)) {
+      : path(std::filesystem::temp_directory_path() /
+             ("igm-extract-cli-" + std::to_string(::getpid()) + "-" + name)) {
     std::filesystem::remove_all(path);
     std::filesystem::create_directories(path);
   }
@@ -58,9 +59,11 @@ struct Folder {
 };
 
 // Runs `BINARY ARGS` in folder `cwd`.
-ExtractRun run_in(const std::filesystem::path& cwd, const std::string& binary, const std::string& args) {
-  const std::string cmd = "cd " + shell_quote(cwd.string()) + " && " + shell_quote(binary) + " " + args + " >" +
-                          shell_quote((cwd / "stdout.txt").string()) + " 2>" + shell_quote((cwd / "stderr.txt").string());
+ExtractRun run_in(const std::filesystem::path& cwd, const std::string& binary,
+                  const std::string& args) {
+  const std::string cmd = "cd " + shell_quote(cwd.string()) + " && " + shell_quote(binary) + " " +
+                          args + " >" + shell_quote((cwd / "stdout.txt").string()) + " 2>" +
+                          shell_quote((cwd / "stderr.txt").string());
   const int status = std::system(cmd.c_str());
   ExtractRun r;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -73,7 +76,18 @@ ExtractRun extract(const std::filesystem::path& cwd, const std::string& args) {
   return run_in(cwd, IGM_CLI_PATH, "extract " + args);
 }
 
-bool contains(const std::string& text, const std::string& needle) { return text.find(needle) != std::string::npos; }
+// Writes `igm` as OBJ text (exact p/q UVs, or decimals) to dir/file, then `igm extract file
+// OPTIONS`.
+ExtractRun extract_igm(const std::filesystem::path& dir, const std::string& file,
+                       const igm::certify::IgmInput& igm, const std::string& options,
+                       bool decimal = false) {
+  write_text(dir / file, certify_test::to_obj(igm, decimal));
+  return extract(dir, file + " " + options);
+}
+
+bool contains(const std::string& text, const std::string& needle) {
+  return text.find(needle) != std::string::npos;
+}
 
 // Counts the lines of an OBJ starting with `key `, and checks that every `f` line has 4 indices.
 int count_lines(const std::string& obj, const std::string& key, bool* all_quads = nullptr) {
@@ -96,12 +110,15 @@ int count_lines(const std::string& obj, const std::string& key, bool* all_quads 
 
 }  // namespace
 
-TEST_CASE("igm extract: a 4 x 4 torus IGM (exact p/q UVs) gives 16 certified quads, the OBJ and the JSON") {
+TEST_CASE(
+    "igm extract: a 4 x 4 torus IGM (exact p/q UVs) gives 16 certified quads, the OBJ and the "
+    "JSON") {
   const Folder dir("torus");
-  write_text(dir / "torus.igm.exact", certify_test::to_obj(certify_test::torus(4)));
-  const ExtractRun r = extract(dir, "torus.igm.exact -o quads.obj --json report.json");
+  const ExtractRun r = extract_igm(dir, "torus.igm.exact", certify_test::torus(4),
+                                   "-o quads.obj --json report.json");
   CHECK(r.code == 0);
-  CHECK(contains(r.out, "16 quads, 16 vertices (16 on mesh vertices, 0 on edges, 0 in triangles; 0 cones)"));
+  CHECK(contains(
+      r.out, "16 quads, 16 vertices (16 on mesh vertices, 0 on edges, 0 in triangles; 0 cones)"));
   CHECK(contains(r.out, "genus 1"));
   CHECK(contains(r.out, "certified"));
   const std::string obj = read_text(dir / "quads.obj");
@@ -109,7 +126,8 @@ TEST_CASE("igm extract: a 4 x 4 torus IGM (exact p/q UVs) gives 16 certified qua
   CHECK(count_lines(obj, "f", &quads) == 16);
   CHECK(quads);
   CHECK(count_lines(obj, "v") == 16);
-  CHECK(contains(obj, "v 15 0 0"));  // the builder's vertex 15 sits at (15, 0, 0): a grid point on it
+  CHECK(
+      contains(obj, "v 15 0 0"));  // the builder's vertex 15 sits at (15, 0, 0): a grid point on it
   CHECK(run_in(dir, IGM_CERTIFY_CLI_PATH, "--quad --genus 1 quads.obj").code == 0);
   const std::string json = read_text(dir / "report.json");
   CHECK(contains(json, "\"exit_code\": 0"));
@@ -121,29 +139,32 @@ TEST_CASE("igm extract: a 4 x 4 torus IGM (exact p/q UVs) gives 16 certified qua
 TEST_CASE("igm extract: decimal UVs, grid points inside triangles, the default output name") {
   const Folder dir("decimal");
   igm::certify::IgmInput torus = certify_test::torus(3);
-  certify_test::map_faces(torus, certify_test::block_faces(3, 0, 3, 0, 3), 1, 0, 0, 1, mpq_class(1, 4), mpq_class(1, 2));
-  const std::string text = certify_test::to_obj(torus, true);
-  REQUIRE(contains(text, "vt 0.250000000000 0.500000000000"));
-  write_text(dir / "shifted.igm.obj", text);
-  const ExtractRun r = extract(dir, "shifted.igm.obj");
+  certify_test::map_faces(torus, certify_test::block_faces(3, 0, 3, 0, 3), 1, 0, 0, 1,
+                          mpq_class(1, 4), mpq_class(1, 2));
+  const ExtractRun r = extract_igm(dir, "shifted.igm.obj", torus, "", true);
+  REQUIRE(contains(read_text(dir / "shifted.igm.obj"), "vt 0.250000000000 0.500000000000"));
   CHECK(r.code == 0);
-  CHECK(contains(r.out, "9 quads, 9 vertices (0 on mesh vertices, 0 on edges, 9 in triangles; 0 cones)"));
+  CHECK(contains(r.out,
+                 "9 quads, 9 vertices (0 on mesh vertices, 0 on edges, 9 in triangles; 0 cones)"));
   CHECK(std::filesystem::exists(dir / "shifted.quad.obj"));
   CHECK(run_in(dir, IGM_CERTIFY_CLI_PATH, "--quad --genus 1 shifted.quad.obj").code == 0);
 }
 
-TEST_CASE("igm extract: cones (the cube's corners) and a coarse grid with multiple edges (exit 1, written anyway)") {
+TEST_CASE(
+    "igm extract: cones (the cube's corners) and a coarse grid with multiple edges (exit 1, "
+    "written anyway)") {
   const Folder dir("cones");
-  write_text(dir / "cube.obj", certify_test::to_obj(certify_test::cube(2)));
-  const ExtractRun cube = extract(dir, "cube.obj -o cube.quad.obj");
+  const ExtractRun cube = extract_igm(dir, "cube.obj", certify_test::cube(2), "-o cube.quad.obj");
   CHECK(cube.code == 0);
-  CHECK(contains(cube.out, "24 quads, 26 vertices (26 on mesh vertices, 0 on edges, 0 in triangles; 8 cones), genus 0"));
+  CHECK(contains(
+      cube.out,
+      "24 quads, 26 vertices (26 on mesh vertices, 0 on edges, 0 in triangles; 8 cones), genus 0"));
   // The 4 x 4 torus scaled by 1/2: 4 quads on 4 vertices, each pair joined by two edges, which
   // certifier check 5 (edges by their end points) refuses.
   igm::certify::IgmInput half = certify_test::torus(4);
   for (auto& uv : half.corner_uv) uv = {uv[0] / 2, uv[1] / 2};
-  write_text(dir / "small.obj", certify_test::to_obj(half));
-  const ExtractRun small = extract(dir, "small.obj -o small.quad.obj --json small.json");
+  const ExtractRun small =
+      extract_igm(dir, "small.obj", half, "-o small.quad.obj --json small.json");
   CHECK(small.code == 1);
   CHECK(contains(small.out, "4 quads, 4 vertices"));
   CHECK(contains(small.out, "NOT CERTIFIED"));
@@ -151,12 +172,14 @@ TEST_CASE("igm extract: cones (the cube's corners) and a coarse grid with multip
   CHECK(contains(read_text(dir / "small.json"), "\"exit_code\": 1"));
 }
 
-TEST_CASE("igm extract: a nudged corner UV is refused: exit 1, the certifier's witness printed and in the JSON") {
+TEST_CASE(
+    "igm extract: a nudged corner UV is refused: exit 1, the certifier's witness printed and in "
+    "the JSON") {
   const Folder dir("nudged");
   igm::certify::IgmInput torus = certify_test::torus(4);
   torus.corner_uv[3 * 5 + 1][0] += mpq_class(1, 1000);  // face 5's corner at vertex 7
-  write_text(dir / "nudged.obj", certify_test::to_obj(torus));
-  const ExtractRun r = extract(dir, "nudged.obj -o nudged.quad.obj --json nudged.json");
+  const ExtractRun r =
+      extract_igm(dir, "nudged.obj", torus, "-o nudged.quad.obj --json nudged.json");
   CHECK(r.code == 1);
   CHECK(contains(r.out, "NOT AN IGM"));
   CHECK(contains(r.out, "edge 2 7: edge vectors not related by a rotation R^k"));

@@ -34,7 +34,8 @@ IsolineInput from_certify(const certify::IgmInput& in) {
 }
 
 // Every UV times s, plus (dx, dy).
-IsolineInput affine(IsolineInput in, const Rational& s, const Rational& dx = 0, const Rational& dy = 0) {
+IsolineInput affine(IsolineInput in, const Rational& s, const Rational& dx = 0,
+                    const Rational& dy = 0) {
   for (auto& t : in.corner_uv)
     for (Point2q& p : t) {
       p.x = p.x * s + dx;
@@ -52,14 +53,16 @@ std::string key(const SurfacePoint& p) {
 SurfacePoint on_mesh(const std::array<int, 3>& t, const std::array<Rational, 3>& w,
                      const std::vector<SurfacePoint>* locations) {
   if (!locations)
-    return barycentric_point(SurfacePoint::vertex(t[0]), SurfacePoint::vertex(t[1]), SurfacePoint::vertex(t[2]), w);
+    return barycentric_point(SurfacePoint::vertex(t[0]), SurfacePoint::vertex(t[1]),
+                             SurfacePoint::vertex(t[2]), w);
   return barycentric_point((*locations)[t[0]], (*locations)[t[1]], (*locations)[t[2]], w);
 }
 
 // The test's own search for the grid points, independent of the extractor's: every integer point
 // of every closed UV triangle (bounding box, three orient2d), as an exact point of the mesh (or of
 // the surface the mesh's `locations` lie on): the same point seen from two triangles is one key.
-std::set<std::string> brute_force_points(const IsolineInput& in, const std::vector<SurfacePoint>* locations = nullptr) {
+std::set<std::string> brute_force_points(const IsolineInput& in,
+                                         const std::vector<SurfacePoint>* locations = nullptr) {
   std::set<std::string> keys;
   for (std::size_t f = 0; f < in.triangles.size(); ++f) {
     const auto& x = in.corner_uv[f];
@@ -76,15 +79,16 @@ std::set<std::string> brute_force_points(const IsolineInput& in, const std::vect
     for (long i = i0.get_si(); i <= i1.get_si(); ++i)
       for (long j = j0.get_si(); j <= j1.get_si(); ++j) {
         const Point2q p{Rational(i), Rational(j)};
-        if (orient2d(x[0], x[1], p) == Sign::Negative || orient2d(x[1], x[2], p) == Sign::Negative ||
-            orient2d(x[2], x[0], p) == Sign::Negative)
+        if (orient2d(x[0], x[1], p) == Sign::Negative ||
+            orient2d(x[1], x[2], p) == Sign::Negative || orient2d(x[2], x[0], p) == Sign::Negative)
           continue;
         auto area2 = [](const Point2q& a, const Point2q& b, const Point2q& c) {
           Rational r = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
           return r;
         };
         const Rational total = area2(x[0], x[1], x[2]);
-        const std::array<Rational, 3> w{Rational(area2(p, x[1], x[2]) / total), Rational(area2(x[0], p, x[2]) / total),
+        const std::array<Rational, 3> w{Rational(area2(p, x[1], x[2]) / total),
+                                        Rational(area2(x[0], p, x[2]) / total),
                                         Rational(area2(x[0], x[1], p) / total)};
         keys.insert(key(on_mesh(in.triangles[f], w, locations)));
       }
@@ -114,7 +118,8 @@ IsolineQuads extract_checked(const IsolineInput& in, const IsolineOptions& optio
     const auto& x = in.corner_uv[v.triangle];
     const auto& w = v.barycentric;
     CHECK(w[0] + w[1] + w[2] == 1);
-    Rational u = w[0] * x[0].x + w[1] * x[1].x + w[2] * x[2].x, vv = w[0] * x[0].y + w[1] * x[1].y + w[2] * x[2].y;
+    Rational u = w[0] * x[0].x + w[1] * x[1].x + w[2] * x[2].x,
+             vv = w[0] * x[0].y + w[1] * x[1].y + w[2] * x[2].y;
     CHECK(u == Rational(static_cast<long>(v.uv[0])));
     CHECK(vv == Rational(static_cast<long>(v.uv[1])));
     int zeros = 0;
@@ -128,8 +133,8 @@ IsolineQuads extract_checked(const IsolineInput& in, const IsolineOptions& optio
     if (v.valence != 4) CHECK(v.kind == GridPointKind::Vertex);
     keys.insert(key(on_mesh(in.triangles[v.triangle], w, nullptr)));
   }
-  CHECK(keys.size() == q.vertices.size());     // no point twice
-  CHECK(keys == brute_force_points(in));       // and every one
+  CHECK(keys.size() == q.vertices.size());  // no point twice
+  CHECK(keys == brute_force_points(in));    // and every one
   std::vector<int> sides(q.num_edges, 0);
   for (const auto& e : q.quad_edges)
     for (int id : e) ++sides[id];
@@ -156,7 +161,9 @@ int mesh_vertex(const IsolineInput& in, const IsolineQuadVertex& v) {
 
 }  // namespace
 
-TEST_CASE("isolines: the n x n torus with the grid on its vertices gives its n^2 cells, counter-clockwise") {
+TEST_CASE(
+    "isolines: the n x n torus with the grid on its vertices gives its n^2 cells, "
+    "counter-clockwise") {
   for (int n : {3, 4}) {
     CAPTURE(n);
     const IsolineInput in = from_certify(certify_test::torus(n));
@@ -173,7 +180,8 @@ TEST_CASE("isolines: the n x n torus with the grid on its vertices gives its n^2
     std::multiset<std::array<int, 4>> expected, got;
     auto id = [n](int i, int j) { return (i % n) + n * (j % n); };
     for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) expected.insert(canonical({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)}));
+      for (int i = 0; i < n; ++i)
+        expected.insert(canonical({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)}));
     for (const auto& quad : q.quads) {
       std::array<int, 4> m;
       for (int k = 0; k < 4; ++k) m[k] = mesh_vertex(in, q.vertices[quad[k]]);
@@ -193,9 +201,10 @@ TEST_CASE("isolines: grid points inside horizontal edges, inside diagonal edges 
     int side;  // the side of the cell's triangle the points lie on (-1: inside)
   };
   // vertex (i, j) at (i + dx, j + dy): the integer point (i + 1, j) or (i + 1, j + 1) lies ...
-  const Case cases[] = {{Rational(1, 2), 0, GridPointKind::Edge, 0},                // on the lower side
-                        {Rational(1, 2), Rational(1, 2), GridPointKind::Edge, -1},  // on the diagonal
-                        {Rational(1, 4), Rational(1, 2), GridPointKind::Face, -1}};
+  const Case cases[] = {
+      {Rational(1, 2), 0, GridPointKind::Edge, 0},                // on the lower side
+      {Rational(1, 2), Rational(1, 2), GridPointKind::Edge, -1},  // on the diagonal
+      {Rational(1, 4), Rational(1, 2), GridPointKind::Face, -1}};
   for (const Case& c : cases) {
     CAPTURE(to_string(c.dx));
     CAPTURE(to_string(c.dy));
@@ -215,7 +224,9 @@ TEST_CASE("isolines: grid points inside horizontal edges, inside diagonal edges 
   }
 }
 
-TEST_CASE("isolines: cones on grid points: the cube's 8 corners of valence 3, the pillow's 4 of valence 2") {
+TEST_CASE(
+    "isolines: cones on grid points: the cube's 8 corners of valence 3, the pillow's 4 of valence "
+    "2") {
   for (int m : {1, 2, 3}) {
     CAPTURE(m);
     const IsolineQuads cube = extract_checked(from_certify(certify_test::cube(m)));
@@ -237,7 +248,9 @@ TEST_CASE("isolines: cones on grid points: the cube's 8 corners of valence 3, th
   }
 }
 
-TEST_CASE("isolines: charts rotated by +-90 degrees, scaled by 2 and shifted by a half: points inside edges and faces") {
+TEST_CASE(
+    "isolines: charts rotated by +-90 degrees, scaled by 2 and shifted by a half: points inside "
+    "edges and faces") {
   const IsolineInput rotated = from_certify(certify_test::rotated_chart_torus(7));
   const IsolineQuads q1 = extract_checked(rotated);
   CHECK(q1.quads.size() == 49u);
@@ -254,8 +267,9 @@ TEST_CASE("isolines: charts rotated by +-90 degrees, scaled by 2 and shifted by 
 }
 
 TEST_CASE("isolines: an IGM scaled by an integer k has k^2 times the quads") {
-  const IsolineInput inputs[] = {from_certify(certify_test::torus(3)), from_certify(certify_test::cube(1)),
-                                 from_certify(certify_test::pillow(2)), from_certify(certify_test::rotated_chart_torus(7))};
+  const IsolineInput inputs[] = {
+      from_certify(certify_test::torus(3)), from_certify(certify_test::cube(1)),
+      from_certify(certify_test::pillow(2)), from_certify(certify_test::rotated_chart_torus(7))};
   const int genus[] = {1, 0, 0, 1};
   for (int i = 0; i < 4; ++i) {
     CAPTURE(i);
@@ -270,7 +284,8 @@ TEST_CASE("isolines: an IGM scaled by an integer k has k^2 times the quads") {
   }
 }
 
-TEST_CASE("isolines: one corner UV nudged by 1/1000 is refused with the certifier's witness, no quads") {
+TEST_CASE(
+    "isolines: one corner UV nudged by 1/1000 is refused with the certifier's witness, no quads") {
   certify::IgmInput torus = certify_test::torus(4);
   const int f = 5;  // cell (2, 0), upper triangle: corners (2,0) (3,1) (2,1)
   torus.corner_uv[3 * f + 1][0] += mpq_class(1, 1000);
@@ -280,7 +295,8 @@ TEST_CASE("isolines: one corner UV nudged by 1/1000 is refused with the certifie
   const certify::CheckResult* seams = r.report.check(3);
   REQUIRE(seams != nullptr);
   CHECK(seams->status == certify::Status::Fail);
-  // The nudged corner is vertex (3, 1) = 7 of face 5; its sides there join it to (2, 0) = 2 and (2, 1) = 6.
+  // The nudged corner is vertex (3, 1) = 7 of face 5; its sides there join it to (2, 0) = 2 and (2,
+  // 1) = 6.
   CHECK(certify_test::has_edge_witness(*seams, 2, 7));
   CHECK(certify_test::has_edge_witness(*seams, 6, 7));
 }
@@ -314,15 +330,18 @@ TEST_CASE("isolines: unreadable input and bad options") {
   }
 }
 
-TEST_CASE("isolines: 3D positions are the exact points rounded, the input's own positions on vertices") {
+TEST_CASE(
+    "isolines: 3D positions are the exact points rounded, the input's own positions on vertices") {
   IsolineInput in = affine(from_certify(certify_test::torus(4)), 1, Rational(1, 2), 0);
   for (int v = 0; v < 16; ++v) in.positions.push_back({double(v % 4), double(v / 4), 1.0});
   const IsolineQuads q = extract_checked(in);
   REQUIRE(q.positions.size() == q.vertices.size());
   for (std::size_t p = 0; p < q.vertices.size(); ++p) {
-    // inside the lower side of a cell, halfway: the mean of its two ends' positions (exact in doubles)
+    // inside the lower side of a cell, halfway: the mean of its two ends' positions (exact in
+    // doubles)
     const IsolineQuadVertex& v = q.vertices[p];
-    const int a = in.triangles[v.triangle][v.local], b = in.triangles[v.triangle][(v.local + 1) % 3];
+    const int a = in.triangles[v.triangle][v.local],
+              b = in.triangles[v.triangle][(v.local + 1) % 3];
     CHECK(v.barycentric[v.local] == Rational(1, 2));
     CHECK(q.positions[p].x == (in.positions[a].x + in.positions[b].x) / 2);
     CHECK(q.positions[p].y == (in.positions[a].y + in.positions[b].y) / 2);
@@ -408,7 +427,8 @@ void check_against_pipeline(const ValidMesh& mesh, int N, bool certify_expected)
   std::map<std::string, int> mine;
   std::map<std::tuple<double, double, double>, int> by_position;
   for (std::size_t v = 0; v < q.vertices.size(); ++v) {
-    const SurfacePoint p = on_mesh(in.triangles[q.vertices[v].triangle], q.vertices[v].barycentric, &r.igm.locations);
+    const SurfacePoint p =
+        on_mesh(in.triangles[q.vertices[v].triangle], q.vertices[v].barycentric, &r.igm.locations);
     mine.emplace(key(p), static_cast<int>(v));
     const Vec3d x = evaluate(p, mesh.positions);
     by_position.emplace(std::make_tuple(x.x, x.y, x.z), static_cast<int>(v));
@@ -430,14 +450,17 @@ void check_against_pipeline(const ValidMesh& mesh, int N, bool certify_expected)
   }
   CHECK(matched.size() == match.size());
   std::multiset<std::array<int, 4>> theirs, ours;
-  for (const auto& quad : r.quads.quads) theirs.insert(canonical({match[quad[0]], match[quad[1]], match[quad[2]], match[quad[3]]}));
+  for (const auto& quad : r.quads.quads)
+    theirs.insert(canonical({match[quad[0]], match[quad[1]], match[quad[2]], match[quad[3]]}));
   for (const auto& quad : q.quads) ours.insert(canonical(quad));
   CHECK(ours == theirs);
 }
 
 }  // namespace
 
-TEST_CASE("isolines: the pipeline's genus-2 and genus-3 IGMs give the pipeline's quads at the same exact points") {
+TEST_CASE(
+    "isolines: the pipeline's genus-2 and genus-3 IGMs give the pipeline's quads at the same exact "
+    "points") {
   check_against_pipeline(igm_test::generated_mesh(2, 600, 7), 3, true);
   check_against_pipeline(igm_test::generated_mesh(3, 900, 8), 4, true);
   // resolution 1: one quad per layout quad, loops and multi-edges at the root (not certifiable)

@@ -16,8 +16,8 @@ namespace igm {
 
 /// One IGM: a closed oriented triangle mesh with one exact UV per face corner.
 struct IsolineInput {
-  std::vector<std::array<int, 3>> triangles;       // 0-based vertex ids
-  std::vector<std::array<Point2q, 3>> corner_uv;   // per triangle, per corner, exact
+  std::vector<std::array<int, 3>> triangles;      // 0-based vertex ids
+  std::vector<std::array<Point2q, 3>> corner_uv;  // per triangle, per corner, exact
   std::vector<Vec3d> positions;  // optional, per vertex; empty: no 3D positions in the output
 };
 
@@ -47,13 +47,13 @@ struct IsolineQuadVertex {
 
 struct IsolineStats {
   std::int64_t grid_points_on_vertices = 0, grid_points_on_edges = 0, grid_points_in_faces = 0;
-  std::int64_t cones = 0;            // grid points of valence != 4 (all on vertices)
-  std::int64_t rows_scanned = 0;     // grid rows the point search scanned
-  std::int64_t traces = 0;           // unit isoline segments traced (each edge from both ends)
-  std::int64_t trace_steps = 0;      // triangles entered by all traces together
-  std::int64_t max_trace_steps = 0;  // by the longest trace
-  std::int64_t trace_step_bound = 0; // C below: the bound no trace may pass
-  std::int64_t vertex_crossings = 0; // traces passing through a mesh vertex (not a grid point)
+  std::int64_t cones = 0;             // grid points of valence != 4 (all on vertices)
+  std::int64_t rows_scanned = 0;      // grid rows the point search scanned
+  std::int64_t traces = 0;            // unit isoline segments traced (each edge from both ends)
+  std::int64_t trace_steps = 0;       // triangles entered by all traces together
+  std::int64_t max_trace_steps = 0;   // by the longest trace
+  std::int64_t trace_step_bound = 0;  // C below: the bound no trace may pass
+  std::int64_t vertex_crossings = 0;  // traces passing through a mesh vertex (not a grid point)
   double seconds_certify = 0, seconds_grid = 0, seconds_trace = 0, seconds_quads = 0;
   double seconds_total = 0;
 };
@@ -64,7 +64,7 @@ struct IsolineQuads {
   std::vector<std::array<int, 4>> quads;
   std::vector<std::array<int, 4>> quad_edges;  // side k of quad q (corner k -> k+1) as an edge id
   int num_edges = 0;
-  std::vector<IsolineQuadVertex> vertices;     // exact surface location of every quad vertex
+  std::vector<IsolineQuadVertex> vertices;  // exact surface location of every quad vertex
   /// If IsolineInput::positions: sum w_i p_i over the triangle's corners in doubles (w_i rounded
   /// toward zero; a grid point on a vertex gets the vertex's position). For display only.
   std::vector<Vec3d> positions;
@@ -73,8 +73,8 @@ struct IsolineQuads {
 };
 
 struct IsolineResult {
-  certify::Report report;              // the certifier's checks 1-4 on the input (witnesses)
-  std::optional<IsolineQuads> quads;   // present iff report.valid()
+  certify::Report report;             // the certifier's checks 1-4 on the input (witnesses)
+  std::optional<IsolineQuads> quads;  // present iff report.valid()
 };
 
 /// The quad mesh of the integer isolines of an IGM, exactly. First the independent certifier
