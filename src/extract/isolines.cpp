@@ -51,11 +51,11 @@ void build_seams(Charts& c) {
   Rational ex, ey, gx, gy, rx, ry, tx, ty;
   for (int h = 0; h < H; ++h) {  // bound: 3F half-edges
     const int tw = c.mesh.twin(h);
-    const Point2q &a = c.corner(h), &b = c.corner(TriMesh::next(h));  // in h's face
-    const Point2q &b2 = c.corner(tw),
-                  &a2 = c.corner(TriMesh::next(tw));  // the same ends in the twin's
-    if (a.x == a2.x && a.y == a2.y && b.x == b2.x && b.y == b2.y)
-      continue;  // inside a chart: k = 0, t = 0
+    // The ends a, b in h's triangle and the same ends a2, b2 in the twin's.
+    const Point2q &a = c.corner(h), &b = c.corner(TriMesh::next(h));
+    const Point2q &b2 = c.corner(tw), &a2 = c.corner(TriMesh::next(tw));
+    // Inside a chart (the same UVs on both sides): k = 0, t = 0.
+    if (a.x == a2.x && a.y == a2.y && b.x == b2.x && b.y == b2.y) continue;
     ex = b.x - a.x;
     ey = b.y - a.y;
     gx = b2.x - a2.x;
@@ -186,8 +186,8 @@ int arrival_slot(const Charts& c, const Slots& s, int p, const isolines::TraceEn
   Heading at = end.at;
   at.m = (at.m + 2) & 3;
   if (at.corner >= 0) {
-    at = isolines::turn_to_wedge(c, at,
-                                 false);  // the reverse direction lies in at.face's closed wedge
+    // The reverse direction lies in at.face's closed wedge: this triangle's or the next one's.
+    at = isolines::turn_to_wedge(c, at, false);
   } else if (end.side >= 0) {
     const std::array<Point2q, 3>& x = (*c.uv)[at.face];
     const int i = end.side;
@@ -229,8 +229,7 @@ IsolineResult extract_isolines(const IsolineInput& input, const IsolineOptions& 
   }
   if (!result.report.valid()) return result;
 
-  // The certified IGM: closed, manifold, oriented, connected; every UV triangle positive; rigid
-  // seams.
+  // The certified IGM: closed, manifold, oriented, connected, positive UV triangles, rigid seams.
   auto t0 = Clock::now();
   const int F = static_cast<int>(input.triangles.size());
   int V = static_cast<int>(result.report.num_vertices);

@@ -132,8 +132,7 @@ GridPoints find_grid_points(const Charts& c, std::int64_t max_work) {
     for (std::int64_t j = j0; j <= j1; ++j) {  // bound: the rows of the bounding box (work checked)
       count_work(f);
       ++gp.rows;
-      mpz_mul_si(row.get_mpz_t(), fr.d.get_mpz_t(),
-                 static_cast<long>(j));  // the row y = j, times d
+      mpz_mul_si(row.get_mpz_t(), fr.d.get_mpz_t(), static_cast<long>(j));  // the row y = j, by d
       // The row's ends: the corners on it and where it crosses the sides, as num / den (den > 0).
       int n = 0;
       for (int i = 0; i < 3; ++i) {
