@@ -17,6 +17,7 @@
 #include "igm/io/write_mesh.h"
 #include "igm/mesh/generate.h"
 #include "igm/mesh/validate.h"
+#include "extract_command.h"
 #include "run_command.h"
 
 namespace {
@@ -37,6 +38,7 @@ int cmd_help(const Args& args);
 int cmd_info(const Args& args);
 int cmd_generate(const Args& args);
 int cmd_run(const Args& args) { return igm_cli::run_command(args); }
+int cmd_extract(const Args& args) { return igm_cli::extract_command(args); }
 
 const Command kCommands[] = {
     {"run", "igm run MESH [-o DIR] [--quads Q | --edge-length H | --resolution N] [--layout spread|kite|paper]\n"
@@ -46,6 +48,10 @@ const Command kCommands[] = {
             "                                (genus 0: four pi-cones, --cones picks them as 0-based vertex ids)\n"
             "                                (writes DIR/NAME.igm.obj .igm.exact .quad.obj .cert.json .schema.svg; DIR=out)",
      cmd_run},
+    {"extract", "igm extract IGM.obj|IGM.exact [-o QUAD.obj] [--json REPORT.json]\n"
+                "                                the quad mesh of any IGM's integer isolines, exactly (the IGM certified\n"
+                "                                first; default output NAME.quad.obj)",
+     cmd_extract},
     {"info", "igm info MESH                 read MESH (.obj .off .ply .stl), validate it, print what was found", cmd_info},
     {"generate", "igm generate --genus G --faces N [--seed S] OUT.(obj|off)\n"
                  "                                write a generated closed mesh of genus G with about N faces",
@@ -60,8 +66,8 @@ void print_usage(std::FILE* out) {
                "  igm                           `run` on a built-in generated mesh of genus 2 (outputs in ./out)\n");
   for (const Command& c : kCommands) std::fprintf(out, "  %s\n", c.usage);
   std::fprintf(out,
-               "\nexit codes: 0 success (info: the mesh is valid after repairs; run: outputs certified), 1 (run) the\n"
-               "certifier rejected an output, 2 invalid or unreadable\n"
+               "\nexit codes: 0 success (info: the mesh is valid after repairs; run, extract: outputs certified), 1 (run,\n"
+               "extract) the certifier rejected an input IGM or an output, 2 invalid or unreadable\n"
                "input, or a usage error. Element ids in messages are 0-based (vertices and faces in file order).\n");
 }
 

@@ -1,0 +1,383 @@
+#include "igm/extract/isolines.h"
+
+#include <algorithm>
+#include <chrono>
+#include <string>
+#include <utility>
+
+#include "igm/core/error.h"
+#include "isolines_internal.h"
+
+namespace igm {
+
+namespace {
+
+using isolines::apply;
+using isolines::Charts;
+using isolines::find_grid_points;
+using isolines::find_point;
+using isolines::Grid2;
+using isolines::GridPoint;
+using isolines::GridPoints;
+using isolines::Heading;
+using isolines::in_wedge;
+using isolines::kDx;
+using isolines::kDy;
+using Clock = std::chrono::steady_clock;
+
+constexpr long kMaxUv = 1L << 60;  // |UV coordinate| bound: every integer sum below fits in 64 bits
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+[[noreturn]] void broken(const std::string& what, std::int64_t id) {
+  throw Error(ErrorKind::Internal, "extract_isolines: " + what, {id});
+}
+
+bool is_integer(const Rational& q) { return mpz_cmp_ui(q.get_den_mpz_t(), 1) == 0; }
+
+void set_point(Point2q& p, const Grid2& g) {
+  mpq_set_si(p.x.get_mpq_t(), static_cast<long>(g.x), 1UL);
+  mpq_set_si(p.y.get_mpq_t(), static_cast<long>(g.y), 1UL);
+}
+
+// The seams: per half-edge h (face f, corner i -> i+1) the k and t with uv_g = R^k uv_f + t on both
+// ends, g the twin's face, found as the certifier defines them (certify/README.md, check 3).
+void build_seams(Charts& c) {
+  const int H = c.mesh.num_halfedges();
+  c.k.assign(H, 0);
+  c.t.assign(H, Grid2{});
+  Rational ex, ey, gx, gy, rx, ry, tx, ty;
+  for (int h = 0; h < H; ++h) {  // bound: 3F half-edges
+    const int tw = c.mesh.twin(h);
+    // The ends a, b in h's triangle and the same ends a2, b2 in the twin's.
+    const Point2q &a = c.corner(h), &b = c.corner(TriMesh::next(h));
+    const Point2q &b2 = c.corner(tw), &a2 = c.corner(TriMesh::next(tw));
+    // Inside a chart (the same UVs on both sides): k = 0, t = 0.
+    if (a.x == a2.x && a.y == a2.y && b.x == b2.x && b.y == b2.y) continue;
+    ex = b.x - a.x;
+    ey = b.y - a.y;
+    gx = b2.x - a2.x;
+    gy = b2.y - a2.y;
+    int found = -1;
+    for (int k = 0; k < 4 && found < 0; ++k) {  // bound: 4; (rx, ry) = R^k (ex, ey)
+      if (k == 0) {
+        rx = ex;
+        ry = ey;
+      } else {
+        std::swap(rx, ry);
+        rx = -rx;
+      }
+      if (rx == gx && ry == gy) found = k;
+    }
+    if (found < 0)
+      broken("the edge of half-edge " + std::to_string(h) + " has no rotation seam", h);
+    // t = a2 - R^k a
+    switch (found) {
+      case 0:
+        tx = a2.x - a.x;
+        ty = a2.y - a.y;
+        break;
+      case 1:
+        tx = a2.x + a.y;
+        ty = a2.y - a.x;
+        break;
+      case 2:
+        tx = a2.x + a.x;
+        ty = a2.y + a.y;
+        break;
+      default:
+        tx = a2.x - a.y;
+        ty = a2.y + a.x;
+        break;
+    }
+    if (!is_integer(tx) || !is_integer(ty))
+      broken("the seam of half-edge " + std::to_string(h) + " has no integer translation", h);
+    c.k[h] = static_cast<signed char>(found);
+    c.t[h] = {mpz_get_si(tx.get_num_mpz_t()), mpz_get_si(ty.get_num_mpz_t())};
+  }
+}
+
+// Step 2's start: per grid point its outgoing directions, counter-clockwise; slot s leaves grid
+// point point[s] in triangle face[s] along axis m[s] from the integer point start[s] of its chart.
+struct Slots {
+  std::vector<int> begin;  // per grid point, size points + 1
+  std::vector<int> point, face, m;
+  std::vector<Grid2> start;
+};
+
+// Appends the axis directions in the half-open wedge [a - o, b - o) counter-clockwise.
+void add_wedge(Slots& s, int point, int face, const Point2q& o, const Point2q& a, const Point2q& b,
+               const Grid2& at) {
+  bool in[4];
+  for (int m = 0; m < 4; ++m) in[m] = in_wedge(o, a, b, m);
+  int first = 0;
+  while (first < 4 && !(in[first] && !in[(first + 3) % 4])) ++first;  // bound: 4
+  if (first == 4) return;  // empty (a wedge of angle < 2 pi holds no full circle)
+  for (int i = 0; i < 4 && in[(first + i) % 4]; ++i) {  // bound: 4
+    s.point.push_back(point);
+    s.face.push_back(face);
+    s.m.push_back((first + i) % 4);
+    s.start.push_back(at);
+  }
+}
+
+Slots make_slots(const Charts& c, const GridPoints& gp) {
+  Slots s;
+  const int n = static_cast<int>(gp.points.size());
+  s.begin.reserve(n + 1);
+  Point2q o;
+  for (int p = 0; p < n; ++p) {  // bound: grid points
+    s.begin.push_back(static_cast<int>(s.point.size()));
+    const GridPoint& q = gp.points[p];
+    const std::array<Point2q, 3>& x = (*c.uv)[q.face];
+    if (q.kind == GridPointKind::Face) {
+      for (int m = 0; m < 4; ++m) {
+        s.point.push_back(p);
+        s.face.push_back(q.face);
+        s.m.push_back(m);
+        s.start.push_back(q.uv);
+      }
+    } else if (q.kind == GridPointKind::Edge) {
+      // The side's triangle from the side's direction to its reverse, then the twin's likewise.
+      const int he = 3 * q.face + q.local, tw = c.mesh.twin(he), g = tw / 3, i = tw % 3;
+      set_point(o, q.uv);
+      add_wedge(s, p, q.face, o, x[(q.local + 1) % 3], x[q.local], q.uv);
+      const Grid2 other = apply(c.k[he], q.uv, c.t[he]);
+      set_point(o, other);
+      add_wedge(s, p, g, o, (*c.uv)[g][(i + 1) % 3], (*c.uv)[g][i], other);
+      if (static_cast<int>(s.point.size()) - s.begin[p] != 4)
+        broken("grid point " + std::to_string(p) + " inside an edge of triangle " +
+                   std::to_string(q.face) + " has " +
+                   std::to_string(static_cast<int>(s.point.size()) - s.begin[p]) +
+                   " isoline directions, not 4",
+               p);
+    } else {
+      // Around the vertex counter-clockwise, each triangle's corner wedge in its own chart.
+      const int v = (*c.triangles)[q.face][q.local];
+      int face = q.face, corner = q.local;
+      for (int step = 0; step < c.degree[v]; ++step) {  // bound: the degree of v
+        const std::array<Point2q, 3>& y = (*c.uv)[face];
+        if (!is_integer(y[corner].x) || !is_integer(y[corner].y))
+          broken("vertex " + std::to_string(v) + " is a grid point in one triangle only", v);
+        const Grid2 at{mpz_get_si(y[corner].x.get_num_mpz_t()),
+                       mpz_get_si(y[corner].y.get_num_mpz_t())};
+        add_wedge(s, p, face, y[corner], y[(corner + 1) % 3], y[(corner + 2) % 3], at);
+        const int tw = c.mesh.twin(3 * face + (corner + 2) % 3);
+        face = tw / 3;
+        corner = tw % 3;
+      }
+      if (face != q.face || corner != q.local)
+        broken("the triangles around vertex " + std::to_string(v) + " do not close", v);
+      if (static_cast<int>(s.point.size()) == s.begin[p])
+        broken("grid point " + std::to_string(p) + " (vertex " + std::to_string(v) +
+                   ") has no isoline direction",
+               p);
+    }
+  }
+  s.begin.push_back(static_cast<int>(s.point.size()));
+  return s;
+}
+
+// The slot of grid point p leaving along the reverse of a trace's arrival `end`, or -1.
+int arrival_slot(const Charts& c, const Slots& s, int p, const isolines::TraceEnd& end,
+                 Point2q& scratch) {
+  Heading at = end.at;
+  at.m = (at.m + 2) & 3;
+  if (at.corner >= 0) {
+    // The reverse direction lies in at.face's closed wedge: this triangle's or the next one's.
+    at = isolines::turn_to_wedge(c, at, false);
+  } else if (end.side >= 0) {
+    const std::array<Point2q, 3>& x = (*c.uv)[at.face];
+    const int i = end.side;
+    set_point(scratch, at.target);
+    if (!in_wedge(scratch, x[(i + 1) % 3], x[i], at.m)) {  // the reverse points into the twin
+      const int he = 3 * at.face + i;
+      at.m = (at.m + c.k[he]) & 3;
+      at.face = c.mesh.twin(he) / 3;
+    }
+  }
+  for (int q = s.begin[p]; q < s.begin[p + 1]; ++q)  // bound: the valence of p
+    if (s.face[q] == at.face && s.m[q] == at.m) return q;
+  return -1;
+}
+
+}  // namespace
+
+IsolineResult extract_isolines(const IsolineInput& input, const IsolineOptions& options) {
+  const auto t_total = Clock::now();
+  if (options.max_grid_work < 1 || options.max_grid_work > (std::int64_t{1} << 28))
+    throw Error(ErrorKind::InvalidArgument,
+                "IsolineOptions::max_grid_work must be in 1..2^28, got " +
+                    std::to_string(options.max_grid_work));
+  IsolineResult result;
+  IsolineStats stats;
+  {
+    auto t0 = Clock::now();
+    certify::IgmInput cin;
+    cin.faces = input.triangles;
+    cin.num_vertices =
+        input.positions.empty() ? -1 : static_cast<std::int64_t>(input.positions.size());
+    cin.corner_uv.reserve(3 * input.corner_uv.size());
+    for (const auto& tri : input.corner_uv)
+      for (const Point2q& uv : tri) cin.corner_uv.push_back({uv.x, uv.y});
+    certify::Options copt;
+    copt.max_witnesses = options.max_witnesses;
+    result.report = certify::certify_igm(std::move(cin), copt);
+    stats.seconds_certify = seconds_since(t0);
+  }
+  if (!result.report.valid()) return result;
+
+  // The certified IGM: closed, manifold, oriented, connected, positive UV triangles, rigid seams.
+  auto t0 = Clock::now();
+  const int F = static_cast<int>(input.triangles.size());
+  int V = static_cast<int>(result.report.num_vertices);
+  Charts c;
+  c.triangles = &input.triangles;
+  c.uv = &input.corner_uv;
+  c.mesh = TriMesh::from_triangles(V, input.triangles);
+  c.degree.assign(V, 0);
+  for (const auto& tri : input.triangles)
+    for (int v : tri) ++c.degree[v];
+  c.floors.resize(3 * static_cast<std::size_t>(F));
+  mpz_class fl;
+  for (int f = 0; f < F; ++f)  // bound: F
+    for (int i = 0; i < 3; ++i)
+      for (int axis = 0; axis < 2; ++axis) {
+        const Rational& q = axis == 0 ? input.corner_uv[f][i].x : input.corner_uv[f][i].y;
+        if (mpq_cmp_si(q.get_mpq_t(), kMaxUv, 1UL) > 0 ||
+            mpq_cmp_si(q.get_mpq_t(), -kMaxUv, 1UL) < 0)
+          throw Error(ErrorKind::TooLarge,
+                      "extract_isolines: triangle " + std::to_string(f) +
+                          " has a UV coordinate beyond 2^60",
+                      {f});
+        mpz_fdiv_q(fl.get_mpz_t(), q.get_num_mpz_t(), q.get_den_mpz_t());
+        c.floors[3 * f + i].floor[axis] = mpz_get_si(fl.get_mpz_t());
+        c.floors[3 * f + i].integer[axis] = is_integer(q);
+      }
+  build_seams(c);
+  const GridPoints gp = find_grid_points(c, options.max_grid_work);
+  stats.rows_scanned = gp.rows;
+  const int n = static_cast<int>(gp.points.size());
+  if (n == 0) broken("no grid point on the surface (a valid IGM has one at least)", 0);
+  const Slots s = make_slots(c, gp);
+  stats.seconds_grid = seconds_since(t0);
+
+  // Step 2: trace every slot's unit segment; it must end at a grid point that sends it back.
+  t0 = Clock::now();
+  const int S = static_cast<int>(s.point.size());
+  std::vector<int> arrival(S, -1);
+  stats.trace_step_bound = gp.chords;
+  Point2q scratch;
+  for (int q = 0; q < S; ++q) {  // bound: slots; each trace bounded by trace_step_bound triangles
+    const int p = s.point[q];
+    Heading h{s.face[q], -1, s.m[q], Grid2{s.start[q].x + kDx[s.m[q]], s.start[q].y + kDy[s.m[q]]}};
+    const isolines::TraceEnd end = isolines::trace(c, h, gp.chords, p);
+    ++stats.traces;
+    stats.trace_steps += end.steps;
+    stats.max_trace_steps = std::max(stats.max_trace_steps, end.steps);
+    stats.vertex_crossings += end.vertex_crossings;
+    const int to = find_point(c, gp, end.at.face, end.at.corner, end.side, end.at.target);
+    if (to < 0)
+      broken("the isoline from grid point " + std::to_string(p) + " along its direction " +
+                 std::to_string(q - s.begin[p]) + " ends at (" + std::to_string(end.at.target.x) +
+                 ", " + std::to_string(end.at.target.y) + ") of triangle " +
+                 std::to_string(end.at.face) + ", which is no grid point found",
+             p);
+    arrival[q] = arrival_slot(c, s, to, end, scratch);
+    if (arrival[q] < 0 || arrival[q] == q)
+      broken("the isoline from grid point " + std::to_string(p) + " along its direction " +
+                 std::to_string(q - s.begin[p]) + " arrives at grid point " + std::to_string(to) +
+                 " along no direction of it",
+             p);
+  }
+  for (int q = 0; q < S; ++q)  // bound: slots
+    if (arrival[arrival[q]] != q)
+      broken("the isoline from grid point " + std::to_string(s.point[q]) + " along its direction " +
+                 std::to_string(q - s.begin[s.point[q]]) + " is not traced back to it",
+             s.point[q]);
+  stats.seconds_trace = seconds_since(t0);
+
+  // Step 3: the faces, each side followed by the next one clockwise from its reverse at its end.
+  t0 = Clock::now();
+  IsolineQuads out;
+  std::vector<int> edge_of(S, -1);
+  for (int q = 0; q < S; ++q)  // bound: slots
+    if (edge_of[q] < 0) edge_of[q] = edge_of[arrival[q]] = out.num_edges++;
+  std::vector<char> used(S, 0);
+  for (int q0 = 0; q0 < S; ++q0) {  // bound: slots
+    if (used[q0]) continue;
+    std::array<int, 4> quad{}, sides{};
+    int q = q0, len = 0;
+    for (; len < 4 && !used[q]; ++len) {  // bound: 4 sides (a face of another length is an error)
+      used[q] = 1;
+      quad[len] = s.point[q];
+      sides[len] = edge_of[q];
+      const int a = arrival[q], p = s.point[a], val = s.begin[p + 1] - s.begin[p];
+      q = s.begin[p] + (a - s.begin[p] + val - 1) % val;
+    }
+    if (len != 4 || q != q0)
+      broken("the isoline face from grid point " + std::to_string(s.point[q0]) +
+                 " along its direction " + std::to_string(q0 - s.begin[s.point[q0]]) +
+                 " is no quad",
+             s.point[q0]);
+    out.quads.push_back(quad);
+    out.quad_edges.push_back(sides);
+  }
+  const std::int64_t E = 3 * static_cast<std::int64_t>(F) / 2;
+  const std::int64_t chi = static_cast<std::int64_t>(V) - E + F;
+  const std::int64_t chi_quads =
+      n - static_cast<std::int64_t>(out.num_edges) + static_cast<std::int64_t>(out.quads.size());
+  if (chi_quads != chi)
+    broken("the quads have Euler characteristic " + std::to_string(chi_quads) + ", the IGM " +
+               std::to_string(chi),
+           0);
+  out.genus = static_cast<int>((2 - chi) / 2);
+
+  // The output: exact barycentric coordinates, valences, 3D positions.
+  out.vertices.resize(n);
+  isolines::FaceFrame frame;
+  for (int p = 0; p < n; ++p) {  // bound: grid points
+    const GridPoint& q = gp.points[p];
+    IsolineQuadVertex& v = out.vertices[p];
+    v.triangle = q.face;
+    v.kind = q.kind;
+    v.local = q.local;
+    v.uv = {q.uv.x, q.uv.y};
+    v.valence = s.begin[p + 1] - s.begin[p];
+    if (q.kind == GridPointKind::Vertex) {
+      for (int i = 0; i < 3; ++i) v.barycentric[i] = i == q.local ? 1 : 0;
+    } else {
+      if (frame.face != q.face) frame.set(q.face, input.corner_uv[q.face]);
+      frame.barycentric(q.uv, v.barycentric);
+    }
+    if (q.kind == GridPointKind::Vertex) ++stats.grid_points_on_vertices;
+    if (q.kind == GridPointKind::Edge) ++stats.grid_points_on_edges;
+    if (q.kind == GridPointKind::Face) ++stats.grid_points_in_faces;
+    if (v.valence != 4) ++stats.cones;
+  }
+  if (!input.positions.empty()) {
+    out.positions.reserve(n);
+    for (const IsolineQuadVertex& v : out.vertices) {  // bound: grid points
+      const std::array<int, 3>& t = input.triangles[v.triangle];
+      const double w[3] = {to_double(v.barycentric[0]), to_double(v.barycentric[1]),
+                           to_double(v.barycentric[2])};
+      Vec3d x;
+      for (int i = 0; i < 3; ++i) {
+        const Vec3d& p = input.positions[t[i]];
+        x.x += w[i] * p.x;
+        x.y += w[i] * p.y;
+        x.z += w[i] * p.z;
+      }
+      out.positions.push_back(x);
+    }
+  }
+  stats.seconds_quads = seconds_since(t0);
+  stats.seconds_total = seconds_since(t_total);
+  out.stats = stats;
+  result.quads = std::move(out);
+  return result;
+}
+
+}  // namespace igm
