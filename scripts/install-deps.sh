@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Installs every Debian 12 package igm needs to build, test and fuzz.
+# Installs every Debian 12 package igm needs to build, test and fuzz (GNU parallel: the test
+# of `igm batch` run by parallel).
 set -euo pipefail
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-PKGS="build-essential cmake libgmp-dev libboost-dev libeigen3-dev doctest-dev clang libclang-rt-14-dev"
+PKGS="build-essential cmake libgmp-dev libboost-dev libeigen3-dev doctest-dev clang libclang-rt-14-dev parallel"
 missing=""
 for p in $PKGS; do
   dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"

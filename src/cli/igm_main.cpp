@@ -17,6 +17,7 @@
 #include "igm/io/write_mesh.h"
 #include "igm/mesh/generate.h"
 #include "igm/mesh/validate.h"
+#include "batch_command.h"
 #include "run_command.h"
 
 namespace {
@@ -37,6 +38,7 @@ int cmd_help(const Args& args);
 int cmd_info(const Args& args);
 int cmd_generate(const Args& args);
 int cmd_run(const Args& args) { return igm_cli::run_command(args); }
+int cmd_batch(const Args& args) { return igm_cli::batch_command(args); }
 
 const Command kCommands[] = {
     {"run", "igm run MESH [-o DIR] [--resolution N] [--root V] [--normal-form [--restarts K|auto]]\n"
@@ -45,6 +47,12 @@ const Command kCommands[] = {
             "                                (genus 0: four pi-cones, --cones picks them as 0-based vertex ids)\n"
             "                                (writes DIR/NAME.igm.obj .igm.exact .quad.obj .cert.json .schema.svg; DIR=out)",
      cmd_run},
+    {"batch", "igm batch DIR|LIST|MESH -o OUT [-j N] [--timeout S] [--memory-mb M] [-- RUN OPTIONS]\n"
+              "                                `run` on every mesh of DIR (or of the LIST file, one path a line), each in\n"
+              "                                a process of its own with a time and memory limit; one JSON line per mesh\n"
+              "                                in OUT/results.jsonl (resumable; several batches may share OUT), a summary\n"
+              "  igm batch --summary -o OUT    the summary of OUT/results.jsonl",
+     cmd_batch},
     {"info", "igm info MESH                 read MESH (.obj .off .ply .stl), validate it, print what was found", cmd_info},
     {"generate", "igm generate --genus G --faces N [--seed S] OUT.(obj|off)\n"
                  "                                write a generated closed mesh of genus G with about N faces",
