@@ -16,11 +16,22 @@ struct Parser {
   void space() {
     while (i < s.size() && (s[i] == ' ' || s[i] == '\t' || s[i] == '\n' || s[i] == '\r')) ++i;
   }
-  // Moves past `bracket` if it is next.
-  bool close(char bracket) {
-    if (i >= s.size() || s[i] != bracket) return false;
+  // Moves past `ch` if it is next.
+  bool close(char ch) {
+    if (i >= s.size() || s[i] != ch) return false;
     ++i;
     return true;
+  }
+  // Comma-separated elements up to `bracket` (the opening one consumed), each parsed by one().
+  template <class One>
+  bool elements(char bracket, One&& one) {
+    space();
+    if (close(bracket)) return true;
+    for (;;) {  // bound: one element per round, each at least one byte of the text
+      if (!one()) return false;
+      space();
+      if (!close(',')) return close(bracket);
+    }
   }
   bool literal(std::string_view word) {
     if (s.substr(i, word.size()) != word) return false;
@@ -114,42 +125,27 @@ struct Parser {
     if (c == '{') {
       v.type = Json::Type::Object;
       ++i;
-      space();
-      if (close('}')) return true;
-      for (;;) {  // bound: one member per round, each at least 5 bytes of the text
-        space();
+      return elements('}', [&] {
         std::string key;
+        space();
         if (!string(key)) return false;
         space();
-        if (i >= s.size() || s[i] != ':') return false;
-        ++i;
+        if (!close(':')) return false;
         Json member;
         if (!value(member, depth + 1)) return false;
         v.members.emplace_back(std::move(key), std::move(member));
-        space();
-        if (i < s.size() && s[i] == ',') {
-          ++i;
-          continue;
-        }
-        return close('}');
-      }
+        return true;
+      });
     }
     if (c == '[') {
       v.type = Json::Type::Array;
       ++i;
-      space();
-      if (close(']')) return true;
-      for (;;) {  // bound: one item per round, each at least one byte of the text
+      return elements(']', [&] {
         Json item;
         if (!value(item, depth + 1)) return false;
         v.items.push_back(std::move(item));
-        space();
-        if (i < s.size() && s[i] == ',') {
-          ++i;
-          continue;
-        }
-        return close(']');
-      }
+        return true;
+      });
     }
     if (c == '"') {
       v.type = Json::Type::String;

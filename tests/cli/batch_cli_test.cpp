@@ -167,6 +167,11 @@ TEST_CASE("igm batch over a folder: a verdict per mesh, the summary's counts, --
   CHECK(s.code == 0);
   CHECK(summary_count(s.out, "certified") == 6);
   CHECK(summary_count(s.out, "invalid_input") == 2);
+  // OUT inside DIR: the runs' own .obj outputs are not taken for meshes of the job.
+  fs::rename(cwd / "out", in / "out");  // its lines name the meshes by their absolute paths still
+  const Proc inner = igm(cwd, {"batch", "in", "-o", "in/out"});
+  CHECK(inner.code == 0);
+  CHECK(has(inner.err, "[batch] 8 meshes, 8 done already, 0 to run"));
   fs::remove_all(cwd);
 }
 
