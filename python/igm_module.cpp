@@ -158,7 +158,8 @@ py::dict compute(const DoubleArray& v, const IndexArray& f, const py::kwargs& kw
                  "layout_quads"_a = st.layout_quads, "quads"_a = st.quads, "max_uv_bits"_a = st.max_uv_bits,
                  "stages"_a = stages);
   return py::dict("igm"_a = igm_out,
-                  "quads"_a = py::dict("vertices"_a = points_array(r.quads.positions), "quads"_a = array_of(r.quads.quads)),
+                  "quads"_a = py::dict("vertices"_a = points_array(r.quads.positions),
+                                       "quads"_a = array_of(r.quads.quads)),
                   "certificate"_a = py::dict("igm"_a = json_dict(igm::certify::to_json(r.igm_report)),
                                              "quad"_a = json_dict(igm::certify::to_json(r.quad_report))),
                   "certified"_a = r.certified(), "stats"_a = stats, "warnings"_a = mesh.warnings);
@@ -196,9 +197,11 @@ py::dict certify(const DoubleArray& v, const IndexArray& f, const py::object& uv
   // The UV table, exactly.
   std::vector<std::array<mpq_class, 2>> table;
   const py::array uv_array = py::array::ensure(uv);
-  if (uv_array && (uv_array.dtype().kind() == 'f' || uv_array.dtype().kind() == 'i' || uv_array.dtype().kind() == 'u')) {
+  const char kind = uv_array ? uv_array.dtype().kind() : 'O';
+  if (kind == 'f' || kind == 'i' || kind == 'u') {
     const DoubleArray d = DoubleArray::ensure(uv_array);
-    if (d.ndim() != 2 || d.shape(1) != 2) throw igm::Error(igm::ErrorKind::InvalidArgument, "UV must have shape (k, 2)");
+    if (d.ndim() != 2 || d.shape(1) != 2)
+      throw igm::Error(igm::ErrorKind::InvalidArgument, "UV must have shape (k, 2)");
     const auto a = d.unchecked<2>();
     for (py::ssize_t i = 0; i < a.shape(0); ++i) {
       if (!std::isfinite(a(i, 0)) || !std::isfinite(a(i, 1)))
@@ -254,9 +257,9 @@ py::tuple read_mesh(const std::string& path, bool validate) {
   if (!validate) {
     warn_all(soup.warnings);
     py::list faces;
+    const auto corner = [&](std::size_t k) { return soup.corners.begin() + static_cast<std::ptrdiff_t>(k); };
     for (std::size_t i = 0; i < soup.num_faces(); ++i)
-      faces.append(py::cast(std::vector<std::int64_t>(soup.corners.begin() + static_cast<std::ptrdiff_t>(soup.face_begin[i]),
-                                                      soup.corners.begin() + static_cast<std::ptrdiff_t>(soup.face_begin[i + 1]))));
+      faces.append(py::cast(std::vector<std::int64_t>(corner(soup.face_begin[i]), corner(soup.face_begin[i + 1]))));
     return py::make_tuple(points_array(soup.positions), faces);
   }
   warn_all(mesh.warnings);

@@ -24,8 +24,8 @@
 // V: certified (exit 0), rejected (exit 1: the certifier refused an output), invalid_input
 // (exit 2; error_kind is the igm::Error kind or "usage"), timeout, out_of_memory (the run's own
 // memory stop, a failed allocation, a start refused for memory, a signal before any output
-// under --memory-mb, or a SIGKILL not ours: the OOM killer), crashed (any other signal or exit code; error_kind "internal" for exit 3). quality
-// copies quality.quads.sj_median and sj_below_half from the run's NAME.cert.json when present.
+// under --memory-mb, or a SIGKILL not ours: the OOM killer), crashed (any other signal or exit
+// code; error_kind "internal" for exit 3). quality copies quality.quads.sj_median and sj_below_half from the run's NAME.cert.json when present.
 // Progress: a bar on stderr when it is a terminal, else one line per mesh. At the end (not in
 // the one-MESH form) a summary of the job's lines on stdout: counts by verdict, time and
 // quality quantiles; `--summary` prints it for every line of OUT/results.jsonl.
@@ -323,7 +323,8 @@ std::string json_line(const Child& c, const Outcome& o) {
   std::string l = "{\"file\": " + json_quote(c.key) + ", \"id\": " + json_quote(c.id) +
                   ", \"verdict\": " + json_quote(o.verdict) + ", \"exit\": " + opt_int(o.exit_code) +
                   ", \"signal\": " + opt_int(o.signal);
-  if (!o.error_kind.empty()) l += ", \"error_kind\": " + json_quote(o.error_kind) + ", \"error\": " + json_quote(o.error);
+  if (!o.error_kind.empty())
+    l += ", \"error_kind\": " + json_quote(o.error_kind) + ", \"error\": " + json_quote(o.error);
   l += ", \"seconds\": " + number(o.seconds, 3) + ", \"peak_mb\": " + number(o.peak_mb, 1);
   if (o.sj_median || o.sj_below_half) {
     l += ", \"quality\": {";

@@ -169,7 +169,8 @@ QuadSvgStats write_quad_svg(std::ostream& out, const QuadMesh& mesh, const QuadS
     const int val = valence[static_cast<std::size_t>(v)];
     if (val == 0 || val == 4) continue;
     ++stats.irregular[val];
-    if (last_quad[static_cast<std::size_t>(v)] != SIZE_MAX) marks_after[last_quad[static_cast<std::size_t>(v)]].push_back(v);
+    const std::size_t last = last_quad[static_cast<std::size_t>(v)];
+    if (last != SIZE_MAX) marks_after[last].push_back(v);
   }
 
   char buf[320];
@@ -199,7 +200,8 @@ QuadSvgStats write_quad_svg(std::ostream& out, const QuadMesh& mesh, const QuadS
   out << "</g>\n";
 
   // The legend: the quad count, the subset if any, one entry per valence present.
-  const int rows = 1 + (stats.quads_drawn < drawable ? 1 : 0) + std::max<int>(1, static_cast<int>(stats.irregular.size()));
+  const int rows = 1 + (stats.quads_drawn < drawable ? 1 : 0) +
+                   std::max<int>(1, static_cast<int>(stats.irregular.size()));
   std::snprintf(buf, sizeof buf,
                 "<g class=\"legend\" font-family=\"sans-serif\" font-size=\"13\">\n"
                 "<rect x=\"8\" y=\"8\" width=\"230\" height=\"%d\" fill=\"white\" fill-opacity=\"0.85\" "
