@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
-# Installs every Debian 12 package igm needs to build, test and fuzz.
+# Installs every Debian 12 package igm needs to build, test and fuzz (GNU parallel: the test
+# of `igm batch` run by parallel; pybind11 and python3-*: the Python module igm and its tests,
+# built for Debian's /usr/bin/python3).
 set -euo pipefail
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-PKGS="build-essential cmake libgmp-dev libboost-dev libeigen3-dev doctest-dev clang libclang-rt-14-dev"
+PKGS="build-essential cmake libgmp-dev libboost-dev libeigen3-dev doctest-dev clang libclang-rt-14-dev parallel
+  pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-dev python3-venv python3-pip python3-setuptools
+  python3-wheel"
 missing=""
 for p in $PKGS; do
   dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"

@@ -100,6 +100,17 @@ bool parse_index(std::string_view s, std::int64_t& out) {
   return true;
 }
 
+// A line that ends with a backslash (spaces, tabs or a CR may follow it) continues on the next
+// one: drops the backslash and what follows it and returns true. Comments are cut first, so a
+// backslash inside a comment continues nothing.
+bool drop_continuation(std::string_view& line) {
+  std::size_t n = line.size();
+  while (n > 0 && is_space(line[n - 1])) --n;  // bound: the line's length
+  if (n == 0 || line[n - 1] != '\\') return false;
+  line = line.substr(0, n - 1);
+  return true;
+}
+
 struct Fail {
   std::int64_t line;
   std::string msg;
@@ -147,43 +158,60 @@ ObjReadResult read_obj(std::string_view text) {
     out = idx - 1;
     return true;
   };
-  while (pos < text.size()) {  // bound: text.size(), every pass consumes >= 1 byte
+  // The next physical line without its comment; advances pos and line_no.
+  auto next_line = [&]() {
     std::size_t eol = text.find('\n', pos);
     if (eol == std::string_view::npos) eol = text.size();
     std::string_view line = text.substr(pos, eol - pos);
     pos = eol + 1;
     ++line_no;
     if (std::size_t hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+    return line;
+  };
+  std::string joined;  // a statement continued over several lines
+  while (pos < text.size()) {  // bound: text.size(), every pass consumes >= 1 byte
+    std::string_view line = next_line();
+    const std::int64_t stmt_line = line_no;  // errors name the statement's first line
+    if (drop_continuation(line)) {
+      joined.assign(line);
+      for (bool more = true; more && pos < text.size();) {  // bound: one physical line per round
+        std::string_view next = next_line();
+        more = drop_continuation(next);
+        joined.push_back(' ');
+        joined.append(next);
+      }
+      line = joined;
+    }
     tokenize(line, toks);
     if (toks.empty()) continue;
     const std::string_view kw = toks[0];
     const std::size_t nargs = toks.size() - 1;
     if (kw == "v") {
-      if (nargs < 3 || nargs > 7) return fail(line_no, "'v' needs 3 to 7 numbers, found " + std::to_string(nargs));
+      if (nargs < 3 || nargs > 7) return fail(stmt_line, "'v' needs 3 to 7 numbers, found " + std::to_string(nargs));
       for (std::size_t i = 1; i < toks.size(); ++i)
-        if (!number_syntax(toks[i])) return fail(line_no, "not a finite number: '" + excerpt(toks[i]) + "'");
+        if (!number_syntax(toks[i])) return fail(stmt_line, "not a finite number: '" + excerpt(toks[i]) + "'");
       ++m.num_vertices;
     } else if (kw == "vt") {
       if (nargs < 2 || nargs > 3)
-        return fail(line_no, "'vt' needs 2 or 3 numbers (u v [w]), found " + std::to_string(nargs));
+        return fail(stmt_line, "'vt' needs 2 or 3 numbers (u v [w]), found " + std::to_string(nargs));
       std::array<mpq_class, 2> uv;
       for (int k = 0; k < 2; ++k)
         if (!parse_exact(toks[1 + k], uv[k]))
-          return fail(line_no, "not an exact number (decimal or p/q): '" + excerpt(toks[1 + k]) + "'");
+          return fail(stmt_line, "not an exact number (decimal or p/q): '" + excerpt(toks[1 + k]) + "'");
       if (nargs == 3 && !number_syntax(toks[3]))
-        return fail(line_no, "not a finite number: '" + excerpt(toks[3]) + "'");
+        return fail(stmt_line, "not a finite number: '" + excerpt(toks[3]) + "'");
       m.uv.push_back(std::move(uv));
     } else if (kw == "vn") {
-      if (nargs != 3) return fail(line_no, "'vn' needs 3 numbers, found " + std::to_string(nargs));
+      if (nargs != 3) return fail(stmt_line, "'vn' needs 3 numbers, found " + std::to_string(nargs));
       for (std::size_t i = 1; i < toks.size(); ++i)
-        if (!number_syntax(toks[i])) return fail(line_no, "not a finite number: '" + excerpt(toks[i]) + "'");
+        if (!number_syntax(toks[i])) return fail(stmt_line, "not a finite number: '" + excerpt(toks[i]) + "'");
       ++num_vn;
     } else if (kw == "vp") {
-      if (nargs < 1 || nargs > 3) return fail(line_no, "'vp' needs 1 to 3 numbers");
+      if (nargs < 1 || nargs > 3) return fail(stmt_line, "'vp' needs 1 to 3 numbers");
       for (std::size_t i = 1; i < toks.size(); ++i)
-        if (!number_syntax(toks[i])) return fail(line_no, "not a finite number: '" + excerpt(toks[i]) + "'");
+        if (!number_syntax(toks[i])) return fail(stmt_line, "not a finite number: '" + excerpt(toks[i]) + "'");
     } else if (kw == "f") {
-      if (nargs < 3) return fail(line_no, "a face needs at least 3 corners, found " + std::to_string(nargs));
+      if (nargs < 3) return fail(stmt_line, "a face needs at least 3 corners, found " + std::to_string(nargs));
       for (std::size_t i = 1; i < toks.size(); ++i) {
         std::string_view t = toks[i];
         std::string_view parts[3];
@@ -191,36 +219,36 @@ ObjReadResult read_obj(std::string_view text) {
         std::size_t b = 0;
         for (std::size_t j = 0; j <= t.size(); ++j) {  // bound: token length
           if (j == t.size() || t[j] == '/') {
-            if (np == 3) return fail(line_no, "bad face corner '" + excerpt(t) + "'");
+            if (np == 3) return fail(stmt_line, "bad face corner '" + excerpt(t) + "'");
             parts[np++] = t.substr(b, j - b);
             b = j + 1;
           }
         }
         std::int64_t idx, r;
         if (!parse_index(parts[0], idx) || !resolve(idx, m.num_vertices, r))
-          return fail(line_no, "bad vertex index in '" + excerpt(t) + "'");
+          return fail(stmt_line, "bad vertex index in '" + excerpt(t) + "'");
         m.corner_vertex.push_back(static_cast<int>(r));
         if (np >= 2 && !parts[1].empty()) {
           if (!parse_index(parts[1], idx) || !resolve(idx, std::int64_t(m.uv.size()), r))
-            return fail(line_no, "bad texture index in '" + excerpt(t) + "'");
+            return fail(stmt_line, "bad texture index in '" + excerpt(t) + "'");
           m.corner_uv.push_back(static_cast<int>(r));
         } else if (np == 2) {
-          return fail(line_no, "empty texture index in '" + excerpt(t) + "'");
+          return fail(stmt_line, "empty texture index in '" + excerpt(t) + "'");
         } else {
           m.corner_uv.push_back(-1);
         }
         if (np == 3) {
           if (!parse_index(parts[2], idx) || !resolve(idx, num_vn, r))
-            return fail(line_no, "bad normal index in '" + excerpt(t) + "'");
-          corner_vn.emplace_back(r, line_no);
+            return fail(stmt_line, "bad normal index in '" + excerpt(t) + "'");
+          corner_vn.emplace_back(r, stmt_line);
         }
       }
       m.face_begin.push_back(std::int64_t(m.corner_vertex.size()));
-      m.face_line.push_back(line_no);
+      m.face_line.push_back(stmt_line);
     } else if (kw == "o" || kw == "g" || kw == "s" || kw == "usemtl" || kw == "mtllib") {
       // grouping and material statements: no geometry, ignored
     } else {
-      return fail(line_no, "unknown statement '" + excerpt(kw) + "'");
+      return fail(stmt_line, "unknown statement '" + excerpt(kw) + "'");
     }
   }
   // Positive indices may refer forward: check them against the final counts.

@@ -18,6 +18,7 @@
 #include "igm/mesh/generate.h"
 #include "igm/mesh/validate.h"
 #include "extract_command.h"
+#include "batch_command.h"
 #include "run_command.h"
 
 namespace {
@@ -39,6 +40,7 @@ int cmd_info(const Args& args);
 int cmd_generate(const Args& args);
 int cmd_run(const Args& args) { return igm_cli::run_command(args); }
 int cmd_extract(const Args& args) { return igm_cli::extract_command(args); }
+int cmd_batch(const Args& args) { return igm_cli::batch_command(args); }
 
 const Command kCommands[] = {
     {"run", "igm run MESH [-o DIR] [--quads Q | --edge-length H | --resolution N] [--layout spread|kite|paper]\n"
@@ -52,6 +54,12 @@ const Command kCommands[] = {
                 "                                the quad mesh of any IGM's integer isolines, exactly (the IGM certified\n"
                 "                                first; default output NAME.quad.obj)",
      cmd_extract},
+    {"batch", "igm batch DIR|LIST|MESH -o OUT [-j N] [--timeout S] [--memory-mb M] [-- RUN OPTIONS]\n"
+              "                                `run` on every mesh of DIR (or of the LIST file, one path a line), each in\n"
+              "                                a process of its own with a time and memory limit; one JSON line per mesh\n"
+              "                                in OUT/results.jsonl (resumable; several batches may share OUT), a summary\n"
+              "  igm batch --summary -o OUT    the summary of OUT/results.jsonl",
+     cmd_batch},
     {"info", "igm info MESH                 read MESH (.obj .off .ply .stl), validate it, print what was found", cmd_info},
     {"generate", "igm generate --genus G --faces N [--seed S] OUT.(obj|off)\n"
                  "                                write a generated closed mesh of genus G with about N faces",

@@ -1,7 +1,8 @@
 // Wavefront OBJ reader: `v x y z [w | r g b]` and `f` with v, v/vt, v//vn, v/vt/vn corners,
 // 1-based or negative (relative) indices, polygons, `#` comments, `\r\n` line ends and
-// backslash line continuations; every other statement (vt, vn, g, o, s, usemtl, l, ...) is
-// ignored. Cost O(bytes).
+// backslash line continuations (a backslash at the end of a line, spaces, tabs or a CR may
+// follow it; a comment runs to the end of its physical line, as in the certifier's reader);
+// every other statement (vt, vn, g, o, s, usemtl, l, ...) is ignored. Cost O(bytes).
 #include <string>
 
 #include "read_detail.h"
@@ -10,14 +11,20 @@ namespace igm::detail {
 
 namespace {
 
-// Skips spaces and backslash-newline continuations inside one logical line.
+// Skips spaces and backslash-newline continuations inside one logical line (spaces, tabs and
+// a CR may stand between the backslash and the newline; a backslash at the very end of the
+// file continues into nothing).
 void skip_obj_space(TextCursor& c) {
   for (;;) {  // each round consumes at least one byte or returns: bounded by the size
     c.skip_inline_space();
     if (c.p < c.end && *c.p == '\\') {
       const char* q = c.p + 1;
       while (q < c.end && is_space(*q)) ++q;
-      if (q < c.end && *q == '\n') {
+      if (q == c.end) {
+        c.p = q;
+        return;
+      }
+      if (*q == '\n') {
         c.p = q + 1;
         continue;
       }
@@ -41,7 +48,11 @@ PolygonSoup read_obj(std::string_view bytes) {
       c.next_line();
       continue;
     }
-    const std::string_view key = c.take_token();
+    // The keyword ends at a space, a comment or a backslash (a continuation after it).
+    const char* key_end = c.p;
+    while (key_end < c.end && !is_space_or_newline(*key_end) && *key_end != '#' && *key_end != '\\') ++key_end;
+    const std::string_view key(c.p, static_cast<std::size_t>(key_end - c.p));
+    c.p = key_end;
     if (key == "v") {
       double xyz[3];
       for (double& x : xyz) {
@@ -83,12 +94,13 @@ PolygonSoup read_obj(std::string_view bytes) {
         c.fail(ErrorKind::Parse, "face with " + std::to_string(face.size()) + " corners (at least 3 needed)");
       soup.add_face(face.begin(), face.end());
     }
-    // Ignore the rest of the statement (including continuation lines).
+    // Ignore the rest of the statement (including continuation lines; a comment runs to the
+    // end of its physical line, a backslash in it continues nothing).
     for (;;) {  // bounded: consumes bytes up to the end of the logical line
-      while (!c.at_eol() && *c.p != '\\') ++c.p;
+      while (!c.at_eol() && *c.p != '\\' && *c.p != '#') ++c.p;
       if (c.at_end()) break;
-      if (*c.p == '\n') {
-        ++c.p;
+      if (*c.p == '\n' || *c.p == '#') {
+        c.next_line();
         break;
       }
       const char* before = c.p;

@@ -3,8 +3,12 @@
 // double/float64 (and int64/uint64); list properties with any integer count type. The
 // `vertex` element gives x, y, z (any numeric type); the `face` element's list
 // `vertex_indices` (or `vertex_index`, any integer type) gives the polygons. Other
-// properties and elements are skipped. Declared counts are checked against the bytes that
-// remain before anything is reserved. Cost O(bytes).
+// properties and elements are skipped. Header lines: `comment` and `obj_info` are skipped;
+// a line of any other unknown first word (writers add some: Blender 2.47 wrote a bare
+// `Created by ...` line) is skipped with a warning naming its line, since it declares nothing;
+// a structural keyword (format, element, property, end_header) in other than lower case is
+// rejected, since skipping it would change the layout. Declared counts are checked against
+// the bytes that remain before anything is reserved. Cost O(bytes).
 #include <bit>
 #include <cstring>
 #include <string>
@@ -135,6 +139,22 @@ Value load_value(const unsigned char* p, Type t, bool swap) {
   return v;
 }
 
+// format, element, property or end_header in any case.
+bool structural_keyword(std::string_view key) {
+  std::string lower(key);
+  for (char& ch : lower)
+    if (ch >= 'A' && ch <= 'Z') ch = static_cast<char>(ch - 'A' + 'a');
+  return lower == "format" || lower == "element" || lower == "property" || lower == "end_header";
+}
+
+// A keyword for a message: at most 32 bytes, non-printable bytes as '?'.
+std::string printable(std::string_view s) {
+  std::string out(s.substr(0, 32));
+  for (char& ch : out)
+    if (static_cast<unsigned char>(ch) < 0x20 || static_cast<unsigned char>(ch) >= 0x7f) ch = '?';
+  return s.size() > 32 ? out + "..." : out;
+}
+
 // Role of each property of the vertex and face elements.
 enum class Role { Skip, X, Y, Z, Indices };
 
@@ -150,9 +170,14 @@ PolygonSoup read_ply(std::string_view bytes) {
   Format format = Format::Ascii;
   bool have_format = false, have_end = false;
   std::vector<Element> elements;
-  while (!c.at_end()) {  // one header line per round
+  PolygonSoup soup;
+  constexpr std::int64_t kMaxSkipWarnings = 10;  // then one line counts the rest
+  std::int64_t line = 1, skipped = 0;
+  while (!c.at_end()) {  // one header line per round (no call below crosses a newline)
+    ++line;
     c.skip_inline_space();
     const std::string_view key = c.take_token();
+    const bool known = key == "format" || key == "element" || key == "property" || key == "end_header";
     c.skip_inline_space();
     if (key == "format") {
       const std::string_view f = c.take_token();
@@ -200,15 +225,21 @@ PolygonSoup read_ply(std::string_view bytes) {
       break;
     } else if (key == "comment" || key == "obj_info" || key.empty()) {
       // ignored
+    } else if (structural_keyword(key)) {
+      c.fail(ErrorKind::Parse, "PLY header keyword '" + std::string(key) + "' must be lower case");
     } else {
-      c.fail(ErrorKind::Parse, "unknown PLY header keyword '" + std::string(key) + "'");
+      if (++skipped <= kMaxSkipWarnings)
+        soup.warnings.push_back("PLY header line " + std::to_string(line) + " skipped (unknown keyword '" +
+                                printable(key) + "')");
     }
     c.skip_inline_space();
-    if (key != "comment" && key != "obj_info" && !c.at_eol())
+    if (known && !c.at_eol())
       c.fail(ErrorKind::Parse, "unexpected text at the end of a header line");
     c.next_line();
   }
   if (!have_end) c.fail(ErrorKind::Parse, "PLY header without end_header (truncated?)");
+  if (skipped > kMaxSkipWarnings)
+    soup.warnings.push_back(std::to_string(skipped - kMaxSkipWarnings) + " more unknown PLY header lines skipped");
   if (!have_format) throw Error(ErrorKind::Parse, "PLY header without a format line");
 
   // --- roles ---
@@ -232,7 +263,6 @@ PolygonSoup read_ply(std::string_view bytes) {
       throw Error(ErrorKind::Parse, "PLY vertex element needs scalar properties x, y and z");
   }
 
-  PolygonSoup soup;
   std::vector<std::int64_t> face;
   const std::size_t body = static_cast<std::size_t>(c.p - bytes.data());
 

@@ -1,8 +1,10 @@
-// STL reader, ascii and binary. Detection: a file is binary when its size is exactly
-// 84 + 50 * (the triangle count at byte 80), unless it starts with "solid" and every byte is
-// printable text (an ascii file whose size happens to match); otherwise it is ascii when it
-// starts with "solid" and is text (or has "facet" in its first KB: non-ASCII names), and
-// rejected when not. Vertices with identical coordinates are
+// STL reader, ascii and binary, told apart by content, not by the case of the first word.
+// A file is binary when its size is exactly 84 + 50 * (the triangle count at byte 80), unless
+// it starts with "solid" and every byte is printable text (an ascii file whose size happens to
+// match); otherwise it is ascii when it starts with "solid" and is text (or has "facet" in its
+// first KB: non-ASCII names), and rejected when not. Ascii keywords (solid, facet, normal,
+// outer, loop, vertex, endloop, endfacet, endsolid) are compared case-insensitively: writers
+// such as admesh's examples write them in capitals. Vertices with identical coordinates are
 // welded (compared as values: -0 and +0 weld; NaN never welds). Cost O(bytes + T log T).
 #include <algorithm>
 #include <bit>
@@ -61,10 +63,30 @@ PolygonSoup weld(const std::vector<Vec3d>& corners, std::vector<std::size_t> fac
   return soup;
 }
 
+// ASCII case-insensitive equality with a lower-case keyword.
+bool keyword_is(std::string_view token, std::string_view lower_keyword) {
+  if (token.size() != lower_keyword.size()) return false;
+  for (std::size_t i = 0; i < token.size(); ++i) {
+    const char c = token[i] >= 'A' && token[i] <= 'Z' ? static_cast<char>(token[i] - 'A' + 'a') : token[i];
+    if (c != lower_keyword[i]) return false;
+  }
+  return true;
+}
+
+// The first word is "solid" in any case, followed by whitespace or the end of the file.
 bool starts_with_solid(std::string_view b) {
   std::size_t i = 0;
   while (i < b.size() && is_space_or_newline(b[i])) ++i;
-  return b.substr(i, 5) == "solid";
+  const std::size_t end = std::min(b.size(), i + 5);
+  return keyword_is(b.substr(i, 5), "solid") && (end == b.size() || is_space_or_newline(b[end]));
+}
+
+// "facet" (any case) somewhere in the first KB.
+bool early_facet(std::string_view b) {
+  const std::string_view head = b.substr(0, 1024);
+  for (std::size_t i = 0; i + 5 <= head.size(); ++i)  // bound: 1 KB
+    if (keyword_is(head.substr(i, 5), "facet")) return true;
+  return false;
 }
 
 bool all_text(std::string_view b) {
@@ -101,19 +123,20 @@ PolygonSoup read_ascii(std::string_view bytes) {
   const char* loop_at = c.p;
   while (!c.at_end()) {  // one line per round
     c.skip_inline_space();
-    const std::string_view key = c.take_token();
-    if (key == "solid") {
+    const std::string_view token = c.take_token();
+    const auto key = [token](std::string_view lower_keyword) { return keyword_is(token, lower_keyword); };
+    if (key("solid")) {
       if (in_solid) c.fail(ErrorKind::Parse, "'solid' inside a solid");
       in_solid = true;
-    } else if (key == "endsolid") {
+    } else if (key("endsolid")) {
       if (!in_solid || in_loop) c.fail(ErrorKind::Parse, "unexpected 'endsolid'");
       in_solid = false;
-    } else if (key == "outer") {
+    } else if (key("outer")) {
       if (!in_solid || in_loop) c.fail(ErrorKind::Parse, "unexpected 'outer loop'");
       in_loop = true;
       loop_start = corners.size();
       loop_at = c.p;
-    } else if (key == "vertex") {
+    } else if (key("vertex")) {
       if (!in_loop) c.fail(ErrorKind::Parse, "'vertex' outside 'outer loop'");
       double xyz[3];
       for (double& x : xyz) {
@@ -123,17 +146,17 @@ PolygonSoup read_ascii(std::string_view bytes) {
         c.p = q;
       }
       corners.push_back({xyz[0], xyz[1], xyz[2]});
-    } else if (key == "endloop") {
+    } else if (key("endloop")) {
       if (!in_loop) c.fail(ErrorKind::Parse, "unexpected 'endloop'");
       if (corners.size() - loop_start < 3)
         throw_at_line(ErrorKind::Parse, bytes, loop_at,
                       "facet with " + std::to_string(corners.size() - loop_start) + " vertices (at least 3 needed)");
       face_begin.push_back(corners.size());
       in_loop = false;
-    } else if (key == "facet" || key == "endfacet" || key.empty()) {
-      if (key == "facet" && (!in_solid || in_loop)) c.fail(ErrorKind::Parse, "unexpected 'facet'");
+    } else if (key("facet") || key("endfacet") || token.empty()) {
+      if (key("facet") && (!in_solid || in_loop)) c.fail(ErrorKind::Parse, "unexpected 'facet'");
     } else {
-      c.fail(ErrorKind::Parse, "unknown STL keyword '" + std::string(key) + "'");
+      c.fail(ErrorKind::Parse, "unknown STL keyword '" + std::string(token) + "'");
     }
     c.next_line();
   }
@@ -160,7 +183,7 @@ PolygonSoup read_stl(std::string_view bytes) {
     }
     // A size mismatch: ascii if it starts with "solid" and looks like text (a non-ASCII byte in
     // a solid's name is allowed when "facet" appears early), else a broken binary file.
-    const bool ascii = text || (solid && bytes.substr(0, 1024).find("facet") != std::string_view::npos);
+    const bool ascii = text || (solid && early_facet(bytes));
     if (!ascii)
       throw_at_byte(expected > bytes.size() ? ErrorKind::TooLarge : ErrorKind::Parse, 80,
                     "binary STL declares " + std::to_string(n) + " triangles (" + std::to_string(expected) +

@@ -150,6 +150,7 @@ void radix_sort(std::vector<HalfKey>& v) {
 Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
   Analysis a;
   MeshReport& r = a.report;
+  r.warnings = soup.warnings;  // the reader's come first
   const std::size_t nv = soup.positions.size();
   const std::size_t nf = soup.face_begin.empty() ? 0 : soup.num_faces();
   r.vertices = static_cast<std::int64_t>(nv);

@@ -1,7 +1,9 @@
 // The certifier's own OBJ reader: exact vt, index forms, and errors naming the line.
 #include <doctest/doctest.h>
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "certify/certify.h"
 #include "certify/obj.h"
@@ -103,4 +105,36 @@ TEST_CASE("obj: a valid tetrahedron IGM from text is judged, not refused") {
   REQUIRE(r.genus.has_value());
   CHECK(*r.genus == 0);
   CHECK(r.check(1)->passed());
+}
+
+// Regression (issue 40): OBJ files with backslash continuations were refused ("bad vertex index
+// in '\'"). The smallest case: one face split over three lines, LF and CRLF, spaces after the
+// backslash, a continued vt.
+TEST_CASE("obj: backslash line continuations, also before CRLF") {
+  for (const std::string eol : {"\n", "\r\n"}) {
+    CAPTURE(eol.size());
+    const std::string text = "v 0 0 0" + eol + "v 1 0 0" + eol + "v 0 1 0" + eol + "v 0 0 1" + eol +
+                             "vt 1/3 \\" + eol + "  -22/7" + eol + "f 1/1 \\" + eol + "2/1\\  \t" + eol +
+                             "  3/1" + eol + "f 1 3 4" + eol;
+    const ObjReadResult r = read_obj(text);
+    INFO(r.error);
+    REQUIRE(r.ok);
+    REQUIRE(r.mesh.uv.size() == 1);
+    CHECK(r.mesh.uv[0][0] == mpq_class(1, 3));
+    CHECK(r.mesh.uv[0][1] == mpq_class(-22, 7));
+    REQUIRE(r.mesh.num_faces() == 2);
+    CHECK(r.mesh.corner_vertex == std::vector<int>{0, 1, 2, 0, 2, 3});
+    CHECK(r.mesh.corner_uv == std::vector<int>{0, 0, 0, -1, -1, -1});
+    CHECK(r.mesh.face_line == std::vector<std::int64_t>{7, 10});  // a statement's first line
+  }
+  // A backslash inside a comment continues nothing: the next line is a statement of its own.
+  ObjReadResult r = read_obj("v 0 0 0\nv 1 0 0\nv 0 1 0 # C:\\models\\\nf 1 2 3\n");
+  INFO(r.error);
+  REQUIRE(r.ok);
+  CHECK(r.mesh.num_faces() == 1);
+  // A backslash at the very end of the file continues into nothing.
+  CHECK(read_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 \\").ok);
+  // Still refused: a backslash that does not end its line, errors on the statement's first line.
+  CHECK(line_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 \\ 2 3\n") == 4);
+  CHECK(line_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 \\\n2 \\\n x\n") == 4);
 }

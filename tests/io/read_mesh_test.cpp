@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "certify/obj.h"
 #include "igm/core/error.h"
 #include "igm/io/read_mesh.h"
 #include "igm/mesh/validate.h"
@@ -407,6 +408,118 @@ TEST_CASE("STL: errors") {
       kind_of_read("solid x\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\nendsolid\n",
                    MeshFormat::Stl) == ErrorKind::Parse);
   CHECK(kind_of_read("solid x\nvertex 0 0 0\nendsolid\n", MeshFormat::Stl) == ErrorKind::Parse);
+}
+
+// Regression (issue 40): admesh's examples/block.stl, an ascii STL in capitals ("SOLID",
+// "FACET NORMAL", ...) whose bytes 80-83 are spaces, was taken for a broken binary file that
+// declares 0x20202020 = 538,976,288 triangles (too_large). The smallest such file: a tetrahedron
+// written the same way.
+TEST_CASE("STL: ascii in capitals is ascii, decided by content") {
+  std::string caps = "SOLID Untitled1\n";
+  for (const auto& t : tetra_tris()) {
+    caps += " FACET NORMAL  0.00000000E+00  0.00000000E+00  1.00000000E+00\n      OUTER LOOP\n";
+    for (const Vec3d& p : t)
+      caps += "      VERTEX  " + std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
+    caps += "    ENDLOOP\n ENDFACET\n";
+  }
+  caps += "ENDSOLID Untitled1\n";
+  REQUIRE(caps.substr(80, 4) == "    ");  // the binary count field reads 538,976,288
+  const PolygonSoup s = read_soup(caps, MeshFormat::Stl);
+  CHECK(s.positions.size() == 4);
+  CHECK(s.num_faces() == 4);
+  CHECK(faces_of(s)[3] == std::vector<std::int64_t>{2, 1, 3});  // ids by first appearance
+  CHECK(validate(s).genus == 0);
+  // Mixed case too (keywords are case-insensitive), with CRLF.
+  std::string mixed = stl_ascii(tetra_tris());
+  mixed.replace(0, 5, "Solid");
+  mixed.replace(mixed.find("outer loop"), 10, "Outer Loop");
+  mixed.replace(mixed.find("vertex"), 6, "Vertex");
+  CHECK(read_soup(to_crlf(mixed), MeshFormat::Stl).num_faces() == 4);
+  // Still binary: a binary file whose 80-byte header starts with "SOLID" and whose size matches.
+  const std::string caps_bin = stl_binary(tetra_tris(), "SOLID binary in capitals");
+  CHECK(read_soup(caps_bin, MeshFormat::Stl).positions.size() == 4);
+  // Still refused: that binary file truncated (a size error, not ascii noise), a header word
+  // that only starts with "solid", an unknown keyword.
+  CHECK(kind_of_read(caps_bin.substr(0, caps_bin.size() - 7), MeshFormat::Stl) == ErrorKind::TooLarge);
+  const std::string works_bin = stl_binary(tetra_tris(), "solidworks export");
+  CHECK(kind_of_read(works_bin.substr(0, works_bin.size() - 7), MeshFormat::Stl) == ErrorKind::TooLarge);
+  CHECK(kind_of_read("SOLIDX\nENDSOLID\n", MeshFormat::Stl) == ErrorKind::Parse);
+  std::string bad = caps;
+  bad.replace(bad.find("ENDLOOP"), 7, "ENDLOOQ");
+  CHECK(kind_of_read(bad, MeshFormat::Stl) == ErrorKind::Parse);
+}
+
+// Regression (issue 40): a PLY whose header has a line a writer added without the `comment`
+// keyword (Blender 2.47's "Created by ...") was refused as an unknown keyword. Such a line
+// declares nothing: it is skipped with a warning that names it; validation passes it on.
+TEST_CASE("PLY: unknown header lines are skipped with a warning") {
+  const std::string body = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  const std::string tail =
+      "element vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 4\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string ply = "ply\nformat ascii 1.0\nCreated by Blender 2.47 - www.blender.org\n" + tail + body;
+  const PolygonSoup s = read_soup(ply, MeshFormat::Ply);
+  CHECK(s.num_faces() == 4);
+  REQUIRE(s.warnings.size() == 1);
+  CHECK(s.warnings[0] == "PLY header line 3 skipped (unknown keyword 'Created')");
+  const ValidMesh m = validate(s);
+  CHECK(m.genus == 0);
+  CHECK(m.warnings == s.warnings);
+  CHECK(inspect(s).warnings == s.warnings);
+  // comment and obj_info lines are the format's own: no warning.
+  CHECK(read_soup("ply\nformat ascii 1.0\ncomment x\nobj_info y\n" + tail + body, MeshFormat::Ply).warnings.empty());
+  // In a binary file too, and with CRLF header lines (the line number counts physical lines).
+  Bin b;
+  for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f}) b.put(v);
+  const int tris[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  for (const auto& t : tris) {
+    b.put(std::uint8_t{3});
+    for (int v : t) b.put(std::int32_t{v});
+  }
+  const std::string bin =
+      to_crlf("ply\nformat binary_little_endian 1.0\ncomment ok\nexported by someone\n" + tail) + b.s;
+  const PolygonSoup sb = read_soup(bin, MeshFormat::Ply);
+  CHECK(sb.num_faces() == 4);
+  REQUIRE(sb.warnings.size() == 1);
+  CHECK(sb.warnings[0] == "PLY header line 4 skipped (unknown keyword 'exported')");
+  // Many unknown lines: ten warnings name their lines, one counts the rest.
+  std::string many = "ply\nformat ascii 1.0\n";
+  for (int i = 0; i < 25; ++i) many += "junk line\n";
+  const PolygonSoup sm = read_soup(many + tail + body, MeshFormat::Ply);
+  REQUIRE(sm.warnings.size() == 11);
+  CHECK(sm.warnings[9] == "PLY header line 12 skipped (unknown keyword 'junk')");
+  CHECK(sm.warnings[10] == "15 more unknown PLY header lines skipped");
+  // Still refused: a structural keyword in other than lower case (skipping it would change the
+  // layout), a misspelt property type, a header without end_header.
+  std::string upper = "ply\nformat ascii 1.0\n" + tail + body;
+  upper.replace(upper.find("property float z"), 8, "PROPERTY");
+  Error e = error_of([&] { read_soup(upper, MeshFormat::Ply); }, ErrorKind::Parse);
+  CHECK(e.elements() == std::vector<std::int64_t>{6});
+  std::string typo = "ply\nformat ascii 1.0\n" + tail + body;
+  typo.replace(typo.find("float z"), 5, "flaot");
+  CHECK(kind_of_read(typo, MeshFormat::Ply) == ErrorKind::Parse);
+  CHECK(kind_of_read("ply\nformat ascii 1.0\nCreated by me\n", MeshFormat::Ply) == ErrorKind::Parse);
+}
+
+// Regression (issue 40): backslash continuations, also before CRLF, were refused by the
+// certifier's OBJ reader; both OBJ readers must read the same faces from such a file.
+TEST_CASE("OBJ: continuations read alike by this reader and the certifier's") {
+  for (const std::string eol : {"\n", "\r\n"}) {
+    CAPTURE(eol.size());
+    const std::string text = "v 0 0 0" + eol + "v 1 0 0 \\" + eol + "# a comment ends its line \\" + eol +
+                             "v 0 1 0" + eol + "v 0 0 1" + eol + "f 1 3 \\" + eol + " 2" + eol + "f 1 2\\ " + eol +
+                             "4" + eol + "f 1 \\" + eol + "4 \\" + eol + "3" + eol + "f 2 3 4 \\";
+    const PolygonSoup s = read_soup(text, MeshFormat::Obj);
+    const certify::ObjReadResult c = certify::read_obj(text);
+    INFO(c.error);
+    REQUIRE(c.ok);
+    CHECK(static_cast<std::int64_t>(s.positions.size()) == c.mesh.num_vertices);
+    CHECK(s.positions.size() == 4);
+    std::vector<int> ours(s.corners.begin(), s.corners.end());
+    CHECK(ours == c.mesh.corner_vertex);
+    CHECK(ours == std::vector<int>{0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3});
+    CHECK(validate(s).genus == 0);
+  }
 }
 
 TEST_CASE("binary garbage never crashes a reader") {

@@ -1,6 +1,8 @@
 #pragma once
 // The certifier's own Wavefront OBJ reader. Reads v / vt / vn / vp / f (plus o g s usemtl mtllib,
-// ignored) with '#' comments; vt numbers exactly (decimal or p/q, see exact.h). Indices may be
+// ignored) with '#' comments (to the end of the physical line) and backslash line continuations
+// (a line ending in '\', spaces, tabs or a CR after it, continues on the next one; errors name
+// the statement's first line); vt numbers exactly (decimal or p/q, see exact.h). Indices may be
 // negative (relative to the elements defined so far); positive indices are resolved after the
 // whole file is read. Every allocation is proportional to the text actually present.
 #include <array>

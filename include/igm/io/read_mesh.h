@@ -8,9 +8,11 @@
 // - OFF: [ST][C][N][n]OFF headers, counts on the keyword line or the next, `#` comments, blank
 //   lines, extra per-vertex / per-face values (colours, normals) ignored.
 // - PLY: ascii and binary, every scalar type for x/y/z, lists with any integer count/index
-//   types, other properties and elements skipped.
-// - STL: ascii and binary (binary when the size matches the declared triangle count, even if
-//   it starts with "solid"); vertices with equal coordinates are welded.
+//   types, other properties and elements skipped; header lines of an unknown keyword (some
+//   writers add a bare "Created by ...") skipped with a warning in PolygonSoup::warnings.
+// - STL: ascii and binary told apart by content (binary when the size is 84 + 50 n for the
+//   declared count n, even if it starts with "solid"; ascii keywords in any case, "SOLID" too);
+//   vertices with equal coordinates are welded.
 // Faces with fewer than 3 corners are rejected by the readers (Parse). Vertex ids are stored
 // 0-based; ids out of range are kept and reported by validation.
 #include <filesystem>

@@ -1,8 +1,9 @@
 #pragma once
 // A polygon soup as read from a file: positions and polygons (CSR layout), before validation.
 #include <cstddef>
-#include <initializer_list>
 #include <cstdint>
+#include <initializer_list>
+#include <string>
 #include <vector>
 
 #include "igm/exact/predicates.h"
@@ -13,6 +14,7 @@ struct PolygonSoup {
   std::vector<Vec3d> positions;
   std::vector<std::int64_t> corners;           // vertex ids, polygon after polygon (may be out of range before validation)
   std::vector<std::size_t> face_begin = {0};   // polygon f is corners[face_begin[f] .. face_begin[f+1])
+  std::vector<std::string> warnings;           // what a reader skipped (validation passes them on)
 
   std::size_t num_faces() const { return face_begin.size() - 1; }
   std::size_t face_size(std::size_t f) const { return face_begin[f + 1] - face_begin[f]; }

@@ -66,7 +66,7 @@ struct MeshReport {
   std::int64_t euler_characteristic = 0;           // V - E + F of the triangulated mesh (after repairs)
   int genus = -1;  // -1 unless the mesh is valid after repairs (closed, manifold, orientable, connected)
   std::vector<MeshProblem> problems;  // fatal problems in the order above (rejected if non-empty)
-  std::vector<std::string> warnings;  // repairs that validate() would apply
+  std::vector<std::string> warnings;  // the reader's skips, then the repairs validate() would apply
 };
 
 struct ValidateOptions {
@@ -80,7 +80,7 @@ struct ValidMesh {
   std::vector<Vec3d> positions;            // per vertex of `mesh`
   std::vector<std::int64_t> input_vertex;  // vertex of `mesh` -> vertex id in the input soup
   std::vector<std::int64_t> input_face;    // face of `mesh` -> polygon id in the input soup
-  std::vector<std::string> warnings;       // repairs applied
+  std::vector<std::string> warnings;       // the reader's (soup.warnings), then the repairs applied
   int genus = 0;
 };
 

@@ -1,0 +1,160 @@
+"""The Python module igm (python/igm_module.cpp), run by CTest python/pytest:
+PYTHONPATH=BUILD/python python3 -m pytest tests/python."""
+import threading
+import time
+import warnings
+from fractions import Fraction
+
+import numpy as np
+import pytest
+
+import igm
+
+
+def square_torus(n):
+    """The flat n x n torus split into 2 n^2 triangles, one UV row per corner with integer UVs:
+    a valid IGM (every transition a translation by an integer vector)."""
+    vid = lambda i, j: (j % n) * n + (i % n)  # noqa: E731
+    V = np.array([[i, j, 0.0] for j in range(n) for i in range(n)])
+    F, UV = [], []
+    for j in range(n):
+        for i in range(n):
+            for tri in (((i, j), (i + 1, j), (i + 1, j + 1)), ((i, j), (i + 1, j + 1), (i, j + 1))):
+                F.append([vid(a, b) for a, b in tri])
+                UV.extend([a, b] for a, b in tri)
+    F = np.array(F)
+    return V, F, np.array(UV, dtype=float), np.arange(3 * len(F)).reshape(-1, 3)
+
+
+def test_compute_on_a_generated_torus():
+    V, F = igm.generate(1, 200)
+    assert V.shape[1] == 3 and F.shape[1] == 3
+    r = igm.compute(V, F, resolution=3)
+    assert r["certified"] is True
+    st = r["stats"]
+    assert st["genus"] == 1 and st["input_vertices"] == len(V) and st["input_faces"] == len(F)
+    assert st["layout_quads"] == 1 and st["quads"] == 9  # one layout quad, 3 x 3
+    m = r["igm"]
+    assert m["faces"].shape == (st["output_triangles"], 3)
+    assert m["vertices"].shape == (st["output_vertices"], 3)
+    assert m["uv"].shape == (st["output_triangles"], 3, 2)
+    assert "uv_exact" not in m
+    assert r["quads"]["quads"].shape == (9, 4)
+    cert = r["certificate"]
+    assert cert["igm"]["verdict"] == "valid" and cert["quad"]["verdict"] == "valid"
+    assert cert["igm"]["mesh"]["genus"] == 1
+    assert [s["stage"] for s in st["stages"]][0] == "topology"
+
+
+def test_exact_uvs_are_the_rationals_the_doubles_round():
+    V, F = igm.generate(2, 300, seed=3)
+    r = igm.compute(V, F, exact=True)
+    assert r["certified"]
+    exact, uv = r["igm"]["uv_exact"], r["igm"]["uv"]
+    assert exact.shape == uv.shape and exact.dtype == object
+    for t in range(0, len(uv), 7):
+        for c in range(3):
+            for d in range(2):
+                q = Fraction(exact[t, c, d])
+                assert abs(float(q) - uv[t, c, d]) <= 1e-15 * max(1.0, abs(float(q)))
+    # The certifier's own reading of the exact UVs (one row per corner) accepts them.
+    T = len(r["igm"]["faces"])
+    verdict = igm.certify(r["igm"]["vertices"], r["igm"]["faces"], exact.reshape(-1, 2),
+                          np.arange(3 * T).reshape(-1, 3))
+    assert verdict["valid"] and verdict["report"]["mesh"]["genus"] == 2
+
+
+def test_options_map_and_unknown_or_mistyped_ones_raise_type_error():
+    V, F = igm.generate(1, 200)
+    assert igm.compute(V, F, resolution=5)["stats"]["quads"] == 25
+    with pytest.raises(TypeError, match="unexpected keyword argument 'resolutoin'"):
+        igm.compute(V, F, resolutoin=5)
+    with pytest.raises(TypeError, match="option 'resolution'"):
+        igm.compute(V, F, resolution="five")
+    with pytest.raises(igm.Error) as e:
+        igm.compute(V, F, resolution=0)
+    assert e.value.kind == "invalid_argument"
+    assert isinstance(e.value, ValueError)
+
+
+def test_bad_meshes_raise_igm_error_with_kind_and_elements():
+    V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], dtype=float)
+    with pytest.raises(igm.Error) as e:
+        igm.compute(V, np.array([[0, 1, 2]]))
+    assert e.value.kind == "boundary"
+    assert e.value.elements == [0]  # one face per boundary loop
+    with pytest.raises(igm.Error) as e:
+        igm.compute(V, np.array([[0, 1, 7]]))
+    assert e.value.kind == "index_out_of_range" and e.value.elements == [0]
+    with pytest.raises(igm.Error) as e:
+        igm.compute(V[:, :2], np.array([[0, 1, 2]]))
+    assert e.value.kind == "invalid_argument"
+
+
+def test_certify_floats_strings_and_fractions():
+    V, F, UV, FUV = square_torus(4)
+    ok = igm.certify(V, F, UV, FUV)
+    assert ok["valid"] and ok["verdict"] == "valid" and ok["report"]["mesh"]["genus"] == 1
+    strings = [[str(int(u)), f"{int(v) * 3}/3"] for u, v in UV]
+    assert igm.certify(V, F, strings, FUV)["valid"]
+    # One corner moved by 1/3: the transitions across its edges are no longer integer.
+    moved = [[Fraction(int(u)), Fraction(int(v))] for u, v in UV]
+    moved[1][0] += Fraction(1, 3)
+    bad = igm.certify(V, F, moved, FUV, max_witnesses=3)
+    assert not bad["valid"] and bad["verdict"] == "invalid"
+    transitions = [c for c in bad["report"]["checks"] if c["name"] == "transitions"][0]
+    assert transitions["status"] == "fail" and 1 <= len(transitions["witnesses"]) <= 3
+    with pytest.raises(igm.Error) as e:
+        igm.certify(V, F, [["1/0", "0"]] * len(UV), FUV)
+    assert e.value.kind == "parse"
+
+
+def test_read_mesh(tmp_path):
+    off = tmp_path / "tet.off"
+    off.write_text("OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n")
+    V, F = igm.read_mesh(str(off))
+    assert V.shape == (4, 3) and F.shape == (4, 3)
+    assert V[1].tolist() == [1.0, 0.0, 0.0]
+    ply = tmp_path / "tet.ply"
+    ply.write_text("ply\nformat ascii 1.0\nCreated by hand\nelement vertex 4\nproperty float x\nproperty float y\n"
+                   "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
+                   "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n")
+    with warnings.catch_warnings(record=True) as w:
+        warnings.simplefilter("always")
+        V, F = igm.read_mesh(str(ply))
+    assert [str(x.message) for x in w] == ["PLY header line 3 skipped (unknown keyword 'Created')"]
+    quad = tmp_path / "q.obj"
+    quad.write_text("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n")
+    V, F = igm.read_mesh(str(quad), validate=False)
+    assert F == [[0, 1, 2, 3]]
+    with pytest.raises(igm.Error) as e:
+        igm.read_mesh(str(quad))
+    assert e.value.kind == "boundary" and str(quad) in str(e.value)
+    bad = tmp_path / "bad.off"
+    bad.write_text("OFF\n3 1 0\n0 0 0\n1 x 0\n0 1 0\n3 0 1 2\n")
+    with pytest.raises(igm.Error) as e:
+        igm.read_mesh(str(bad))
+    assert e.value.kind == "parse" and e.value.elements == [4]  # the line
+
+
+def test_compute_releases_the_gil():
+    V, F = igm.generate(3, 8000, seed=2)
+    done = {}
+
+    def run():
+        t0 = time.perf_counter()
+        done["result"] = igm.compute(V, F)
+        done["seconds"] = time.perf_counter() - t0
+
+    worker = threading.Thread(target=run)
+    last = time.perf_counter()
+    worker.start()
+    longest_gap = 0.0
+    while worker.is_alive():  # this thread runs on while the worker computes: short gaps only
+        now = time.perf_counter()
+        longest_gap = max(longest_gap, now - last)
+        last = now
+    worker.join()
+    assert done["result"]["certified"]
+    assert done["seconds"] > 0.1
+    assert longest_gap < done["seconds"] / 2
