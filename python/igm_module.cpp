@@ -36,9 +36,32 @@ template <class T>
 Setter field(T igm::PipelineOptions::*member) {
   return [member](igm::PipelineOptions& o, py::handle v) { o.*member = v.cast<T>(); };
 }
+// A string option naming one of `names` (in the order of the enum's values).
+template <class E>
+Setter choice(E igm::PipelineOptions::*member, std::vector<std::pair<std::string, E>> names) {
+  return [member, names](igm::PipelineOptions& o, py::handle v) {
+    const std::string s = v.cast<std::string>();
+    for (const auto& [name, value] : names)
+      if (name == s) {
+        o.*member = value;
+        return;
+      }
+    std::string all;
+    for (const auto& [name, value] : names) all += (all.empty() ? "" : ", ") + name;
+    throw igm::Error(igm::ErrorKind::InvalidArgument, "'" + s + "' is not one of " + all);
+  };
+}
 const std::map<std::string, Setter>& option_setters() {
   static const std::map<std::string, Setter> setters = {
       {"resolution", field(&igm::PipelineOptions::resolution)},
+      {"edge_length", field(&igm::PipelineOptions::edge_length)},
+      {"quads", field(&igm::PipelineOptions::quads)},
+      {"layout", choice(&igm::PipelineOptions::layout, {{"spread", igm::LayoutKind::Spread},
+                                                         {"kite", igm::LayoutKind::Kite},
+                                                         {"paper", igm::LayoutKind::Paper}})},
+      {"map", choice(&igm::PipelineOptions::patch_map,
+                     {{"tutte", igm::PatchMapKind::Tutte}, {"affine", igm::PatchMapKind::Affine}})},
+      {"quality", field(&igm::PipelineOptions::quality)},
       {"root", field(&igm::PipelineOptions::root)},
       {"normal_form", field(&igm::PipelineOptions::normal_form)},
       {"restarts", field(&igm::PipelineOptions::restarts)},
@@ -155,13 +178,18 @@ py::dict compute(const DoubleArray& v, const IndexArray& f, const py::kwargs& kw
   py::dict stats("genus"_a = st.genus, "input_vertices"_a = st.input_vertices, "input_faces"_a = st.input_faces,
                  "refined_vertices"_a = st.refined_vertices, "refined_faces"_a = st.refined_faces,
                  "output_vertices"_a = st.output_vertices, "output_triangles"_a = st.output_triangles,
-                 "layout_quads"_a = st.layout_quads, "quads"_a = st.quads, "max_uv_bits"_a = st.max_uv_bits,
+                 "layout_quads"_a = st.layout_quads, "quads"_a = st.quads, "chords"_a = st.chords,
+                 "edge_length"_a = st.edge_length, "max_uv_bits"_a = st.max_uv_bits,
                  "stages"_a = stages);
   return py::dict("igm"_a = igm_out,
                   "quads"_a = py::dict("vertices"_a = points_array(r.quads.positions),
                                        "quads"_a = array_of(r.quads.quads)),
                   "certificate"_a = py::dict("igm"_a = json_dict(igm::certify::to_json(r.igm_report)),
                                              "quad"_a = json_dict(igm::certify::to_json(r.quad_report))),
+                  "quality"_a = options.quality
+                                    ? py::object(py::dict("igm"_a = json_dict(igm::to_json(r.igm_quality)),
+                                                          "quads"_a = json_dict(igm::to_json(r.quad_quality))))
+                                    : py::object(py::none()),
                   "certified"_a = r.certified(), "stats"_a = stats, "warnings"_a = mesh.warnings);
 }
 
@@ -299,7 +327,8 @@ PYBIND11_MODULE(_igm, m) {
   });
   m.def("compute", &compute, "V"_a, "F"_a,
         "compute(V, F, **options) -> dict: a certified IGM of the closed orientable mesh (V: (n, 3) floats,\n"
-        "F: (m, k) vertex ids, k >= 3). Options: resolution, root, normal_form, restarts, cones,\n"
+        "F: (m, k) vertex ids, k >= 3). Options: quads, edge_length, resolution, layout ('spread', 'kite',\n"
+        "'paper'), map ('tutte', 'affine'), quality, root, normal_form, restarts, cones,\n"
         "memory_limit_bytes, max_witnesses (igm::PipelineOptions), exact (also the UVs as 'p/q' strings).\n"
         "Returns {'igm': {'vertices', 'faces', 'uv' (t, 3, 2) [, 'uv_exact']}, 'quads': {'vertices', 'quads'},\n"
         "'certificate': {'igm', 'quad'} (the certifier's JSON), 'certified', 'stats', 'warnings'}.\n"

@@ -48,7 +48,8 @@ const Command kCommands[] = {
             "        [--memory-limit-mb M]\n"
             "                                the whole pipeline: certified IGM, quad mesh, certificate, schema picture\n"
             "                                (genus 0: four pi-cones, --cones picks them as 0-based vertex ids)\n"
-            "                                (writes DIR/NAME.igm.obj .igm.exact .quad.obj .cert.json .schema.svg; DIR=out)",
+            "                                (writes DIR/NAME.igm.obj .igm.exact .quad.obj .cert.json .schema.svg\n"
+            "                                .quad.svg; DIR=out)",
      cmd_run},
     {"extract", "igm extract IGM.obj|IGM.exact [-o QUAD.obj] [--json REPORT.json]\n"
                 "                                the quad mesh of any IGM's integer isolines, exactly (the IGM certified\n"

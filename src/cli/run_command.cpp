@@ -16,6 +16,7 @@
 #include "igm/mesh/generate.h"
 #include "igm/mesh/validate.h"
 #include "igm/output/igm_mesh.h"
+#include "igm/output/quad_svg.h"
 #include "igm/output/schema_svg.h"
 #include "igm/pipeline/pipeline.h"
 
@@ -35,7 +36,8 @@ int usage(const std::string& message) {
                "igm run: %s\nusage: igm run MESH [-o DIR] [--quads Q | --edge-length H | --resolution N]\n"
                "               [--layout spread|kite|paper] [--map tutte|affine] [--root V]\n"
                "               [--normal-form [--restarts K|auto]] [--cones A,B,C,D] [--memory-limit-mb M]\n"
-               "  writes DIR/NAME.igm.obj, NAME.igm.exact, NAME.quad.obj, NAME.cert.json, NAME.schema.svg\n"
+               "  writes DIR/NAME.igm.obj, NAME.igm.exact, NAME.quad.obj, NAME.cert.json, NAME.schema.svg,\n"
+               "  NAME.quad.svg (a shaded picture of the quads, cones marked by valence)\n"
                "  --quads Q       about Q quads (default %lld): each layout edge gets round(length / H) quads,\n"
                "                  H chosen so that the count is nearest to Q\n"
                "  --edge-length H quads of 3D edge length about H (in the mesh's units)\n"
@@ -109,6 +111,7 @@ int run_pipeline(const igm::ValidMesh& mesh, const std::string& name, const std:
   write_file(out(".igm.exact"), [&](std::ostream& s) { igm::write_igm_obj(s, r.igm, true); });
   write_file(out(".quad.obj"), [&](std::ostream& s) { igm::write_quad_obj(s, r.quads); });
   write_file(out(".schema.svg"), [&](std::ostream& s) { igm::write_schema_svg(s, r.schema); });
+  write_file(out(".quad.svg"), [&](std::ostream& s) { igm::write_quad_svg(s, r.quads); });
   write_file(out(".cert.json"), [&](std::ostream& s) {
     const igm::PipelineStats& st = r.stats;
     s << "{\n\"input\": {\"name\": \"" << json_escape(name) << "\", \"vertices\": " << st.input_vertices
@@ -135,7 +138,8 @@ int run_pipeline(const igm::ValidMesh& mesh, const std::string& name, const std:
       << "\"quad\": " << igm::certify::to_json(r.quad_report) << "}\n";
   });
   std::printf("[total]    %8.3f s  peak memory %.0f MB\n", total, peak_rss_mb());
-  std::printf("wrote %s/%s.{igm.obj,igm.exact,quad.obj,cert.json,schema.svg}\n", dir.string().c_str(), name.c_str());
+  std::printf("wrote %s/%s.{igm.obj,igm.exact,quad.obj,cert.json,schema.svg,quad.svg}\n", dir.string().c_str(),
+              name.c_str());
   if (!r.certified()) {
     std::printf("NOT CERTIFIED: %s | %s\n", igm::certify::summary(r.igm_report).c_str(),
                 igm::certify::summary(r.quad_report).c_str());

@@ -136,10 +136,11 @@ std::vector<SurfacePoint> take_locations(RefinedSurface& surface, std::size_t mo
   return locations;
 }
 
-Vec3d position_in_triangle(const IgmMesh& igm, int triangle, const std::array<Rational, 3>& w,
-                           const std::vector<Vec3d>& input_positions) {
+void add_quad_vertex(QuadMesh& quads, const IgmMesh& igm, int triangle, const std::array<Rational, 3>& w,
+                     const std::vector<Vec3d>& input_positions) {
   const std::array<int, 3>& t = igm.triangles[triangle];
-  return evaluate(barycentric_point(igm.locations[t[0]], igm.locations[t[1]], igm.locations[t[2]], w), input_positions);
+  quads.locations.push_back(barycentric_point(igm.locations[t[0]], igm.locations[t[1]], igm.locations[t[2]], w));
+  quads.positions.push_back(evaluate(quads.locations.back(), input_positions));
 }
 
 PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& options) {
@@ -313,8 +314,8 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
   QuadMesh& quads = result.quads;
   quads.quads = grid.quads;
   quads.positions.reserve(grid.vertices.size());
-  for (const GridVertex& v : grid.vertices)
-    quads.positions.push_back(position_in_triangle(igm, v.triangle, v.barycentric, surface.input_positions));
+  quads.locations.reserve(grid.vertices.size());
+  for (const GridVertex& v : grid.vertices) add_quad_vertex(quads, igm, v.triangle, v.barycentric, surface.input_positions);
   stats.quads = static_cast<int>(quads.quads.size());
   stage.done("extract", t0, format("%.0f quads, %.0f vertices", stats.quads, double(quads.positions.size())));
 

@@ -46,9 +46,10 @@ void certify_outputs(PipelineResult& result, int genus, const PipelineOptions& o
 /// room reserved for `more` further points. O(n).
 std::vector<SurfacePoint> take_locations(RefinedSurface& surface, std::size_t more = 0);
 
-/// The 3D position of the point with barycentric weights `w` in output triangle `triangle` of
-/// `igm` (exact location from igm.locations, then evaluate()). O(1) GMP operations.
-Vec3d position_in_triangle(const IgmMesh& igm, int triangle, const std::array<Rational, 3>& w,
-                           const std::vector<Vec3d>& input_positions);
+/// Appends to `quads` the vertex with barycentric weights `w` in output triangle `triangle` of
+/// `igm`: its exact location (from igm.locations) and its 3D position (evaluate()). O(1) GMP
+/// operations.
+void add_quad_vertex(QuadMesh& quads, const IgmMesh& igm, int triangle, const std::array<Rational, 3>& w,
+                     const std::vector<Vec3d>& input_positions);
 
 }  // namespace igm

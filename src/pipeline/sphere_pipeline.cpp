@@ -149,8 +149,9 @@ PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions&
   QuadMesh& quads = result.quads;
   quads.quads = grid.quads;
   quads.positions.reserve(grid.triangle.size());
+  quads.locations.reserve(grid.triangle.size());
   for (std::size_t v = 0; v < grid.triangle.size(); ++v)  // igm triangle f = disk triangle f, in output ids
-    quads.positions.push_back(position_in_triangle(igm, grid.triangle[v], grid.barycentric[v], surface.input_positions));
+    add_quad_vertex(quads, igm, grid.triangle[v], grid.barycentric[v], surface.input_positions);
   stats.quads = static_cast<int>(quads.quads.size());
   std::snprintf(line, sizeof line, "%d x %d per unit: %d quads, %zu vertices", n[0], n[1], stats.quads,
                 quads.positions.size());

@@ -86,8 +86,9 @@ TEST_CASE("igm without arguments runs the pipeline on a generated genus-2 mesh, 
   CHECK(has(r.out, "[certify ]"));
   CHECK(has(r.out, "certified: VALID"));
   const auto out = cwd / "out";
-  for (const char* suffix : {".igm.obj", ".igm.exact", ".quad.obj", ".cert.json", ".schema.svg"})
+  for (const char* suffix : {".igm.obj", ".igm.exact", ".quad.obj", ".cert.json", ".schema.svg", ".quad.svg"})
     CHECK(std::filesystem::file_size(out / (std::string("default-genus2") + suffix)) > 0);
+  CHECK(has(slurp(out / "default-genus2.quad.svg"), "<svg"));
   // The independent CLI on the written artefacts.
   const Run exact = in_folder(cwd, quote(IGM_CERTIFY_CLI_PATH) + " out/default-genus2.igm.exact");
   CHECK(exact.code == 0);

@@ -395,56 +395,42 @@ TEST_CASE("isolines: a trace may cross more than F triangles (slivers), within t
 
 namespace {
 
-// The pipeline as an oracle. Its IGM has one UV unit per layout quad (genus 0: the domain
-// [0,2] x [0,1]) and its quad mesh is the N x N grid of each: scaled by `scale` = N the IGM's
-// integer points are its quad vertices. When the IGM is on the quad grid itself, scale = 1.
-//
-// The pipeline gives its quad vertices as doubles (evaluate() of exact points, rounded toward
-// zero); the exact points are compared thus: the test's own grid search (brute_force_points) gives
-// the set G of exact surface points of the scaled IGM; the extractor's vertices must be G, once
-// each; evaluate() must be one-to-one on G; then each pipeline vertex, an exact point of G by the
-// pipeline's construction, is the one point of G with its double position, and the quads must be
-// the pipeline's under that matching.
-void check_against_pipeline(const ValidMesh& mesh, int N, bool certify_expected) {
+// The pipeline as an oracle: its IGM is on its quad mesh's grid (one UV unit per quad), so the
+// extractor must give the pipeline's quads, at the same exact points of the input surface
+// (QuadMesh::locations), under a matching of the vertices by their exact location. The test's own
+// grid search (brute_force_points) gives the set G of exact surface points of the IGM's integer
+// points; the extractor's vertices must be G, once each.
+void check_against_pipeline(const ValidMesh& mesh, int N) {
   PipelineOptions o;
   o.resolution = N;
+  o.quality = false;
   const PipelineResult r = compute_igm(mesh, o);
   INFO("genus " << mesh.genus << ", resolution " << N);
-  REQUIRE(r.igm_report.valid());
-  const int scale = N;
+  REQUIRE(r.certified());
   IsolineInput in;
   in.triangles = r.igm.triangles;
   in.corner_uv = r.igm.corner_uv;
-  in = affine(std::move(in), scale);
   const IsolineQuads q = extract_checked(in);
   CHECK(q.genus == mesh.genus);
   CHECK(q.quads.size() == r.quads.quads.size());
   CHECK(q.quads.size() == std::size_t(r.stats.layout_quads) * N * N);
-  CHECK(certify_result(q, mesh.genus).valid() == certify_expected);
+  CHECK(certify_result(q, mesh.genus).valid());
 
-  // G on the input surface, the extractor's vertices there, and their double positions.
   const std::set<std::string> grid = brute_force_points(in, &r.igm.locations);
   std::map<std::string, int> mine;
-  std::map<std::tuple<double, double, double>, int> by_position;
-  for (std::size_t v = 0; v < q.vertices.size(); ++v) {
-    const SurfacePoint p =
-        on_mesh(in.triangles[q.vertices[v].triangle], q.vertices[v].barycentric, &r.igm.locations);
-    mine.emplace(key(p), static_cast<int>(v));
-    const Vec3d x = evaluate(p, mesh.positions);
-    by_position.emplace(std::make_tuple(x.x, x.y, x.z), static_cast<int>(v));
-  }
+  for (std::size_t v = 0; v < q.vertices.size(); ++v)
+    mine.emplace(key(on_mesh(in.triangles[q.vertices[v].triangle], q.vertices[v].barycentric, &r.igm.locations)),
+                 static_cast<int>(v));
   REQUIRE(mine.size() == q.vertices.size());
   std::set<std::string> mine_keys;
   for (const auto& [k, v] : mine) mine_keys.insert(k);
   CHECK(mine_keys == grid);
-  REQUIRE(by_position.size() == grid.size());  // evaluate() one-to-one on G
-  REQUIRE(r.quads.positions.size() == q.vertices.size());
-  std::vector<int> match(r.quads.positions.size(), -1);
+  REQUIRE(r.quads.locations.size() == q.vertices.size());
+  std::vector<int> match(r.quads.locations.size(), -1);
   std::set<int> matched;
   for (std::size_t u = 0; u < match.size(); ++u) {
-    const Vec3d& x = r.quads.positions[u];
-    const auto it = by_position.find(std::make_tuple(x.x, x.y, x.z));
-    REQUIRE(it != by_position.end());
+    const auto it = mine.find(key(r.quads.locations[u]));
+    REQUIRE(it != mine.end());
     match[u] = it->second;
     matched.insert(it->second);
   }
@@ -461,14 +447,13 @@ void check_against_pipeline(const ValidMesh& mesh, int N, bool certify_expected)
 TEST_CASE(
     "isolines: the pipeline's genus-2 and genus-3 IGMs give the pipeline's quads at the same exact "
     "points") {
-  check_against_pipeline(igm_test::generated_mesh(2, 600, 7), 3, true);
-  check_against_pipeline(igm_test::generated_mesh(3, 900, 8), 4, true);
-  // resolution 1: one quad per layout quad, loops and multi-edges at the root (not certifiable)
-  check_against_pipeline(igm_test::generated_mesh(2, 600, 7), 1, false);
+  check_against_pipeline(igm_test::generated_mesh(2, 600, 7), 3);
+  check_against_pipeline(igm_test::generated_mesh(3, 900, 8), 4);
+  check_against_pipeline(igm_test::generated_mesh(2, 600, 7), 1);  // the spread layout: one quad per layout quad
 }
 
 TEST_CASE("isolines: the pipeline's genus-0 IGM (four pi-cones) gives the pipeline's quads") {
   const ValidMesh sphere = igm_test::generated_mesh(0, 600, 3);
-  check_against_pipeline(sphere, 1, true);
-  check_against_pipeline(sphere, 3, true);
+  check_against_pipeline(sphere, 1);
+  check_against_pipeline(sphere, 3);
 }

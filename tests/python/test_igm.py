@@ -72,7 +72,7 @@ def test_options_map_and_unknown_or_mistyped_ones_raise_type_error():
     with pytest.raises(TypeError, match="option 'resolution'"):
         igm.compute(V, F, resolution="five")
     with pytest.raises(igm.Error) as e:
-        igm.compute(V, F, resolution=0)
+        igm.compute(V, F, resolution=-1)
     assert e.value.kind == "invalid_argument"
     assert isinstance(e.value, ValueError)
 
@@ -158,3 +158,21 @@ def test_compute_releases_the_gil():
     assert done["result"]["certified"]
     assert done["seconds"] > 0.1
     assert longest_gap < done["seconds"] / 2
+
+
+def test_sizes_layouts_and_the_quality_report():
+    V, F = igm.generate(2, 600, seed=4)
+    r = igm.compute(V, F, quads=800, layout="spread")
+    assert r["certified"]
+    st = r["stats"]
+    assert abs(st["quads"] - 800) <= 200 and st["layout_quads"] == 20
+    q = r["quality"]
+    assert q["quads"]["quads"] == st["quads"] and q["igm"]["triangles"] == st["output_triangles"]
+    assert -1.0 <= q["quads"]["sj_median"] <= 1.0
+    k = igm.compute(V, F, layout="kite", map="affine", edge_length=1.0, quality=False)
+    assert k["certified"] and k["quality"] is None and k["stats"]["layout_quads"] == 8
+    with pytest.raises(igm.Error) as e:
+        igm.compute(V, F, layout="round")
+    assert e.value.kind == "invalid_argument"
+    with pytest.raises(TypeError):
+        igm.compute(V, F, quads="many")

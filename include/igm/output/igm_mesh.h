@@ -33,6 +33,9 @@ struct IgmMesh {
 struct QuadMesh {
   std::vector<Vec3d> positions;
   std::vector<std::array<int, 4>> quads;  // ccw
+  /// Per vertex, its exact location on the input surface (as IgmMesh::locations); positions[v] is
+  /// evaluate(locations[v]). Filled by compute_igm; the writers do not use it.
+  std::vector<SurfacePoint> locations;
 };
 
 /// Writes the IGM with double UVs (exact == false) or exact rational UVs (exact == true).
