@@ -3,8 +3,9 @@
 // template, the disk's affine map, N = 4 per layout edge, uniform Tutte weights and uniform side
 // parameters) against the layouts of layout/quad_layout.h with sizing and per-patch maps.
 // usage: igm_bench_layouts [--quads Q] [--config NAME ...] [--only MESH ...] [--generated G,G,...]
-//   configs: before, paper, kite, spread (default: all four); every output is certified or the
-//   line says NOT CERTIFIED.
+//   configs: before, paper, kite, spread, and the spread layout with one choice changed: s-udisk
+//   (uniform disk map, uniform sides), s-cotan, s-unif (cotangent or uniform patch weights),
+//   s-affine (the affine map); default: all. Every output is certified or the line says NOT CERTIFIED.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -42,11 +43,27 @@ std::vector<Config> configs(std::int64_t quads) {
     o.quads = quads;
     c.push_back({igm::to_string(kind), o});
   }
+  // Ablations of the default (spread): one choice changed each (docs/layouts.md).
+  igm::PipelineOptions o;
+  o.quads = quads;
+  o.disk_weights = igm::WeightKind::Uniform;
+  o.disk_arc_length = false;
+  c.push_back({"s-udisk", o});  // the disk's map with uniform weights and uniformly spaced sides
+  o = igm::PipelineOptions{};
+  o.quads = quads;
+  o.patch_weights = igm::WeightKind::Cotan;
+  c.push_back({"s-cotan", o});
+  o.patch_weights = igm::WeightKind::Uniform;
+  c.push_back({"s-unif", o});
+  o = igm::PipelineOptions{};
+  o.quads = quads;
+  o.patch_map = igm::PatchMapKind::Affine;
+  c.push_back({"s-affine", o});
   return c;
 }
 
 void header() {
-  std::printf("%-16s %-7s %6s %6s | %6s %6s %6s %6s %6s | %5s %5s | %7s %6s %6s | %6s %6s | %7s %7s %6s | %6s\n", "mesh",
+  std::printf("%-16s %-8s %6s %6s | %6s %6s %6s %6s %6s | %5s %5s | %7s %6s %6s | %6s %6s | %7s %7s %6s | %6s\n", "mesh",
               "config", "layout", "quads", "SJmed", "SJp5", "SJmin", "<0.5%", "<=0%", "dev50", "dev95", "ap95/5",
               "A/in", "half%", "dmax%", "d99%", "conf99", "area99", "SD", "sec");
 }
@@ -58,14 +75,14 @@ void run(const std::string& name, const igm::ValidMesh& mesh, const Config& c) {
     const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const igm::QuadQuality& q = r.quad_quality;
     const igm::IgmQuality& m = r.igm_quality;
-    std::printf("%-16s %-7s %6d %6d | %6.3f %6.3f %6.2f %6.1f %6.1f | %5.1f %5.1f | %7.1f %6.3f %6.1f | %6.2f %6.2f | %7.3g %7.3g %6.3g | %6.2f%s\n",
+    std::printf("%-16s %-8s %6d %6d | %6.3f %6.3f %6.2f %6.1f %6.1f | %5.1f %5.1f | %7.1f %6.3f %6.1f | %6.2f %6.2f | %7.3g %7.3g %6.3g | %6.2f%s\n",
                 name.c_str(), c.name.c_str(), r.stats.layout_quads, r.stats.quads, q.sj_median, q.sj_p5, q.sj_min,
                 100 * q.sj_below_half, 100 * q.sj_nonpositive, q.angle_deviation_median, q.angle_deviation_p95,
                 q.area_p95_over_p5, q.area_ratio, 100 * q.smallest_half_area, 100 * q.distance_max,
                 100 * q.distance_p99, m.conformal.p99, m.area.p99, m.symmetric_dirichlet, sec,
                 r.certified() ? "" : "  NOT CERTIFIED");
   } catch (const igm::Error& e) {
-    std::printf("%-16s %-7s error: %s\n", name.c_str(), c.name.c_str(), e.what());
+    std::printf("%-16s %-8s error: %s\n", name.c_str(), c.name.c_str(), e.what());
   }
   std::fflush(stdout);
 }

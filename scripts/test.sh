@@ -13,13 +13,13 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
-bash scripts/build.sh
+bash scripts/build.sh -DIGM_BUILD_BENCH=ON -DIGM_BUILD_PYTHON=ON
 ctest --test-dir "${IGM_BUILD_DIR:-build}" --output-on-failure -j "$(nproc)"
 
 if [ "${IGM_TEST_ASAN:-1}" != 0 ]; then
   ASAN_DIR="${IGM_ASAN_BUILD_DIR:-build-asan}"
   echo "[test] the whole suite again under AddressSanitizer + UndefinedBehaviorSanitizer ($ASAN_DIR)"
-  IGM_BUILD_DIR="$ASAN_DIR" IGM_BUILD_TYPE=RelWithDebInfo bash scripts/build.sh -DIGM_SANITIZE=ON -DIGM_BUILD_BENCH=OFF
+  IGM_BUILD_DIR="$ASAN_DIR" IGM_BUILD_TYPE=RelWithDebInfo bash scripts/build.sh -DIGM_SANITIZE=ON -DIGM_BUILD_BENCH=OFF -DIGM_BUILD_PYTHON=OFF
   # Any report fails the test: UBSan is built with -fno-sanitize-recover, ASan aborts on error.
   ASAN_OPTIONS="abort_on_error=1:detect_leaks=1" IGM_RANDOM_SCALE=0.25 \
   UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
