@@ -1,0 +1,333 @@
+#include "igm/smooth/smooth.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "igm/core/error.h"
+#include "igm/embed/sparse_cholesky.h"
+#include "symmetric_dirichlet.h"
+
+namespace igm {
+
+using smooth_detail::SdReference;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr int kMaxTrials = 64;          // trial steps per line search
+constexpr double kArmijo = 1e-4;        // sufficient decrease: E(x + a d) <= E(x) + kArmijo a g.d
+constexpr double kRegularization = 1e-9;  // times the mean diagonal, added to the Hessian
+constexpr int kMaxRegularizations = 6;  // each 1000 times the last, when a factorization fails
+
+// R^k as a matrix (R the rotation by +90 degrees): uv = R^k x + t, so d uv / d x = R^k.
+constexpr double kRot[4][2][2] = {{{1, 0}, {0, 1}}, {{0, -1}, {1, 0}}, {{-1, 0}, {0, -1}}, {{0, 1}, {-1, 0}}};
+
+void check_options(const SmoothOptions& o) {
+  auto bad = [](const std::string& what) { throw Error(ErrorKind::InvalidArgument, "smooth: " + what); };
+  if (o.max_iterations < 0) bad("max_iterations must be >= 0");
+  if (!(o.time_budget_seconds >= 0)) bad("time_budget_seconds must be >= 0");
+  if (!(o.tolerance >= 0)) bad("tolerance must be >= 0");
+  if (!(o.step_fraction > 0 && o.step_fraction < 1)) bad("step_fraction must be in (0, 1)");
+  if (!(o.min_reference_size > 0 && o.min_reference_size < 1)) bad("min_reference_size must be in (0, 1)");
+  if (!(o.min_reference_aspect > 0 && o.min_reference_aspect <= 1)) bad("min_reference_aspect must be in (0, 1]");
+}
+
+// The projected Newton iteration on the free (non-cone) vertex UVs of a grid map.
+class Smoother {
+ public:
+  Smoother(const SeamlessStructure& s, GridMap map, const std::vector<Vec3d>& positions,
+           const std::vector<std::array<int, 3>>& triangles, const SmoothOptions& options, SmoothStats& stats)
+      : s_(s), map_(std::move(map)), options_(options), stats_(stats) {
+    const int nv = s_.num_vertices();
+    var_.assign(nv, -1);
+    for (int v = 0; v < nv; ++v)
+      if (!s_.is_cone(v)) var_[v] = n_++;
+    stats_.free_vertices = n_;
+    stats_.cones = nv - n_;
+    grid_corners(s_, map_, corners_);
+    double uv_area = 0;
+    for (const auto& t : corners_) uv_area += ((t[1].x - t[0].x) * (t[2].y - t[0].y) - (t[1].y - t[0].y) * (t[2].x - t[0].x)) / 2;
+    smooth_detail::SdReferenceStats rs;
+    refs_ = smooth_detail::sd_references(positions, triangles, uv_area, options.min_reference_size,
+                                         options.min_reference_aspect, rs);
+    stats_.enlarged_references = rs.enlarged;
+    stats_.fattened_references = rs.fattened;
+  }
+
+  int free_vertices() const { return n_; }
+  const std::vector<std::array<Vec2d, 3>>& corners() const { return corners_; }
+  const GridMap& map() const { return map_; }
+
+  double energy(const std::vector<std::array<Vec2d, 3>>& corners) const {
+    double e = 0;
+    for (std::size_t f = 0; f < corners.size() && e < HUGE_VAL; ++f)
+      e += smooth_detail::sd_energy(refs_[f], corners[f][0], corners[f][1], corners[f][2]);
+    return e;
+  }
+
+  /// Runs the iterations from the current map; returns why it stopped.
+  SmoothStop run(Clock::time_point t0) {
+    double e = energy(corners_);
+    stats_.energy.push_back(e);
+    if (!std::isfinite(e)) {
+      stats_.reason = "the starting map's energy is not finite in doubles (a UV triangle too thin for them)";
+      return SmoothStop::NotStarted;
+    }
+    if (options_.on_iterate) options_.on_iterate({0, e, &corners_});
+    if (n_ == 0) return SmoothStop::NothingToMove;
+    build_pattern();
+    for (int it = 1; it <= options_.max_iterations; ++it) {
+      assemble();
+      Eigen::VectorXd d;
+      if (!solve(d)) return SmoothStop::NoDescent;
+      const double gd = gradient_.dot(d);
+      if (!(gd < 0)) return SmoothStop::NoDescent;
+      if (-gd / 2 <= options_.tolerance * e) return SmoothStop::Converged;
+      double step = 0;
+      if (!line_search(d, gd, e, step)) return SmoothStop::LineSearch;
+      stats_.iterations = it;
+      stats_.energy.push_back(e);
+      const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+      if (options_.on_iterate) options_.on_iterate({it, e, &corners_});
+      if (options_.progress) options_.progress({it, e, step, seconds});
+      if (options_.time_budget_seconds > 0 && seconds >= options_.time_budget_seconds) return SmoothStop::TimeBudget;
+    }
+    return SmoothStop::IterationBudget;
+  }
+
+ private:
+  // The 2n x 2n Hessian's pattern (variable 2 var(v) + j: coordinate j of x_v) in CSR form without
+  // the diagonal, and per face where each of its 36 corner-coordinate pairs goes: an index into
+  // the off-diagonal values, -2 - i for diagonal entry i, or -1 (a cone's coordinate).
+  void build_pattern() {
+    const int nf = s_.mesh.num_faces(), m = 2 * n_;
+    auto global = [&](int f, int a) {  // a = 2 i + j: coordinate j of corner i of face f
+      const int v = var_[s_.mesh.origin(3 * f + a / 2)];
+      return v < 0 ? -1 : 2 * v + a % 2;
+    };
+    std::vector<std::vector<int>> rows(m);
+    for (int f = 0; f < nf; ++f)
+      for (int a = 0; a < 6; ++a)
+        for (int b = 0; b < 6; ++b) {
+          const int ga = global(f, a), gb = global(f, b);
+          if (ga >= 0 && gb >= 0 && ga != gb) rows[ga].push_back(gb);
+        }
+    xadj_.assign(m + 1, 0);
+    adj_.clear();
+    for (int r = 0; r < m; ++r) {
+      std::sort(rows[r].begin(), rows[r].end());
+      rows[r].erase(std::unique(rows[r].begin(), rows[r].end()), rows[r].end());
+      adj_.insert(adj_.end(), rows[r].begin(), rows[r].end());
+      xadj_[r + 1] = static_cast<int>(adj_.size());
+    }
+    values_.assign(adj_.size(), 0.0);
+    diag_.assign(m, 0.0);
+    slots_.assign(nf, {});
+    for (int f = 0; f < nf; ++f)
+      for (int a = 0; a < 6; ++a)
+        for (int b = 0; b < 6; ++b) {
+          const int ga = global(f, a), gb = global(f, b);
+          int& slot = slots_[f][6 * a + b];
+          if (ga < 0 || gb < 0) slot = -1;
+          else if (ga == gb) slot = -2 - ga;
+          else slot = static_cast<int>(std::lower_bound(adj_.begin() + xadj_[ga], adj_.begin() + xadj_[ga + 1], gb) - adj_.begin());
+        }
+  }
+
+  // Gradient and projected Hessian at the current map, in the free vertices' coordinates:
+  // corner c of vertex v is R^k x_v + t, so its derivatives pull back by R^k.
+  void assemble() {
+    gradient_.setZero(2 * n_);
+    std::fill(values_.begin(), values_.end(), 0.0);
+    std::fill(diag_.begin(), diag_.end(), 0.0);
+    const int nf = s_.mesh.num_faces();
+    double g[6], h[36], gx[6], hx[36];
+    for (int f = 0; f < nf; ++f) {
+      smooth_detail::sd_derivatives(refs_[f], corners_[f], g, h);
+      const double(*R[3])[2];
+      int v[3];
+      for (int i = 0; i < 3; ++i) {
+        R[i] = kRot[map_.corner_motion[3 * f + i].k & 3];
+        v[i] = var_[s_.mesh.origin(3 * f + i)];
+      }
+      // gx_i = R_i^T g_i; hx_ij = R_i^T h_ij R_j
+      for (int i = 0; i < 3; ++i)
+        for (int r = 0; r < 2; ++r) gx[2 * i + r] = R[i][0][r] * g[2 * i] + R[i][1][r] * g[2 * i + 1];
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+          for (int r = 0; r < 2; ++r)
+            for (int c = 0; c < 2; ++c) {
+              double sum = 0;
+              for (int p = 0; p < 2; ++p)
+                for (int q = 0; q < 2; ++q) sum += R[i][p][r] * h[6 * (2 * i + p) + 2 * j + q] * R[j][q][c];
+              hx[6 * (2 * i + r) + 2 * j + c] = sum;
+            }
+      for (int i = 0; i < 3; ++i)
+        if (v[i] >= 0) {
+          gradient_[2 * v[i]] += gx[2 * i];
+          gradient_[2 * v[i] + 1] += gx[2 * i + 1];
+        }
+      for (int k = 0; k < 36; ++k) {
+        const int slot = slots_[f][k];
+        if (slot >= 0) values_[slot] += hx[k];
+        else if (slot <= -2) diag_[-2 - slot] += hx[k];
+      }
+    }
+  }
+
+  // d = -H^-1 g with H + mu I, mu = kRegularization * mean diagonal, raised while the
+  // factorization fails or the solution is not finite (at most kMaxRegularizations times).
+  bool solve(Eigen::VectorXd& d) {
+    double trace = 0;
+    for (double x : diag_) trace += x;
+    double mu = kRegularization * std::max(trace / static_cast<double>(diag_.size()), 1e-300);
+    std::vector<double> diag(diag_.size());
+    for (int attempt = 0; attempt < kMaxRegularizations; ++attempt, mu *= 1e3) {
+      for (std::size_t i = 0; i < diag.size(); ++i) diag[i] = diag_[i] + mu;
+      try {
+        solver_.factorize(xadj_, adj_, values_, diag);
+      } catch (const Error& e) {
+        if (e.kind() != ErrorKind::Internal) throw;
+        continue;  // not numerically positive definite: more regularization
+      }
+      Eigen::MatrixXd rhs = -gradient_;
+      solver_.solve(rhs);
+      d = rhs.col(0);
+      if (d.allFinite()) return true;
+    }
+    return false;
+  }
+
+  // Backtracking from step_fraction of the first degeneracy (capped at 1): accepts the first
+  // step whose grid map lowers the energy by Armijo's rule and has every triangle positive by
+  // the exact orient2d. Updates the map, its corners and e.
+  bool line_search(const Eigen::VectorXd& d, double gd, double& e, double& step) {
+    const int nf = s_.mesh.num_faces();
+    double first = std::numeric_limits<double>::infinity();
+    for (int f = 0; f < nf; ++f) {
+      std::array<Vec2d, 3> duv;
+      for (int i = 0; i < 3; ++i) {
+        const int c = 3 * f + i, v = var_[s_.mesh.origin(c)];
+        const Vec2d dv = v < 0 ? Vec2d{} : Vec2d{d[2 * v], d[2 * v + 1]};
+        const double(*R)[2] = kRot[map_.corner_motion[c].k & 3];
+        duv[i] = {R[0][0] * dv.x + R[0][1] * dv.y, R[1][0] * dv.x + R[1][1] * dv.y};
+      }
+      first = std::min(first, smooth_detail::first_degeneracy(corners_[f], duv));
+    }
+    double alpha = std::min(1.0, options_.step_fraction * first);
+    GridMap trial = map_;
+    const int nv = s_.num_vertices();
+    for (int t = 0; t < kMaxTrials; ++t, alpha /= 2, ++stats_.step_halvings) {
+      bool inside = true;
+      for (int v = 0; v < nv && inside; ++v) {
+        const int i = var_[v];
+        if (i < 0) continue;
+        const auto x = round_to_grid(map_.vertex_uv[v].x + alpha * d[2 * i], map_.grid);
+        const auto y = round_to_grid(map_.vertex_uv[v].y + alpha * d[2 * i + 1], map_.grid);
+        inside = x && y;
+        if (inside) trial.vertex_uv[v] = {*x, *y};
+      }
+      if (!inside) continue;
+      grid_corners(s_, trial, trial_corners_);
+      const double et = energy(trial_corners_);
+      if (!(et <= e + kArmijo * alpha * gd)) continue;
+      if (nonpositive_triangles(trial_corners_).count > 0) {
+        ++stats_.exact_rejections;
+        continue;
+      }
+      map_.vertex_uv.swap(trial.vertex_uv);
+      corners_.swap(trial_corners_);
+      e = et;
+      step = alpha;
+      return true;
+    }
+    return false;
+  }
+
+  const SeamlessStructure& s_;
+  GridMap map_;
+  const SmoothOptions& options_;
+  SmoothStats& stats_;
+  std::vector<int> var_;  // per vertex: its index among the free vertices, -1 at a cone
+  int n_ = 0;
+  std::vector<SdReference> refs_;
+  std::vector<std::array<Vec2d, 3>> corners_, trial_corners_;
+  std::vector<int> xadj_, adj_;
+  std::vector<double> values_, diag_;
+  SparseCholesky solver_;
+  Eigen::VectorXd gradient_;
+  std::vector<std::array<int, 36>> slots_;
+};
+
+}  // namespace
+
+const char* to_string(SmoothStop stop) {
+  switch (stop) {
+    case SmoothStop::Converged: return "converged";
+    case SmoothStop::IterationBudget: return "iteration_budget";
+    case SmoothStop::TimeBudget: return "time_budget";
+    case SmoothStop::NoDescent: return "no_descent";
+    case SmoothStop::LineSearch: return "line_search";
+    case SmoothStop::NothingToMove: return "nothing_to_move";
+    case SmoothStop::NotStarted: return "not_started";
+  }
+  return "?";
+}
+
+const char* to_string(SmoothReturned returned) {
+  switch (returned) {
+    case SmoothReturned::Smoothed: return "smoothed";
+    case SmoothReturned::InputOnGrid: return "input_on_grid";
+    case SmoothReturned::InputExact: return "input_exact";
+  }
+  return "?";
+}
+
+SmoothResult smooth_igm(const IgmMesh& igm, const SmoothOptions& options) {
+  const Clock::time_point t0 = Clock::now();
+  check_options(options);
+  for (std::size_t v = 0; v < igm.positions.size(); ++v) {
+    const Vec3d& p = igm.positions[v];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw Error(ErrorKind::NonFinite, "smooth: vertex " + std::to_string(v) + " has a non-finite position",
+                  {static_cast<std::int64_t>(v)});
+  }
+  const SeamlessStructure s = seamless_structure(igm);
+  SmoothResult result;
+  SmoothStats& stats = result.stats;
+  DyadicResult start = round_to_dyadic(igm, s);
+  stats.dyadic = start.stats;
+  if (!start.stats.on_grid) {
+    stats.stop = SmoothStop::NotStarted;
+    stats.returned = SmoothReturned::InputExact;
+    stats.reason = "the input stays exact: " + start.stats.reason;
+    result.corner_uv = std::move(start.corner_uv);
+  } else {
+    Smoother smoother(s, *round_to_grid(s), igm.positions, igm.triangles, options, stats);
+    stats.stop = smoother.run(t0);
+    stats.returned = stats.iterations > 0 ? SmoothReturned::Smoothed : SmoothReturned::InputOnGrid;
+    if (stats.reason.empty())
+      stats.reason = std::string("stopped: ") + to_string(stats.stop) + " after " + std::to_string(stats.iterations) +
+                     " iterations";
+    stats.reason += std::string("; returned ") + to_string(stats.returned);
+    if (stats.returned == SmoothReturned::Smoothed) {
+      result.corner_uv = to_exact(smoother.corners());
+      stats.dyadic.max_uv_bits = max_uv_bits(result.corner_uv);
+    } else {
+      result.corner_uv = std::move(start.corner_uv);
+    }
+  }
+  if (options.certify) {
+    result.report = certify::certify_igm(certify_input(igm, result.corner_uv));
+    stats.certified = result.report.valid();
+  }
+  stats.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  return result;
+}
+
+}  // namespace igm
