@@ -85,9 +85,8 @@ class Smoother {
       assemble();
       Eigen::VectorXd d;
       if (!solve(d)) return SmoothStop::NoDescent;
-      const double gd = gradient_.dot(d);
-      if (!(gd < 0)) return SmoothStop::NoDescent;
-      if (-gd / 2 <= options_.tolerance * e) return SmoothStop::Converged;
+      const double gd = gradient_.dot(d);  // -d^T H d: <= 0 up to rounding
+      if (!(-gd / 2 > options_.tolerance * e)) return gd <= 0 ? SmoothStop::Converged : SmoothStop::NoDescent;
       double step = 0;
       if (!line_search(d, gd, e, step)) return SmoothStop::LineSearch;
       stats_.iterations = it;
