@@ -48,6 +48,7 @@ GridMotion edge_transition(const TriMesh& m, const std::vector<std::array<Point2
   const Point2q& b_A = uv[h / 3][TriMesh::next(h) % 3];
   const Point2q& b_B = uv[ht / 3][ht % 3];
   const Point2q& a_B = uv[ht / 3][TriMesh::next(ht) % 3];
+  if (a_A.x == a_B.x && a_A.y == a_B.y && b_A.x == b_B.x && b_A.y == b_B.y) return {};  // one chart
   const double ex = approximate(b_A.x) - approximate(a_A.x), ey = approximate(b_A.y) - approximate(a_A.y);
   const double fx = approximate(b_B.x) - approximate(a_B.x), fy = approximate(b_B.y) - approximate(a_B.y);
   int first = 0;
@@ -154,7 +155,7 @@ SeamlessStructure seamless_structure(const IgmMesh& igm) {
       const int qb = quadrant(pv, uv[h / 3][TriMesh::prev(h) % 3]);
       index += (qb - qa + 4) & 3;
       const int across = TriMesh::prev(h);  // the edge (b, v) into the next corner's face
-      motion = compose(s.transition[across], motion);
+      if (!s.transition[across].is_identity()) motion = compose(s.transition[across], motion);
       h = m.twin(across);
       if (h == h0 || reached[h]) break;
     }

@@ -81,6 +81,7 @@ class Smoother {
     if (options_.on_iterate) options_.on_iterate({0, e, &corners_});
     if (n_ == 0) return SmoothStop::NothingToMove;
     build_pattern();
+    stats_.setup_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     for (int it = 1; it <= options_.max_iterations; ++it) {
       assemble();
       Eigen::VectorXd d;
@@ -322,8 +323,10 @@ SmoothResult smooth_igm(const IgmMesh& igm, const SmoothOptions& options) {
     }
   }
   if (options.certify) {
+    const Clock::time_point tc = Clock::now();
     result.report = certify::certify_igm(certify_input(igm, result.corner_uv));
     stats.certified = result.report.valid();
+    stats.certify_seconds = std::chrono::duration<double>(Clock::now() - tc).count();
   }
   stats.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return result;

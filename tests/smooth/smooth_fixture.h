@@ -2,11 +2,13 @@
 // Shared by tests/smooth: IGMs to derive, round and smooth, and the checks they share.
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "certify/certify.h"
 #include "generated_mesh.h"
+#include "igm/core/error.h"
 #include "igm/output/igm_mesh.h"
 #include "igm/pipeline/pipeline.h"
 #include "igm/smooth/seamless.h"
@@ -43,6 +45,26 @@ inline igm::IgmMesh pipeline_igm(int genus, std::int64_t faces, std::uint64_t se
 /// The independent certifier on the mesh of `igm` with the UVs `corner_uv`.
 inline igm::certify::Report certify_uv(const igm::IgmMesh& igm, const std::vector<std::array<igm::Point2q, 3>>& uv) {
   return igm::certify::certify_igm(igm::certify_input(igm, uv));
+}
+
+/// How many corner UVs differ between two maps of the same mesh (exactly).
+inline int changed_corners(const std::vector<std::array<igm::Point2q, 3>>& a,
+                           const std::vector<std::array<igm::Point2q, 3>>& b) {
+  int changed = 0;
+  for (std::size_t f = 0; f < a.size(); ++f)
+    for (int i = 0; i < 3; ++i) changed += a[f][i].x != b[f][i].x || a[f][i].y != b[f][i].y;
+  return changed;
+}
+
+/// The igm::Error that `run` throws, or nullopt if it returns.
+template <class Run>
+std::optional<igm::Error> error_of(Run run) {
+  try {
+    run();
+  } catch (const igm::Error& e) {
+    return e;
+  }
+  return std::nullopt;
 }
 
 /// "" if the seamless structures of two maps of the same mesh agree bit for bit on everything a

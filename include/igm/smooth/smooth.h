@@ -71,7 +71,9 @@ const char* to_string(SmoothReturned returned);
 struct SmoothStats {
   int iterations = 0;
   std::vector<double> energy;     // energy[0] of the starting map, energy[i] after iteration i
-  double seconds = 0;
+  double seconds = 0;             // all of smooth_igm, of which:
+  double setup_seconds = 0;       //   the structure, the grid, the references, the Hessian's pattern
+  double certify_seconds = 0;     //   the independent certifier
   SmoothStop stop = SmoothStop::NotStarted;
   SmoothReturned returned = SmoothReturned::InputExact;
   std::string reason;             // a sentence on why it stopped (and what was returned)
