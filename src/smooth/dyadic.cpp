@@ -82,11 +82,17 @@ void grid_corners(const SeamlessStructure& s, const GridMap& map, std::vector<st
     }
 }
 
-NonPositive nonpositive_triangles(const std::vector<std::array<Vec2d, 3>>& corners) {
-  NonPositive r;
+MapCheck check_map(const SeamlessStructure& s, const std::vector<std::array<Vec2d, 3>>& corners) {
+  MapCheck r;
   for (std::size_t f = 0; f < corners.size(); ++f)
     if (orient2d(corners[f][0], corners[f][1], corners[f][2]) != Sign::Positive) {
-      if (r.count++ == 0) r.first = static_cast<int>(f);
+      if (r.nonpositive++ == 0) r.first_nonpositive = static_cast<int>(f);
+    }
+  if (r.nonpositive > 0) return r;
+  const std::vector<int> angles = angle_indices(s.mesh, corners);
+  for (std::size_t v = 0; v < angles.size(); ++v)
+    if (angles[v] != s.angle_index[v]) {
+      if (r.angles_changed++ == 0) r.first_angle_changed = static_cast<int>(v);
     }
   return r;
 }
@@ -114,16 +120,20 @@ DyadicResult round_to_dyadic(const IgmMesh& igm, const SeamlessStructure& s) {
     r.stats.grid_exponent = map->grid.exponent;
     std::vector<std::array<Vec2d, 3>> corners;
     grid_corners(s, *map, corners);
-    const NonPositive bad = nonpositive_triangles(corners);
-    r.stats.nonpositive = bad.count;
-    r.stats.first_nonpositive = bad.first;
-    if (bad.count == 0) {
+    const MapCheck check = check_map(s, corners);
+    r.stats.nonpositive = check.nonpositive;
+    r.stats.first_nonpositive = check.first_nonpositive;
+    r.stats.angles_changed = check.angles_changed;
+    const std::string grid = "rounding to the grid of spacing 2^" + std::to_string(map->grid.exponent);
+    if (check.valid()) {
       r.corner_uv = to_exact(corners);
       r.stats.on_grid = true;
+    } else if (check.nonpositive > 0) {
+      r.stats.reason = grid + " makes " + std::to_string(check.nonpositive) +
+                       " triangles non-positive (the first: face " + std::to_string(check.first_nonpositive) + ")";
     } else {
-      r.stats.reason = "rounding to the grid of spacing 2^" + std::to_string(map->grid.exponent) + " makes " +
-                       std::to_string(bad.count) + " triangles non-positive (the first: face " +
-                       std::to_string(bad.first) + ")";
+      r.stats.reason = grid + " changes the angle of " + std::to_string(check.angles_changed) +
+                       " vertices (the first: vertex " + std::to_string(check.first_angle_changed) + ")";
     }
   } else {
     r.stats.reason = "no double grid holds the map: a translation of 2^51 or a vertex UV of 2^48 or more";

@@ -29,8 +29,28 @@ int quadrant(Sign sx, Sign sy) {
   return 3;
 }
 
+// Exact comparison of two coordinates.
+Sign order(const Rational& a, const Rational& b) { return compare(a, b); }
+Sign order(double a, double b) { return a < b ? Sign::Negative : (a > b ? Sign::Positive : Sign::Zero); }
+
 // Quadrant of b - a, exactly (comparisons only).
-int quadrant(const Point2q& a, const Point2q& b) { return quadrant(compare(b.x, a.x), compare(b.y, a.y)); }
+template <class P>
+int quadrant(const P& a, const P& b) {
+  return quadrant(order(b.x, a.x), order(b.y, a.y));
+}
+
+// Both overloads of angle_indices: per corner of a positive triangle (v, a, b), its wedge from
+// v->a to v->b crosses (q_b - q_a) mod 4 quadrant boundaries (at most 2: its angle is below pi).
+template <class P>
+std::vector<int> indices(const TriMesh& m, const std::vector<std::array<P, 3>>& uv) {
+  std::vector<int> index(m.num_vertices(), 0);
+  for (int c = 0; c < m.num_halfedges(); ++c) {
+    const std::array<P, 3>& t = uv[c / 3];
+    const P& v = t[c % 3];
+    index[m.origin(c)] += (quadrant(v, t[TriMesh::prev(c) % 3]) - quadrant(v, t[TriMesh::next(c) % 3]) + 4) & 3;
+  }
+  return index;
+}
 
 std::string vertex_name(int v) { return "vertex " + std::to_string(v); }
 
@@ -103,6 +123,14 @@ GridMotion inverse(const GridMotion& m) {
   return r;
 }
 
+std::vector<int> angle_indices(const TriMesh& mesh, const std::vector<std::array<Point2q, 3>>& corner_uv) {
+  return indices(mesh, corner_uv);
+}
+
+std::vector<int> angle_indices(const TriMesh& mesh, const std::vector<std::array<Vec2d, 3>>& corner_uv) {
+  return indices(mesh, corner_uv);
+}
+
 SeamlessStructure seamless_structure(const IgmMesh& igm) {
   const std::size_t nf = igm.triangles.size();
   if (igm.corner_uv.size() != nf)
@@ -132,7 +160,7 @@ SeamlessStructure seamless_structure(const IgmMesh& igm) {
     s.transition[m.twin(h)] = inverse(s.transition[h]);
   }
 
-  s.angle_index.assign(nv, 0);
+  s.angle_index = angle_indices(m, uv);
   s.reference_corner.assign(nv, -1);
   s.vertex_uv.resize(nv);
   s.corner_motion.resize(nh);
@@ -144,23 +172,18 @@ SeamlessStructure seamless_structure(const IgmMesh& igm) {
     s.vertex_uv[v] = uv[h0 / 3][h0 % 3];
     // Walk the fan from h0: at most nh steps (each corner is visited once, then the walk is back
     // at h0 or stops at a corner seen before).
-    int h = h0, index = 0;
+    int h = h0;
     GridMotion motion;  // identity at h0
     for (int steps = 0; steps <= nh; ++steps) {
       reached[h] = 1;
       s.corner_motion[h] = motion;
-      // This corner's wedge from v->a to v->b, a positive triangle: (q_b - q_a) mod 4 crossings.
-      const Point2q& pv = uv[h / 3][h % 3];
-      const int qa = quadrant(pv, uv[h / 3][TriMesh::next(h) % 3]);
-      const int qb = quadrant(pv, uv[h / 3][TriMesh::prev(h) % 3]);
-      index += (qb - qa + 4) & 3;
       const int across = TriMesh::prev(h);  // the edge (b, v) into the next corner's face
       if (!s.transition[across].is_identity()) motion = compose(s.transition[across], motion);
       h = m.twin(across);
       if (h == h0 || reached[h]) break;
     }
     if (h != h0) throw Error(ErrorKind::NonManifoldVertex, "the fan of " + vertex_name(v) + " does not close", {v});
-    s.angle_index[v] = index;
+    const int index = s.angle_index[v];
     if (index <= 0) invalid(vertex_name(v) + " has the angle index " + std::to_string(index) + " <= 0", {v});
     if (index == 4 && !motion.is_identity())
       invalid("the transitions around the regular " + vertex_name(v) + " do not compose to the identity", {v});

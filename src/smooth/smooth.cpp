@@ -204,8 +204,8 @@ class Smoother {
   }
 
   // Backtracking from step_fraction of the first degeneracy (capped at 1): accepts the first
-  // step whose grid map lowers the energy by Armijo's rule and has every triangle positive by
-  // the exact orient2d. Updates the map, its corners and e.
+  // step whose grid map lowers the energy by Armijo's rule and passes the exact checks (every
+  // triangle positive, every angle kept: check_map). Updates the map, its corners and e.
   bool line_search(const Eigen::VectorXd& d, double gd, double& e, double& step) {
     const int nf = s_.mesh.num_faces();
     double first = std::numeric_limits<double>::infinity();
@@ -236,7 +236,7 @@ class Smoother {
       grid_corners(s_, trial, trial_corners_);
       const double et = energy(trial_corners_);
       if (!(et <= e + kArmijo * alpha * gd)) continue;
-      if (nonpositive_triangles(trial_corners_).count > 0) {
+      if (!check_map(s_, trial_corners_).valid()) {
         ++stats_.exact_rejections;
         continue;
       }

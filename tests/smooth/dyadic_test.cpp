@@ -120,3 +120,27 @@ TEST_CASE("a sliver that rounding would flip keeps the exact map and says so") {
   CHECK(thick.stats.on_grid);
   CHECK(thick.stats.nonpositive == 0);
 }
+
+TEST_CASE("check_map: a flipped triangle, and an angle that is not the structure's") {
+  const SeamlessStructure s = seamless_structure(igm_test::square_torus(4));
+  GridMap map = *round_to_grid(s);
+  std::vector<std::array<Vec2d, 3>> corners;
+  grid_corners(s, map, corners);
+  CHECK(check_map(s, corners).valid());
+  // A structure that claims vertex 6 is a cone of angle 2 pi: the map's angle there is 4.
+  SeamlessStructure claimed = s;
+  claimed.angle_index[6] = 8;
+  const MapCheck angle = check_map(claimed, corners);
+  CHECK_FALSE(angle.valid());
+  CHECK(angle.nonpositive == 0);
+  CHECK(angle.angles_changed == 1);
+  CHECK(angle.first_angle_changed == 6);
+  // Vertex (1, 1) moved across the diagonal from (1, 0) to (2, 1): kSliverFace flips (and the
+  // angles are not counted).
+  map.vertex_uv[5] = {1.5, 0.25};
+  grid_corners(s, map, corners);
+  const MapCheck flipped = check_map(s, corners);
+  CHECK(flipped.nonpositive == 1);
+  CHECK(flipped.first_nonpositive == igm_test::kSliverFace);
+  CHECK(flipped.angles_changed == 0);
+}

@@ -5,10 +5,10 @@
 // vertex keeps every transition exact: the two UVs of an edge end in its two faces are T_c(x_v)
 // and T_c'(x_v) = M(T_c(x_v)) for the edge's transition M, whatever x_v is (at a regular vertex
 // the fan closes up with the identity; a cone keeps its integer point). Cones stay at their
-// integer points and the angles at every vertex are integer multiples of pi/2 that the certifier
-// counts from positive triangles; so the rounded map is a valid IGM iff every UV triangle is still
-// strictly positive, which is checked exactly (orient2d on the doubles). Used for smoothed maps
-// (smooth.h) and for exact maps, so that a doubles file (write_igm_obj) certifies too.
+// integer points; so the rounded map is a valid IGM iff every UV triangle is still strictly
+// positive and every vertex keeps its angle (regular vertices stay regular, cones keep their
+// index), which is checked exactly (check_map). Used for smoothed maps (smooth.h) and for exact
+// maps, so that a doubles file (write_igm_obj) certifies too.
 #include <array>
 #include <cstddef>
 #include <optional>
@@ -60,13 +60,19 @@ std::optional<double> round_to_grid(double x, const DyadicGrid& grid);
 /// Every corner UV of `map` (three per face of s.mesh, in face order), exact doubles.
 void grid_corners(const SeamlessStructure& s, const GridMap& map, std::vector<std::array<Vec2d, 3>>& corners);
 
-/// The faces whose corner UVs are not strictly positive by the exact orient2d: their count and
-/// the first one (-1 if none). Cost O(F).
-struct NonPositive {
-  int count = 0;
-  int first = -1;
+/// The exact checks that make a map rebuilt from vertex UVs (grid_corners) a valid IGM, all else
+/// holding by construction (see the top of this file): every UV triangle strictly positive
+/// (orient2d on the doubles), and then every vertex's angle the structure's (angle_indices,
+/// seamless.h). Orientation alone does not fix the angles of a map that jumped (rounding, a
+/// Newton step): a vertex's link could wind around it once more, and a cone once less. Cost O(F).
+struct MapCheck {
+  int nonpositive = 0;           // triangles not strictly positive
+  int first_nonpositive = -1;    // the first of them (-1: none)
+  int angles_changed = 0;        // vertices whose angle is not the structure's (checked only when
+  int first_angle_changed = -1;  // every triangle is positive)
+  bool valid() const { return nonpositive == 0 && angles_changed == 0; }
 };
-NonPositive nonpositive_triangles(const std::vector<std::array<Vec2d, 3>>& corners);
+MapCheck check_map(const SeamlessStructure& s, const std::vector<std::array<Vec2d, 3>>& corners);
 
 /// The corners as exact rationals (every coordinate's exact value). Pre: finite.
 std::vector<std::array<Point2q, 3>> to_exact(const std::vector<std::array<Vec2d, 3>>& corners);
@@ -79,20 +85,21 @@ struct DyadicStats {
   int grid_exponent = 0;        // the grid's spacing is 2^grid_exponent (when a grid exists)
   int nonpositive = 0;          // triangles that rounding made non-positive (then on_grid is false)
   int first_nonpositive = -1;   // the first of them
+  int angles_changed = 0;       // vertices whose angle rounding changed (then on_grid is false)
   std::size_t max_uv_bits = 0;  // largest bit_size of a returned UV coordinate
   std::string reason;           // why the map stayed exact (empty when on_grid)
 };
 
 struct DyadicResult {
   /// Three per face: the rounded map when stats.on_grid (certified: every triangle strictly
-  /// positive by exact orient2d, transitions and cones as in the input by construction), else a
-  /// copy of the input's exact UVs.
+  /// positive by exact orient2d, every angle the input's, transitions and cones as in the input
+  /// by construction), else a copy of the input's exact UVs.
   std::vector<std::array<Point2q, 3>> corner_uv;
   DyadicStats stats;
 };
 
-/// Places the exact map `igm` on its dyadic grid (round_to_grid) and certifies it; where no grid
-/// exists or rounding makes a triangle non-positive the map stays exact and the stats say why.
+/// Places the exact map `igm` on its dyadic grid (round_to_grid) and certifies it (check_map); where
+/// no grid exists or the rounded map fails a check the map stays exact and the stats say why.
 /// Pre: `igm` is a valid IGM (seamless_structure throws igm::Error otherwise).
 /// Cost: seamless_structure plus O(F).
 DyadicResult round_to_dyadic(const IgmMesh& igm);

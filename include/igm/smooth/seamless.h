@@ -55,6 +55,14 @@ struct SeamlessStructure {
   int num_vertices() const { return mesh.num_vertices(); }
 };
 
+/// Per vertex of `mesh`, the total UV angle of its corners in units of pi/2, counted exactly as the
+/// certifier does (certify/README.md check 4: each corner's wedge crosses (q_b - q_a) mod 4 of the
+/// half-open quadrants' boundaries, decided by exact comparisons). A regular vertex has 4. Pre:
+/// three UVs per face of `mesh`, every triangle strictly positive (else the count means nothing).
+/// Cost O(F).
+std::vector<int> angle_indices(const TriMesh& mesh, const std::vector<std::array<Point2q, 3>>& corner_uv);
+std::vector<int> angle_indices(const TriMesh& mesh, const std::vector<std::array<Vec2d, 3>>& corner_uv);
+
 /// Derives the seamless structure of `igm` from its exact corner UVs. Across every edge the
 /// transition is the unique x -> R^k x + t (k in 0..3) with R^k e_A = e_B for the edge's UV
 /// vectors in both faces, and t must be integer (the same for both ends by construction). The

@@ -1,9 +1,9 @@
 #pragma once
 // Smoothing of a certified IGM without ever leaving the set of valid IGMs: the UV of every
 // non-cone vertex moves (in its reference chart, seamless.h), every corner follows by its fixed
-// rigid map, cones stay at their integer points. Transitions are fixed by construction, and an
-// angle sum cannot change while every triangle stays positive, so each accepted iterate -- checked
-// exactly -- is a valid IGM. The pipeline's map is only an initialization (paper §7); this lowers
+// rigid map, cones stay at their integer points. Transitions are fixed by construction; each
+// accepted iterate is checked exactly to have every triangle positive and every angle unchanged
+// (dyadic.h, check_map), so each is a valid IGM. The pipeline's map is only an initialization (paper §7); this lowers
 // its distortion.
 #include <array>
 #include <functional>
@@ -33,7 +33,9 @@ struct SmoothIterate {
 
 struct SmoothOptions {
   int max_iterations = 100;          // Newton iterations (>= 0)
-  double time_budget_seconds = 0;    // stop after the iteration that passes it; 0: no limit
+  /// Stop after the iteration that ends past this many seconds since smooth_igm began (wall
+  /// time, the set-up included); 0: no limit.
+  double time_budget_seconds = 0;
   /// Stop when the Newton decrement -g.d / 2 (the model's predicted decrease) is at most this
   /// times the energy.
   double tolerance = 1e-6;
@@ -54,7 +56,7 @@ enum class SmoothStop {
   IterationBudget,  // max_iterations reached
   TimeBudget,       // time_budget_seconds passed
   NoDescent,        // the (regularized) Newton system gave no descent direction
-  LineSearch,       // no step along the direction lowered the energy with every triangle positive
+  LineSearch,       // no step along the direction lowered the energy and passed the exact checks
   NothingToMove,    // every vertex is a cone
   NotStarted,       // the input does not round onto a double grid (see SmoothStats::dyadic), or
                     // its energy is not finite in doubles
@@ -81,7 +83,7 @@ struct SmoothStats {
   int enlarged_references = 0;    // 3D triangles below the size floor (zero area included)
   int fattened_references = 0;    // 3D triangles thinner than the aspect floor
   int step_halvings = 0;          // trial steps halved in all line searches
-  int exact_rejections = 0;       // trial steps whose map the exact orient2d rejected
+  int exact_rejections = 0;       // trial steps whose map the exact checks rejected (check_map)
   DyadicStats dyadic;             // the grid, and the exact certification of the returned map
   bool certified = false;         // the independent certifier accepted the returned map
 };
@@ -89,7 +91,8 @@ struct SmoothStats {
 struct SmoothResult {
   /// Three per face of the input, for its triangles, positions and vertex ids: every coordinate
   /// exactly a double (dyadic.stats.on_grid) unless returned == InputExact. Always a valid IGM:
-  /// every triangle strictly positive by exact orient2d, transitions and cones those of the input.
+  /// every triangle strictly positive by exact orient2d, every angle, transition and cone the
+  /// input's.
   std::vector<std::array<Point2q, 3>> corner_uv;
   SmoothStats stats;
   certify::Report report;  // the independent certifier on corner_uv (when options.certify)
@@ -103,8 +106,8 @@ struct SmoothResult {
 /// the analytic eigensystem (the one eigenvalue that can be negative replaced by its absolute
 /// value), a slightly regularized sparse Cholesky solve (embed/sparse_cholesky.h), a line search
 /// that starts at step_fraction of the first degeneracy (Smith & Schaefer 2015) and halves until
-/// the energy decreases enough (Armijo) and every UV triangle of the new map, rounded onto the
-/// dyadic grid (dyadic.h), is strictly positive by the exact orient2d. So every accepted iterate
+/// the energy decreases enough (Armijo) and the new map, rounded onto the dyadic grid (dyadic.h),
+/// passes the exact checks (check_map). So every accepted iterate
 /// is a certified map in doubles, the energy never increases, and the last one is returned.
 /// Pre: `igm` is a valid IGM (seamless_structure checks it and throws igm::Error naming the
 /// element otherwise), finite positions (igm::Error(NonFinite) naming the vertex otherwise).
