@@ -32,10 +32,14 @@ double round_exact(const Rational& x, int exponent) {
 
 Vec2d apply(const GridMotionD& m, const Vec2d& p) {
   switch (m.k & 3) {
-    case 0: return {p.x + m.tx, p.y + m.ty};
-    case 1: return {-p.y + m.tx, p.x + m.ty};
-    case 2: return {-p.x + m.tx, -p.y + m.ty};
-    default: return {p.y + m.tx, -p.x + m.ty};
+    case 0:
+      return {p.x + m.tx, p.y + m.ty};
+    case 1:
+      return {-p.y + m.tx, p.x + m.ty};
+    case 2:
+      return {-p.x + m.tx, -p.y + m.ty};
+    default:
+      return {p.y + m.tx, -p.x + m.ty};
   }
 }
 
@@ -52,7 +56,8 @@ std::optional<GridMap> round_to_grid(const SeamlessStructure& s) {
     tmax = std::max({tmax, std::abs(*tx), std::abs(*ty)});
   }
   double xmax = 1;
-  for (const Point2q& p : s.vertex_uv) xmax = std::max({xmax, std::abs(approximate(p.x)), std::abs(approximate(p.y))});
+  for (const Point2q& p : s.vertex_uv)
+    xmax = std::max({xmax, std::abs(approximate(p.x)), std::abs(approximate(p.y))});
   if (xmax >= kTwo51 / 8) return std::nullopt;
   double bound = 8;
   while (bound < 8 * xmax) bound *= 2;  // at most 48 doublings
@@ -62,7 +67,8 @@ std::optional<GridMap> round_to_grid(const SeamlessStructure& s) {
   map.grid = {e - 53, bound};
   map.vertex_uv.resize(nv);
   for (int v = 0; v < nv; ++v)
-    map.vertex_uv[v] = {round_exact(s.vertex_uv[v].x, map.grid.exponent), round_exact(s.vertex_uv[v].y, map.grid.exponent)};
+    map.vertex_uv[v] = {round_exact(s.vertex_uv[v].x, map.grid.exponent),
+                        round_exact(s.vertex_uv[v].y, map.grid.exponent)};
   return map;
 }
 
@@ -72,7 +78,8 @@ std::optional<double> round_to_grid(double x, const DyadicGrid& grid) {
   return r;
 }
 
-void grid_corners(const SeamlessStructure& s, const GridMap& map, std::vector<std::array<Vec2d, 3>>& corners) {
+void grid_corners(const SeamlessStructure& s, const GridMap& map,
+                  std::vector<std::array<Vec2d, 3>>& corners) {
   const int nf = s.mesh.num_faces();
   corners.resize(nf);
   for (int f = 0; f < nf; ++f)
@@ -111,7 +118,9 @@ std::size_t max_uv_bits(const std::vector<std::array<Point2q, 3>>& corner_uv) {
   return bits;
 }
 
-DyadicResult round_to_dyadic(const IgmMesh& igm) { return round_to_dyadic(igm, seamless_structure(igm)); }
+DyadicResult round_to_dyadic(const IgmMesh& igm) {
+  return round_to_dyadic(igm, seamless_structure(igm));
+}
 
 DyadicResult round_to_dyadic(const IgmMesh& igm, const SeamlessStructure& s) {
   DyadicResult r;
@@ -124,19 +133,23 @@ DyadicResult round_to_dyadic(const IgmMesh& igm, const SeamlessStructure& s) {
     r.stats.nonpositive = check.nonpositive;
     r.stats.first_nonpositive = check.first_nonpositive;
     r.stats.angles_changed = check.angles_changed;
-    const std::string grid = "rounding to the grid of spacing 2^" + std::to_string(map->grid.exponent);
+    const std::string grid =
+        "rounding to the grid of spacing 2^" + std::to_string(map->grid.exponent);
     if (check.valid()) {
       r.corner_uv = to_exact(corners);
       r.stats.on_grid = true;
     } else if (check.nonpositive > 0) {
       r.stats.reason = grid + " makes " + std::to_string(check.nonpositive) +
-                       " triangles non-positive (the first: face " + std::to_string(check.first_nonpositive) + ")";
+                       " triangles non-positive (the first: face " +
+                       std::to_string(check.first_nonpositive) + ")";
     } else {
       r.stats.reason = grid + " changes the angle of " + std::to_string(check.angles_changed) +
-                       " vertices (the first: vertex " + std::to_string(check.first_angle_changed) + ")";
+                       " vertices (the first: vertex " + std::to_string(check.first_angle_changed) +
+                       ")";
     }
   } else {
-    r.stats.reason = "no double grid holds the map: a translation of 2^51 or a vertex UV of 2^48 or more";
+    r.stats.reason =
+        "no double grid holds the map: a translation of 2^51 or a vertex UV of 2^48 or more";
   }
   if (!r.stats.on_grid) r.corner_uv = igm.corner_uv;
   r.stats.max_uv_bits = max_uv_bits(r.corner_uv);

@@ -13,10 +13,22 @@ namespace {
 template <class T>
 void rotate(int k, const T& x, const T& y, T& rx, T& ry) {
   switch (k & 3) {
-    case 0: rx = x; ry = y; break;
-    case 1: rx = -y; ry = x; break;
-    case 2: rx = -x; ry = -y; break;
-    default: rx = y; ry = -x; break;
+    case 0:
+      rx = x;
+      ry = y;
+      break;
+    case 1:
+      rx = -y;
+      ry = x;
+      break;
+    case 2:
+      rx = -x;
+      ry = -y;
+      break;
+    default:
+      rx = y;
+      ry = -x;
+      break;
   }
 }
 
@@ -31,7 +43,9 @@ int quadrant(Sign sx, Sign sy) {
 
 // Exact comparison of two coordinates.
 Sign order(const Rational& a, const Rational& b) { return compare(a, b); }
-Sign order(double a, double b) { return a < b ? Sign::Negative : (a > b ? Sign::Positive : Sign::Zero); }
+Sign order(double a, double b) {
+  return a < b ? Sign::Negative : (a > b ? Sign::Positive : Sign::Zero);
+}
 
 // Quadrant of b - a, exactly (comparisons only).
 template <class P>
@@ -47,7 +61,8 @@ std::vector<int> indices(const TriMesh& m, const std::vector<std::array<P, 3>>& 
   for (int c = 0; c < m.num_halfedges(); ++c) {
     const std::array<P, 3>& t = uv[c / 3];
     const P& v = t[c % 3];
-    index[m.origin(c)] += (quadrant(v, t[TriMesh::prev(c) % 3]) - quadrant(v, t[TriMesh::next(c) % 3]) + 4) & 3;
+    index[m.origin(c)] +=
+        (quadrant(v, t[TriMesh::prev(c) % 3]) - quadrant(v, t[TriMesh::next(c) % 3]) + 4) & 3;
   }
   return index;
 }
@@ -69,8 +84,10 @@ GridMotion edge_transition(const TriMesh& m, const std::vector<std::array<Point2
   const Point2q& b_B = uv[ht / 3][ht % 3];
   const Point2q& a_B = uv[ht / 3][TriMesh::next(ht) % 3];
   if (a_A.x == a_B.x && a_A.y == a_B.y && b_A.x == b_B.x && b_A.y == b_B.y) return {};  // one chart
-  const double ex = approximate(b_A.x) - approximate(a_A.x), ey = approximate(b_A.y) - approximate(a_A.y);
-  const double fx = approximate(b_B.x) - approximate(a_B.x), fy = approximate(b_B.y) - approximate(a_B.y);
+  const double ex = approximate(b_A.x) - approximate(a_A.x),
+               ey = approximate(b_A.y) - approximate(a_A.y);
+  const double fx = approximate(b_B.x) - approximate(a_B.x),
+               fy = approximate(b_B.y) - approximate(a_B.y);
   int first = 0;
   double best = -HUGE_VAL;
   for (int k = 0; k < 4; ++k) {
@@ -123,18 +140,22 @@ GridMotion inverse(const GridMotion& m) {
   return r;
 }
 
-std::vector<int> angle_indices(const TriMesh& mesh, const std::vector<std::array<Point2q, 3>>& corner_uv) {
+std::vector<int> angle_indices(const TriMesh& mesh,
+                               const std::vector<std::array<Point2q, 3>>& corner_uv) {
   return indices(mesh, corner_uv);
 }
 
-std::vector<int> angle_indices(const TriMesh& mesh, const std::vector<std::array<Vec2d, 3>>& corner_uv) {
+std::vector<int> angle_indices(const TriMesh& mesh,
+                               const std::vector<std::array<Vec2d, 3>>& corner_uv) {
   return indices(mesh, corner_uv);
 }
 
 SeamlessStructure seamless_structure(const IgmMesh& igm) {
   const std::size_t nf = igm.triangles.size();
   if (igm.corner_uv.size() != nf)
-    invalid(std::to_string(nf) + " triangles but " + std::to_string(igm.corner_uv.size()) + " UV triples", {});
+    invalid(std::to_string(nf) + " triangles but " + std::to_string(igm.corner_uv.size()) +
+                " UV triples",
+            {});
   if (igm.positions.size() > static_cast<std::size_t>(INT32_MAX))
     throw Error(ErrorKind::TooLarge, "too many vertices for 32-bit ids");
   const int nv = static_cast<int>(igm.positions.size());
@@ -182,19 +203,26 @@ SeamlessStructure seamless_structure(const IgmMesh& igm) {
       h = m.twin(across);
       if (h == h0 || reached[h]) break;
     }
-    if (h != h0) throw Error(ErrorKind::NonManifoldVertex, "the fan of " + vertex_name(v) + " does not close", {v});
+    if (h != h0)
+      throw Error(ErrorKind::NonManifoldVertex, "the fan of " + vertex_name(v) + " does not close",
+                  {v});
     const int index = s.angle_index[v];
-    if (index <= 0) invalid(vertex_name(v) + " has the angle index " + std::to_string(index) + " <= 0", {v});
+    if (index <= 0)
+      invalid(vertex_name(v) + " has the angle index " + std::to_string(index) + " <= 0", {v});
     if (index == 4 && !motion.is_identity())
-      invalid("the transitions around the regular " + vertex_name(v) + " do not compose to the identity", {v});
+      invalid("the transitions around the regular " + vertex_name(v) +
+                  " do not compose to the identity",
+              {v});
     if (index != 4 && (s.vertex_uv[v].x.get_den() != 1 || s.vertex_uv[v].y.get_den() != 1))
-      invalid("the cone " + vertex_name(v) + " (angle " + std::to_string(index) + " pi/2) is not at an integer point",
+      invalid("the cone " + vertex_name(v) + " (angle " + std::to_string(index) +
+                  " pi/2) is not at an integer point",
               {v});
   }
   for (int h = 0; h < nh; ++h)
     if (!reached[h])
       throw Error(ErrorKind::NonManifoldVertex,
-                  "the faces around " + vertex_name(m.origin(h)) + " form more than one fan", {m.origin(h)});
+                  "the faces around " + vertex_name(m.origin(h)) + " form more than one fan",
+                  {m.origin(h)});
   return s;
 }
 

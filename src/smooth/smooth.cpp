@@ -19,29 +19,35 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr int kMaxTrials = 64;          // trial steps per line search
-constexpr double kArmijo = 1e-4;        // sufficient decrease: E(x + a d) <= E(x) + kArmijo a g.d
+constexpr int kMaxTrials = 64;            // trial steps per line search
+constexpr double kArmijo = 1e-4;          // sufficient decrease: E(x + a d) <= E(x) + kArmijo a g.d
 constexpr double kRegularization = 1e-9;  // times the mean diagonal, added to the Hessian
-constexpr int kMaxRegularizations = 6;  // each 1000 times the last, when a factorization fails
+constexpr int kMaxRegularizations = 6;    // each 1000 times the last, when a factorization fails
 
 // R^k as a matrix (R the rotation by +90 degrees): uv = R^k x + t, so d uv / d x = R^k.
-constexpr double kRot[4][2][2] = {{{1, 0}, {0, 1}}, {{0, -1}, {1, 0}}, {{-1, 0}, {0, -1}}, {{0, 1}, {-1, 0}}};
+constexpr double kRot[4][2][2] = {
+    {{1, 0}, {0, 1}}, {{0, -1}, {1, 0}}, {{-1, 0}, {0, -1}}, {{0, 1}, {-1, 0}}};
 
 void check_options(const SmoothOptions& o) {
-  auto bad = [](const std::string& what) { throw Error(ErrorKind::InvalidArgument, "smooth: " + what); };
+  auto bad = [](const std::string& what) {
+    throw Error(ErrorKind::InvalidArgument, "smooth: " + what);
+  };
   if (o.max_iterations < 0) bad("max_iterations must be >= 0");
   if (!(o.time_budget_seconds >= 0)) bad("time_budget_seconds must be >= 0");
   if (!(o.tolerance >= 0)) bad("tolerance must be >= 0");
   if (!(o.step_fraction > 0 && o.step_fraction < 1)) bad("step_fraction must be in (0, 1)");
-  if (!(o.min_reference_size > 0 && o.min_reference_size < 1)) bad("min_reference_size must be in (0, 1)");
-  if (!(o.min_reference_aspect > 0 && o.min_reference_aspect <= 1)) bad("min_reference_aspect must be in (0, 1]");
+  if (!(o.min_reference_size > 0 && o.min_reference_size < 1))
+    bad("min_reference_size must be in (0, 1)");
+  if (!(o.min_reference_aspect > 0 && o.min_reference_aspect <= 1))
+    bad("min_reference_aspect must be in (0, 1]");
 }
 
 // The projected Newton iteration on the free (non-cone) vertex UVs of a grid map.
 class Smoother {
  public:
   Smoother(const SeamlessStructure& s, GridMap map, const std::vector<Vec3d>& positions,
-           const std::vector<std::array<int, 3>>& triangles, const SmoothOptions& options, SmoothStats& stats)
+           const std::vector<std::array<int, 3>>& triangles, const SmoothOptions& options,
+           SmoothStats& stats)
       : s_(s), map_(std::move(map)), options_(options), stats_(stats) {
     const int nv = s_.num_vertices();
     var_.assign(nv, -1);
@@ -51,7 +57,9 @@ class Smoother {
     stats_.cones = nv - n_;
     grid_corners(s_, map_, corners_);
     double uv_area = 0;
-    for (const auto& t : corners_) uv_area += ((t[1].x - t[0].x) * (t[2].y - t[0].y) - (t[1].y - t[0].y) * (t[2].x - t[0].x)) / 2;
+    for (const auto& t : corners_)
+      uv_area +=
+          ((t[1].x - t[0].x) * (t[2].y - t[0].y) - (t[1].y - t[0].y) * (t[2].x - t[0].x)) / 2;
     smooth_detail::SdReferenceStats rs;
     refs_ = smooth_detail::sd_references(positions, triangles, uv_area, options.min_reference_size,
                                          options.min_reference_aspect, rs);
@@ -75,7 +83,8 @@ class Smoother {
     double e = energy(corners_);
     stats_.energy.push_back(e);
     if (!std::isfinite(e)) {
-      stats_.reason = "the starting map's energy is not finite in doubles (a UV triangle too thin for them)";
+      stats_.reason =
+          "the starting map's energy is not finite in doubles (a UV triangle too thin for them)";
       return SmoothStop::NotStarted;
     }
     if (options_.on_iterate) options_.on_iterate({0, e, &corners_});
@@ -87,7 +96,8 @@ class Smoother {
       Eigen::VectorXd d;
       if (!solve(d)) return SmoothStop::NoDescent;
       const double gd = gradient_.dot(d);  // -d^T H d: <= 0 up to rounding
-      if (!(-gd / 2 > options_.tolerance * e)) return gd <= 0 ? SmoothStop::Converged : SmoothStop::NoDescent;
+      if (!(-gd / 2 > options_.tolerance * e))
+        return gd <= 0 ? SmoothStop::Converged : SmoothStop::NoDescent;
       double step = 0;
       if (!line_search(d, gd, e, step)) return SmoothStop::LineSearch;
       stats_.iterations = it;
@@ -95,7 +105,8 @@ class Smoother {
       const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
       if (options_.on_iterate) options_.on_iterate({it, e, &corners_});
       if (options_.progress) options_.progress({it, e, step, seconds});
-      if (options_.time_budget_seconds > 0 && seconds >= options_.time_budget_seconds) return SmoothStop::TimeBudget;
+      if (options_.time_budget_seconds > 0 && seconds >= options_.time_budget_seconds)
+        return SmoothStop::TimeBudget;
     }
     return SmoothStop::IterationBudget;
   }
@@ -133,9 +144,14 @@ class Smoother {
         for (int b = 0; b < 6; ++b) {
           const int ga = global(f, a), gb = global(f, b);
           int& slot = slots_[f][6 * a + b];
-          if (ga < 0 || gb < 0) slot = -1;
-          else if (ga == gb) slot = -2 - ga;
-          else slot = static_cast<int>(std::lower_bound(adj_.begin() + xadj_[ga], adj_.begin() + xadj_[ga + 1], gb) - adj_.begin());
+          if (ga < 0 || gb < 0)
+            slot = -1;
+          else if (ga == gb)
+            slot = -2 - ga;
+          else
+            slot = static_cast<int>(
+                std::lower_bound(adj_.begin() + xadj_[ga], adj_.begin() + xadj_[ga + 1], gb) -
+                adj_.begin());
         }
   }
 
@@ -157,14 +173,16 @@ class Smoother {
       }
       // gx_i = R_i^T g_i; hx_ij = R_i^T h_ij R_j
       for (int i = 0; i < 3; ++i)
-        for (int r = 0; r < 2; ++r) gx[2 * i + r] = R[i][0][r] * g[2 * i] + R[i][1][r] * g[2 * i + 1];
+        for (int r = 0; r < 2; ++r)
+          gx[2 * i + r] = R[i][0][r] * g[2 * i] + R[i][1][r] * g[2 * i + 1];
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
           for (int r = 0; r < 2; ++r)
             for (int c = 0; c < 2; ++c) {
               double sum = 0;
               for (int p = 0; p < 2; ++p)
-                for (int q = 0; q < 2; ++q) sum += R[i][p][r] * h[6 * (2 * i + p) + 2 * j + q] * R[j][q][c];
+                for (int q = 0; q < 2; ++q)
+                  sum += R[i][p][r] * h[6 * (2 * i + p) + 2 * j + q] * R[j][q][c];
               hx[6 * (2 * i + r) + 2 * j + c] = sum;
             }
       for (int i = 0; i < 3; ++i)
@@ -174,8 +192,10 @@ class Smoother {
         }
       for (int k = 0; k < 36; ++k) {
         const int slot = slots_[f][k];
-        if (slot >= 0) values_[slot] += hx[k];
-        else if (slot <= -2) diag_[-2 - slot] += hx[k];
+        if (slot >= 0)
+          values_[slot] += hx[k];
+        else if (slot <= -2)
+          diag_[-2 - slot] += hx[k];
       }
     }
   }
@@ -268,22 +288,32 @@ class Smoother {
 
 const char* to_string(SmoothStop stop) {
   switch (stop) {
-    case SmoothStop::Converged: return "converged";
-    case SmoothStop::IterationBudget: return "iteration_budget";
-    case SmoothStop::TimeBudget: return "time_budget";
-    case SmoothStop::NoDescent: return "no_descent";
-    case SmoothStop::LineSearch: return "line_search";
-    case SmoothStop::NothingToMove: return "nothing_to_move";
-    case SmoothStop::NotStarted: return "not_started";
+    case SmoothStop::Converged:
+      return "converged";
+    case SmoothStop::IterationBudget:
+      return "iteration_budget";
+    case SmoothStop::TimeBudget:
+      return "time_budget";
+    case SmoothStop::NoDescent:
+      return "no_descent";
+    case SmoothStop::LineSearch:
+      return "line_search";
+    case SmoothStop::NothingToMove:
+      return "nothing_to_move";
+    case SmoothStop::NotStarted:
+      return "not_started";
   }
   return "?";
 }
 
 const char* to_string(SmoothReturned returned) {
   switch (returned) {
-    case SmoothReturned::Smoothed: return "smoothed";
-    case SmoothReturned::InputOnGrid: return "input_on_grid";
-    case SmoothReturned::InputExact: return "input_exact";
+    case SmoothReturned::Smoothed:
+      return "smoothed";
+    case SmoothReturned::InputOnGrid:
+      return "input_on_grid";
+    case SmoothReturned::InputExact:
+      return "input_exact";
   }
   return "?";
 }
@@ -294,7 +324,8 @@ SmoothResult smooth_igm(const IgmMesh& igm, const SmoothOptions& options) {
   for (std::size_t v = 0; v < igm.positions.size(); ++v) {
     const Vec3d& p = igm.positions[v];
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-      throw Error(ErrorKind::NonFinite, "smooth: vertex " + std::to_string(v) + " has a non-finite position",
+      throw Error(ErrorKind::NonFinite,
+                  "smooth: vertex " + std::to_string(v) + " has a non-finite position",
                   {static_cast<std::int64_t>(v)});
   }
   const SeamlessStructure s = seamless_structure(igm);
@@ -312,8 +343,8 @@ SmoothResult smooth_igm(const IgmMesh& igm, const SmoothOptions& options) {
     stats.stop = smoother.run(t0);
     stats.returned = stats.iterations > 0 ? SmoothReturned::Smoothed : SmoothReturned::InputOnGrid;
     if (stats.reason.empty())
-      stats.reason = std::string("stopped: ") + to_string(stats.stop) + " after " + std::to_string(stats.iterations) +
-                     " iterations";
+      stats.reason = std::string("stopped: ") + to_string(stats.stop) + " after " +
+                     std::to_string(stats.iterations) + " iterations";
     stats.reason += std::string("; returned ") + to_string(stats.returned);
     if (stats.returned == SmoothReturned::Smoothed) {
       result.corner_uv = to_exact(smoother.corners());

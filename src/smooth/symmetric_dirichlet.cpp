@@ -27,7 +27,8 @@ Svd2 svd2(double a, double b, double c, double d, double det) {
 
 // inv = Rot(-theta) diag(1/s1, 1/s2) Rot(-phi): the inverse of Rot(phi) diag(s1, s2) Rot(theta).
 void svd_inverse(const Svd2& s, double inv[2][2]) {
-  const double ct = std::cos(s.theta), st = std::sin(s.theta), cp = std::cos(s.phi), sp = std::sin(s.phi);
+  const double ct = std::cos(s.theta), st = std::sin(s.theta), cp = std::cos(s.phi),
+               sp = std::sin(s.phi);
   // Rot(-theta) = [[ct, st], [-st, ct]]; Rot(-phi) = [[cp, sp], [-sp, cp]]
   const double r00 = ct / s.s1, r01 = st / s.s2, r10 = -st / s.s1, r11 = ct / s.s2;
   inv[0][0] = r00 * cp - r01 * sp;
@@ -56,11 +57,13 @@ Jacobian jacobian(const SdReference& r, const Vec2d& a, const Vec2d& b, const Ve
 }  // namespace
 
 std::vector<SdReference> sd_references(const std::vector<Vec3d>& positions,
-                                       const std::vector<std::array<int, 3>>& triangles, double uv_area,
-                                       double min_size, double min_aspect, SdReferenceStats& stats) {
+                                       const std::vector<std::array<int, 3>>& triangles,
+                                       double uv_area, double min_size, double min_aspect,
+                                       SdReferenceStats& stats) {
   stats = {};
   double maxabs = 0;
-  for (const Vec3d& p : positions) maxabs = std::max({maxabs, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+  for (const Vec3d& p : positions)
+    maxabs = std::max({maxabs, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
   const double scale = maxabs > 0 ? std::ldexp(1.0, -(std::ilogb(maxabs) + 1)) : 1.0;  // exact
   const std::size_t nf = triangles.size();
   struct Laid {
@@ -75,7 +78,8 @@ std::vector<SdReference> sd_references(const std::vector<Vec3d>& positions,
     const Vec3d& p2 = positions[triangles[f][2]];
     const double e1[3] = {(p1.x - p0.x) * scale, (p1.y - p0.y) * scale, (p1.z - p0.z) * scale};
     const double e2[3] = {(p2.x - p0.x) * scale, (p2.y - p0.y) * scale, (p2.z - p0.z) * scale};
-    const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+    const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                         e1[0] * e2[1] - e1[1] * e2[0]};
     const double cross = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     const double dot = e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2];
     const double l1 = std::sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
@@ -134,15 +138,18 @@ std::vector<SdReference> sd_references(const std::vector<Vec3d>& positions,
 double sd_energy(const SdReference& r, const Vec2d& a, const Vec2d& b, const Vec2d& c) {
   const Jacobian J = jacobian(r, a, b, c);
   if (!(J.det > 0)) return std::numeric_limits<double>::infinity();
-  const double n2 = J.f[0][0] * J.f[0][0] + J.f[0][1] * J.f[0][1] + J.f[1][0] * J.f[1][0] + J.f[1][1] * J.f[1][1];
+  const double n2 =
+      J.f[0][0] * J.f[0][0] + J.f[0][1] * J.f[0][1] + J.f[1][0] * J.f[1][0] + J.f[1][1] * J.f[1][1];
   return r.weight * n2 * (1 + 1 / (J.det * J.det));
 }
 
-double sd_derivatives(const SdReference& r, const std::array<Vec2d, 3>& uv, double grad[6], double hess[36]) {
+double sd_derivatives(const SdReference& r, const std::array<Vec2d, 3>& uv, double grad[6],
+                      double hess[36]) {
   const Jacobian J = jacobian(r, uv[0], uv[1], uv[2]);
   const Svd2 s = svd2(J.f[0][0], J.f[0][1], J.f[1][0], J.f[1][1], J.det);
   const double s1 = s.s1, s2 = s.s2;
-  const double cp = std::cos(s.phi), sp = std::sin(s.phi), ct = std::cos(s.theta), st = std::sin(s.theta);
+  const double cp = std::cos(s.phi), sp = std::sin(s.phi), ct = std::cos(s.theta),
+               st = std::sin(s.theta);
   const double u1[2] = {cp, sp}, u2[2] = {-sp, cp}, v1[2] = {ct, -st}, v2[2] = {st, ct};
   const double w = r.weight;
   const double energy = w * (s1 * s1 + s2 * s2 + 1 / (s1 * s1) + 1 / (s2 * s2));
@@ -187,7 +194,8 @@ double sd_derivatives(const SdReference& r, const std::array<Vec2d, 3>& uv, doub
 }
 
 double first_degeneracy(const std::array<Vec2d, 3>& uv, const std::array<Vec2d, 3>& duv) {
-  const double e1x = uv[1].x - uv[0].x, e1y = uv[1].y - uv[0].y, e2x = uv[2].x - uv[0].x, e2y = uv[2].y - uv[0].y;
+  const double e1x = uv[1].x - uv[0].x, e1y = uv[1].y - uv[0].y, e2x = uv[2].x - uv[0].x,
+               e2y = uv[2].y - uv[0].y;
   const double f1x = duv[1].x - duv[0].x, f1y = duv[1].y - duv[0].y, f2x = duv[2].x - duv[0].x,
                f2y = duv[2].y - duv[0].y;
   // det(t) = a t^2 + b t + c

@@ -36,8 +36,8 @@ struct SdReference {
 };
 
 struct SdReferenceStats {
-  int enlarged = 0;    // references below the size floor (coincident points included), enlarged
-  int fattened = 0;    // references thinner than the aspect floor (collinear points included)
+  int enlarged = 0;  // references below the size floor (coincident points included), enlarged
+  int fattened = 0;  // references thinner than the aspect floor (collinear points included)
 };
 
 /// The references of all triangles. The positions are first scaled by a power of two so that the
@@ -52,8 +52,9 @@ struct SdReferenceStats {
 /// in the line search and the exact checks like every other triangle.
 /// Pre: positions finite, uv_area > 0. Cost O(F).
 std::vector<SdReference> sd_references(const std::vector<Vec3d>& positions,
-                                       const std::vector<std::array<int, 3>>& triangles, double uv_area,
-                                       double min_size, double min_aspect, SdReferenceStats& stats);
+                                       const std::vector<std::array<int, 3>>& triangles,
+                                       double uv_area, double min_size, double min_aspect,
+                                       SdReferenceStats& stats);
 
 /// weight * psi of the map from the reference to the UV triangle (a, b, c); +inf when the UV
 /// triangle's determinant computed in doubles is not positive. Cost O(1).
@@ -62,7 +63,8 @@ double sd_energy(const SdReference& r, const Vec2d& a, const Vec2d& b, const Vec
 /// The same energy with its gradient (grad[2i + j]: d/d coordinate j of corner i) and its Hessian
 /// projected to positive semi-definite (hess[6 * row + col], symmetric). Pre: the determinant is
 /// positive (sd_energy finite). Cost O(1).
-double sd_derivatives(const SdReference& r, const std::array<Vec2d, 3>& uv, double grad[6], double hess[36]);
+double sd_derivatives(const SdReference& r, const std::array<Vec2d, 3>& uv, double grad[6],
+                      double hess[36]);
 
 /// The smallest t > 0 at which the triangle uv + t duv has determinant 0 (computed in doubles:
 /// the smallest positive root of a quadratic in t), +inf if none. Smith and Schaefer, "Bijective

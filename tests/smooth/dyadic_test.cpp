@@ -61,8 +61,8 @@ TEST_CASE("the grid of the square torus by hand, and rounding to it") {
   }
   const DyadicGrid& g = map->grid;
   const double h = std::ldexp(1.0, -47);
-  CHECK(round_to_grid(h / 2, g) == 0.0);            // a tie: to even
-  CHECK(round_to_grid(1.5 * h, g) == 2 * h);        // a tie: to even
+  CHECK(round_to_grid(h / 2, g) == 0.0);      // a tie: to even
+  CHECK(round_to_grid(1.5 * h, g) == 2 * h);  // a tie: to even
   CHECK(round_to_grid(0.75 * h, g) == h);
   CHECK(round_to_grid(-1 - 0.25 * h, g) == -1.0);
   CHECK(round_to_grid(32.0, g) == 32.0);

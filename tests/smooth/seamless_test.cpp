@@ -34,7 +34,8 @@ void check_definitions(const IgmMesh& igm, const SeamlessStructure& s) {
   }
   CHECK(wrong_corners == 0);
   CHECK(wrong_edges == 0);
-  for (int v = 0; v < m.num_vertices(); ++v) CHECK(s.corner_motion[s.reference_corner[v]].is_identity());
+  for (int v = 0; v < m.num_vertices(); ++v)
+    CHECK(s.corner_motion[s.reference_corner[v]].is_identity());
 }
 
 }  // namespace
@@ -45,7 +46,8 @@ TEST_CASE("motions: apply, compose and inverse by hand") {
   const Point2q q = apply(r, p);
   CHECK(q.x == -3);
   CHECK(q.y == Rational(-5, 2));
-  const GridMotion twice = compose(r, r);  // (x, y) -> (-(x - 3) + 2, (-y + 2) - 3) = (-x + 5, -y - 1)
+  const GridMotion twice =
+      compose(r, r);  // (x, y) -> (-(x - 3) + 2, (-y + 2) - 3) = (-x + 5, -y - 1)
   CHECK(twice == GridMotion{2, 5, -1});
   const Point2q back = apply(inverse(r), q);
   CHECK(back.x == p.x);
@@ -64,9 +66,11 @@ TEST_CASE("the square torus: translations by the torus size across its seams, no
   std::map<std::pair<long, long>, int> translations;
   for (int h = 0; h < s.mesh.num_halfedges(); ++h) {
     CHECK(s.transition[h].k == 0);
-    if (!s.transition[h].is_identity()) ++translations[{s.transition[h].tx.get_si(), s.transition[h].ty.get_si()}];
+    if (!s.transition[h].is_identity())
+      ++translations[{s.transition[h].tx.get_si(), s.transition[h].ty.get_si()}];
   }
-  CHECK(translations == std::map<std::pair<long, long>, int>{{{-4, 0}, 4}, {{4, 0}, 4}, {{0, -4}, 4}, {{0, 4}, 4}});
+  CHECK(translations ==
+        std::map<std::pair<long, long>, int>{{{-4, 0}, 4}, {{4, 0}, 4}, {{0, -4}, 4}, {{0, 4}, 4}});
   // Vertex 0 = (0, 0) has its corners at (0, 0), (4, 0), (0, 4) and (4, 4): its reference corner
   // is its last one in face order, in the last face, at (4, 4).
   CHECK(s.reference_corner[0] == 3 * 31 + 1);
@@ -74,7 +78,8 @@ TEST_CASE("the square torus: translations by the torus size across its seams, no
   CHECK(s.vertex_uv[0].y == 4);
   std::set<std::pair<long, long>> copies;
   for (int c = 0; c < s.mesh.num_halfedges(); ++c)
-    if (s.mesh.origin(c) == 0) copies.insert({s.corner_motion[c].tx.get_si(), s.corner_motion[c].ty.get_si()});
+    if (s.mesh.origin(c) == 0)
+      copies.insert({s.corner_motion[c].tx.get_si(), s.corner_motion[c].ty.get_si()});
   CHECK(copies == std::set<std::pair<long, long>>{{0, 0}, {-4, 0}, {0, -4}, {-4, -4}});
 }
 
@@ -112,7 +117,8 @@ TEST_CASE("invalid maps are rejected with the element") {
   }
   SUBCASE("an edge without a rigid transition: its two vertices") {
     IgmMesh igm = square_torus(4);
-    igm.corner_uv[0][1].x = Rational(4, 3);  // face 0 (0,0),(1,0),(1,1): vertex 1's copy moved alone
+    igm.corner_uv[0][1].x =
+        Rational(4, 3);  // face 0 (0,0),(1,0),(1,1): vertex 1's copy moved alone
     const auto e = igm_test::error_of([&] { seamless_structure(igm); });
     REQUIRE(e.has_value());
     CHECK(e->kind() == ErrorKind::InvalidArgument);

@@ -43,7 +43,8 @@ inline igm::IgmMesh pipeline_igm(int genus, std::int64_t faces, std::uint64_t se
 }
 
 /// The independent certifier on the mesh of `igm` with the UVs `corner_uv`.
-inline igm::certify::Report certify_uv(const igm::IgmMesh& igm, const std::vector<std::array<igm::Point2q, 3>>& uv) {
+inline igm::certify::Report certify_uv(const igm::IgmMesh& igm,
+                                       const std::vector<std::array<igm::Point2q, 3>>& uv) {
   return igm::certify::certify_igm(igm::certify_input(igm, uv));
 }
 
@@ -70,16 +71,22 @@ std::optional<igm::Error> error_of(Run run) {
 /// "" if the seamless structures of two maps of the same mesh agree bit for bit on everything a
 /// map may not change (transitions, angles, reference corners, corner maps, cone points), else
 /// the first difference.
-inline std::string structure_difference(const igm::SeamlessStructure& a, const igm::SeamlessStructure& b) {
-  if (a.transition.size() != b.transition.size() || a.angle_index.size() != b.angle_index.size()) return "sizes";
+inline std::string structure_difference(const igm::SeamlessStructure& a,
+                                        const igm::SeamlessStructure& b) {
+  if (a.transition.size() != b.transition.size() || a.angle_index.size() != b.angle_index.size())
+    return "sizes";
   for (std::size_t h = 0; h < a.transition.size(); ++h) {
-    if (!(a.transition[h] == b.transition[h])) return "transition of half-edge " + std::to_string(h);
-    if (!(a.corner_motion[h] == b.corner_motion[h])) return "corner map of corner " + std::to_string(h);
+    if (!(a.transition[h] == b.transition[h]))
+      return "transition of half-edge " + std::to_string(h);
+    if (!(a.corner_motion[h] == b.corner_motion[h]))
+      return "corner map of corner " + std::to_string(h);
   }
   for (std::size_t v = 0; v < a.angle_index.size(); ++v) {
     if (a.angle_index[v] != b.angle_index[v]) return "angle of vertex " + std::to_string(v);
-    if (a.reference_corner[v] != b.reference_corner[v]) return "reference corner of vertex " + std::to_string(v);
-    if (a.is_cone(static_cast<int>(v)) && (a.vertex_uv[v].x != b.vertex_uv[v].x || a.vertex_uv[v].y != b.vertex_uv[v].y))
+    if (a.reference_corner[v] != b.reference_corner[v])
+      return "reference corner of vertex " + std::to_string(v);
+    if (a.is_cone(static_cast<int>(v)) &&
+        (a.vertex_uv[v].x != b.vertex_uv[v].x || a.vertex_uv[v].y != b.vertex_uv[v].y))
       return "cone point of vertex " + std::to_string(v);
   }
   return "";

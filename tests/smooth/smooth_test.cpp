@@ -3,6 +3,7 @@
 // file) and less distorted; the fallbacks; hostile geometry.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -103,7 +104,9 @@ TEST_CASE("the torus from two starts converges to the same map, up to a translat
   CHECK(worst < 1e-6);
 }
 
-TEST_CASE("generated meshes of genus 1-3: monotone, flip-free, structure kept, certified, less distorted") {
+TEST_CASE(
+    "generated meshes of genus 1-3: monotone, flip-free, structure kept, certified, less "
+    "distorted") {
   for (int genus : {1, 2, 3}) {
     INFO("genus " << genus);
     const IgmMesh igm = igm_test::pipeline_igm(genus, 600 * genus, 7);
@@ -112,9 +115,10 @@ TEST_CASE("generated meshes of genus 1-3: monotone, flip-free, structure kept, c
     check_smoothed(igm, r, seen);
     const igm_test::Distortion before = igm_test::measure_distortion(igm, igm.corner_uv);
     const igm_test::Distortion after = igm_test::measure_distortion(igm, r.corner_uv);
-    MESSAGE("genus " << genus << ": " << igm.triangles.size() << " triangles, " << r.stats.iterations
-                     << " iterations, SD " << before.sd_energy << " -> " << after.sd_energy << ", p99 s1/s2 "
-                     << before.p99_conformal << " -> " << after.p99_conformal);
+    MESSAGE("genus " << genus << ": " << igm.triangles.size() << " triangles, "
+                     << r.stats.iterations << " iterations, SD " << before.sd_energy << " -> "
+                     << after.sd_energy << ", p99 s1/s2 " << before.p99_conformal << " -> "
+                     << after.p99_conformal);
     CHECK(after.sd_energy < 0.5 * before.sd_energy);
     CHECK(after.p99_conformal < 0.9 * before.p99_conformal);
     CHECK(r.stats.energy.back() < r.stats.energy.front());
@@ -130,9 +134,9 @@ TEST_CASE("the elephant's IGM smooths: less distorted, certified") {
   check_smoothed(igm, r, seen);
   const igm_test::Distortion before = igm_test::measure_distortion(igm, igm.corner_uv);
   const igm_test::Distortion after = igm_test::measure_distortion(igm, r.corner_uv);
-  MESSAGE("elephant: " << igm.triangles.size() << " triangles, " << r.stats.iterations << " iterations, SD "
-                       << before.sd_energy << " -> " << after.sd_energy << ", p99 s1/s2 " << before.p99_conformal
-                       << " -> " << after.p99_conformal);
+  MESSAGE("elephant: " << igm.triangles.size() << " triangles, " << r.stats.iterations
+                       << " iterations, SD " << before.sd_energy << " -> " << after.sd_energy
+                       << ", p99 s1/s2 " << before.p99_conformal << " -> " << after.p99_conformal);
   CHECK(after.sd_energy < 0.01 * before.sd_energy);
   CHECK(after.p99_conformal < 0.9 * before.p99_conformal);
 }
@@ -152,28 +156,45 @@ TEST_CASE("a map that does not round onto the grid is returned exact and says so
   CHECK(r.stats.certified);
 }
 
-TEST_CASE("hostile geometry: coincident vertices give zero-area triangles, no NaN, certified") {
-  igm_test::RandomMeshSpec spec;
-  spec.genus = 2;
-  spec.faces = 300;
-  spec.seed = 11;
-  spec.geometry = igm_test::Geometry::Collapse;
-  const IgmMesh igm = compute_igm(validate(igm_test::random_closed_mesh(spec))).igm;
-  int zero_area = 0;
-  for (const auto& t : igm.triangles) {
-    const Vec3d &a = igm.positions[t[0]], &b = igm.positions[t[1]], &c = igm.positions[t[2]];
-    const double u[3] = {b.x - a.x, b.y - a.y, b.z - a.z}, v[3] = {c.x - a.x, c.y - a.y, c.z - a.z};
-    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-    zero_area += n[0] == 0 && n[1] == 0 && n[2] == 0;
+TEST_CASE("hostile geometry: zero-area and extreme triangles, no NaN, certified") {
+  using igm_test::Geometry;
+  for (const Geometry geometry : {Geometry::Collapse, Geometry::Collinear, Geometry::Coincident,
+                                  Geometry::Tiny, Geometry::Huge, Geometry::Mixed, Geometry::Extreme}) {
+    igm_test::RandomMeshSpec spec;
+    spec.genus = 2;
+    spec.faces = 300;
+    spec.seed = 11;
+    spec.geometry = geometry;
+    INFO(igm_test::describe(spec));
+    const IgmMesh igm = compute_igm(validate(igm_test::random_closed_mesh(spec))).igm;
+    // Zero-area triangles, counted on the positions scaled by a power of two to at most 1 (so
+    // that tiny and huge coordinates neither underflow nor overflow here).
+    double largest = 0;
+    for (const Vec3d& p : igm.positions)
+      largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+    const double k = std::ldexp(1.0, -std::ilogb(largest) - 1);
+    int zero_area = 0;
+    for (const auto& t : igm.triangles) {
+      const Vec3d &a = igm.positions[t[0]], &b = igm.positions[t[1]], &c = igm.positions[t[2]];
+      const double u[3] = {k * b.x - k * a.x, k * b.y - k * a.y, k * b.z - k * a.z};
+      const double v[3] = {k * c.x - k * a.x, k * c.y - k * a.y, k * c.z - k * a.z};
+      const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                           u[0] * v[1] - u[1] * v[0]};
+      zero_area += n[0] == 0 && n[1] == 0 && n[2] == 0;
+    }
+    if (geometry == Geometry::Collapse || geometry == Geometry::Collinear ||
+        geometry == Geometry::Coincident)
+      REQUIRE(zero_area > 0);
+    Iterates seen;
+    const SmoothResult r = smooth_igm(igm, watched(seen, 20));
+    MESSAGE(std::string(igm_test::to_string(geometry))
+            << ": " << zero_area << " zero-area triangles of " << igm.triangles.size()
+            << "; references enlarged " << r.stats.enlarged_references << ", fattened "
+            << r.stats.fattened_references << "; energy " << r.stats.energy.front() << " -> "
+            << r.stats.energy.back() << " in " << r.stats.iterations << " iterations");
+    CHECK(r.stats.enlarged_references + r.stats.fattened_references >= zero_area);
+    check_smoothed(igm, r, seen);
   }
-  REQUIRE(zero_area > 0);
-  Iterates seen;
-  const SmoothResult r = smooth_igm(igm, watched(seen, 20));
-  MESSAGE(zero_area << " zero-area triangles of " << igm.triangles.size() << "; references enlarged "
-                    << r.stats.enlarged_references << ", fattened " << r.stats.fattened_references << "; energy "
-                    << r.stats.energy.front() << " -> " << r.stats.energy.back());
-  CHECK(r.stats.enlarged_references + r.stats.fattened_references >= zero_area);
-  check_smoothed(igm, r, seen);
 }
 
 TEST_CASE("options, budgets and callbacks") {

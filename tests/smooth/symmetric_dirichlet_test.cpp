@@ -17,7 +17,8 @@ namespace {
 // The reference of the 3D triangle (0,0,0), (2,0,0), (0.5,1.5,0) scaled to UV area `uv_area`.
 SdReference reference(double uv_area) {
   SdReferenceStats stats;
-  const auto refs = sd_references({{0, 0, 0}, {2, 0, 0}, {0.5, 1.5, 0}}, {{0, 1, 2}}, uv_area, 1e-6, 1e-3, stats);
+  const auto refs =
+      sd_references({{0, 0, 0}, {2, 0, 0}, {0.5, 1.5, 0}}, {{0, 1, 2}}, uv_area, 1e-6, 1e-3, stats);
   CHECK(stats.enlarged == 0);
   CHECK(stats.fattened == 0);
   return refs[0];
@@ -26,7 +27,8 @@ SdReference reference(double uv_area) {
 // The UV triangle F applied to the reference triangle laid in the plane (M = minv^-1).
 std::array<Vec2d, 3> mapped(const SdReference& r, const double F[2][2]) {
   const double det = r.minv[0][0] * r.minv[1][1] - r.minv[0][1] * r.minv[1][0];
-  const double M[2][2] = {{r.minv[1][1] / det, -r.minv[0][1] / det}, {-r.minv[1][0] / det, r.minv[0][0] / det}};
+  const double M[2][2] = {{r.minv[1][1] / det, -r.minv[0][1] / det},
+                          {-r.minv[1][0] / det, r.minv[0][0] / det}};
   std::array<Vec2d, 3> uv{};
   for (int j = 0; j < 2; ++j) {
     const double x = M[0][j], y = M[1][j];  // column j of M: the reference's edge j
@@ -66,7 +68,8 @@ TEST_CASE("gradient and Hessian against central differences where no eigenvalue 
   const SdReference r = reference(1.5);
   // s = (1.5, 1.5) rotated and (2, 1.3) sheared: the twist eigenvalue 2 - 2 (s1^2 - s1 s2 +
   // s2^2) / (s1 s2)^3 is positive in both, so the projected Hessian is the Hessian.
-  const double Fs[2][2][2] = {{{1.5 * 0.6, -1.5 * 0.8}, {1.5 * 0.8, 1.5 * 0.6}}, {{2.0, 0.4}, {0.3, 1.3}}};
+  const double Fs[2][2][2] = {{{1.5 * 0.6, -1.5 * 0.8}, {1.5 * 0.8, 1.5 * 0.6}},
+                              {{2.0, 0.4}, {0.3, 1.3}}};
   for (const auto& F : Fs) {
     std::array<Vec2d, 3> uv = mapped(r, F);
     double g[6], H[36];
@@ -82,7 +85,8 @@ TEST_CASE("gradient and Hessian against central differences where no eigenvalue 
       double gp[6], gm[6], Hs[36];
       sd_derivatives(r, p, gp, Hs);
       sd_derivatives(r, m, gm, Hs);
-      for (int l = 0; l < 6; ++l) CHECK(H[6 * l + k] == doctest::Approx((gp[l] - gm[l]) / (2 * d)).epsilon(1e-5).scale(1));
+      for (int l = 0; l < 6; ++l)
+        CHECK(H[6 * l + k] == doctest::Approx((gp[l] - gm[l]) / (2 * d)).epsilon(1e-5).scale(1));
     }
   }
 }
@@ -97,7 +101,8 @@ TEST_CASE("the projected Hessian of a compressed triangle is positive semi-defin
   for (int i = 0; i < 6; ++i)
     for (int j = 0; j < 6; ++j) A(i, j) = H[6 * i + j];
   CHECK((A - A.transpose()).cwiseAbs().maxCoeff() <= 1e-9 * A.cwiseAbs().maxCoeff());
-  const Eigen::VectorXd ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>>(A).eigenvalues();
+  const Eigen::VectorXd ev =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>>(A).eigenvalues();
   CHECK(ev.minCoeff() >= -1e-9 * ev.maxCoeff());
   // Translations of the triangle are its null space: 2 zero eigenvalues, 4 positive ones.
   int positive = 0;
@@ -112,8 +117,10 @@ TEST_CASE("first degeneracy: the smallest positive root of the determinant") {
   // corners 1 and 2 move towards corner 0: det = (1 - t)^2, a double root at 1
   CHECK(first_degeneracy(uv, {Vec2d{0, 0}, Vec2d{-1, 0}, Vec2d{0, -1}}) == doctest::Approx(1));
   // a translation never degenerates; moving away only grows the triangle
-  CHECK(first_degeneracy(uv, {Vec2d{3, 1}, Vec2d{3, 1}, Vec2d{3, 1}}) == std::numeric_limits<double>::infinity());
-  CHECK(first_degeneracy(uv, {Vec2d{0, 0}, Vec2d{1, 0}, Vec2d{0, 1}}) == std::numeric_limits<double>::infinity());
+  CHECK(first_degeneracy(uv, {Vec2d{3, 1}, Vec2d{3, 1}, Vec2d{3, 1}}) ==
+        std::numeric_limits<double>::infinity());
+  CHECK(first_degeneracy(uv, {Vec2d{0, 0}, Vec2d{1, 0}, Vec2d{0, 1}}) ==
+        std::numeric_limits<double>::infinity());
   // det = 1 + t - 6 t^2 (corner 1 to (1 + t, 2t), corner 2 to (3t, 1)): roots 1/2 and -1/3
   CHECK(first_degeneracy(uv, {Vec2d{0, 0}, Vec2d{1, 2}, Vec2d{3, 0}}) == doctest::Approx(0.5));
 }
@@ -121,9 +128,11 @@ TEST_CASE("first degeneracy: the smallest positive root of the determinant") {
 TEST_CASE("degenerate 3D triangles get finite regularized references") {
   SdReferenceStats stats;
   // coincident points, a collinear triple, a tiny but well-shaped one, and a normal one
-  const std::vector<Vec3d> p{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0},
-                             {0, 0, 5}, {1e-9, 0, 5}, {0, 1e-9, 5}, {0, 1, 1}, {1, 1, 1}, {0, 2, 1}};
-  const auto refs = sd_references(p, {{0, 1, 2}, {3, 4, 5}, {6, 7, 8}, {9, 10, 11}}, 4.0, 1e-6, 1e-3, stats);
+  const std::vector<Vec3d> p{{0, 0, 0},    {0, 0, 0}, {0, 0, 0}, {1, 0, 0},
+                             {2, 0, 0},    {3, 0, 0}, {0, 0, 5}, {1e-9, 0, 5},
+                             {0, 1e-9, 5}, {0, 1, 1}, {1, 1, 1}, {0, 2, 1}};
+  const auto refs =
+      sd_references(p, {{0, 1, 2}, {3, 4, 5}, {6, 7, 8}, {9, 10, 11}}, 4.0, 1e-6, 1e-3, stats);
   CHECK(stats.enlarged == 2);  // the coincident one and the tiny one
   CHECK(stats.fattened == 1);  // the collinear one
   double total = 0;

@@ -58,7 +58,8 @@ std::optional<GridMap> round_to_grid(const SeamlessStructure& s);
 std::optional<double> round_to_grid(double x, const DyadicGrid& grid);
 
 /// Every corner UV of `map` (three per face of s.mesh, in face order), exact doubles.
-void grid_corners(const SeamlessStructure& s, const GridMap& map, std::vector<std::array<Vec2d, 3>>& corners);
+void grid_corners(const SeamlessStructure& s, const GridMap& map,
+                  std::vector<std::array<Vec2d, 3>>& corners);
 
 /// The exact checks that make a map rebuilt from vertex UVs (grid_corners) a valid IGM, all else
 /// holding by construction (see the top of this file): every UV triangle strictly positive
@@ -98,8 +99,8 @@ struct DyadicResult {
   DyadicStats stats;
 };
 
-/// Places the exact map `igm` on its dyadic grid (round_to_grid) and certifies it (check_map); where
-/// no grid exists or the rounded map fails a check the map stays exact and the stats say why.
+/// Places the exact map `igm` on its dyadic grid (round_to_grid) and certifies it (check_map);
+/// where no grid exists or the rounded map fails a check the map stays exact and the stats say why.
 /// Pre: `igm` is a valid IGM (seamless_structure throws igm::Error otherwise).
 /// Cost: seamless_structure plus O(F).
 DyadicResult round_to_dyadic(const IgmMesh& igm);

@@ -60,8 +60,10 @@ struct SeamlessStructure {
 /// half-open quadrants' boundaries, decided by exact comparisons). A regular vertex has 4. Pre:
 /// three UVs per face of `mesh`, every triangle strictly positive (else the count means nothing).
 /// Cost O(F).
-std::vector<int> angle_indices(const TriMesh& mesh, const std::vector<std::array<Point2q, 3>>& corner_uv);
-std::vector<int> angle_indices(const TriMesh& mesh, const std::vector<std::array<Vec2d, 3>>& corner_uv);
+std::vector<int> angle_indices(const TriMesh& mesh,
+                               const std::vector<std::array<Point2q, 3>>& corner_uv);
+std::vector<int> angle_indices(const TriMesh& mesh,
+                               const std::vector<std::array<Vec2d, 3>>& corner_uv);
 
 /// Derives the seamless structure of `igm` from its exact corner UVs. Across every edge the
 /// transition is the unique x -> R^k x + t (k in 0..3) with R^k e_A = e_B for the edge's UV

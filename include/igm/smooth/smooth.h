@@ -3,8 +3,8 @@
 // non-cone vertex moves (in its reference chart, seamless.h), every corner follows by its fixed
 // rigid map, cones stay at their integer points. Transitions are fixed by construction; each
 // accepted iterate is checked exactly to have every triangle positive and every angle unchanged
-// (dyadic.h, check_map), so each is a valid IGM. The pipeline's map is only an initialization (paper §7); this lowers
-// its distortion.
+// (dyadic.h, check_map), so each is a valid IGM. The pipeline's map is only an initialization
+// (paper §7); this lowers its distortion.
 #include <array>
 #include <functional>
 #include <string>
@@ -18,10 +18,10 @@ namespace igm {
 
 /// Reported after each accepted iteration (SmoothOptions::progress).
 struct SmoothProgress {
-  int iteration = 0;    // 1, 2, ...
-  double energy = 0;    // after the iteration
-  double step = 0;      // the accepted step length along the Newton direction
-  double seconds = 0;   // since the start of smooth_igm
+  int iteration = 0;   // 1, 2, ...
+  double energy = 0;   // after the iteration
+  double step = 0;     // the accepted step length along the Newton direction
+  double seconds = 0;  // since the start of smooth_igm
 };
 
 /// Every accepted iterate (SmoothOptions::on_iterate), iteration 0 being the starting map.
@@ -32,7 +32,7 @@ struct SmoothIterate {
 };
 
 struct SmoothOptions {
-  int max_iterations = 100;          // Newton iterations (>= 0)
+  int max_iterations = 100;  // Newton iterations (>= 0)
   /// Stop after the iteration that ends past this many seconds since smooth_igm began (wall
   /// time, the set-up included); 0: no limit.
   double time_budget_seconds = 0;
@@ -47,7 +47,7 @@ struct SmoothOptions {
   double step_fraction = 0.8;
   /// Run the independent certifier (certify_igm) on the returned map.
   bool certify = true;
-  std::function<void(const SmoothProgress&)> progress;  // optional
+  std::function<void(const SmoothProgress&)> progress;   // optional
   std::function<void(const SmoothIterate&)> on_iterate;  // optional, for tests
 };
 
@@ -72,20 +72,20 @@ const char* to_string(SmoothReturned returned);
 
 struct SmoothStats {
   int iterations = 0;
-  std::vector<double> energy;     // energy[0] of the starting map, energy[i] after iteration i
-  double seconds = 0;             // all of smooth_igm, of which:
-  double setup_seconds = 0;       //   the structure, the grid, the references, the Hessian's pattern
-  double certify_seconds = 0;     //   the independent certifier
+  std::vector<double> energy;  // energy[0] of the starting map, energy[i] after iteration i
+  double seconds = 0;          // all of smooth_igm, of which:
+  double setup_seconds = 0;    //   the structure, the grid, the references, the Hessian's pattern
+  double certify_seconds = 0;  //   the independent certifier
   SmoothStop stop = SmoothStop::NotStarted;
   SmoothReturned returned = SmoothReturned::InputExact;
-  std::string reason;             // a sentence on why it stopped (and what was returned)
+  std::string reason;  // a sentence on why it stopped (and what was returned)
   int free_vertices = 0, cones = 0;
-  int enlarged_references = 0;    // 3D triangles below the size floor (zero area included)
-  int fattened_references = 0;    // 3D triangles thinner than the aspect floor
-  int step_halvings = 0;          // trial steps halved in all line searches
-  int exact_rejections = 0;       // trial steps whose map the exact checks rejected (check_map)
-  DyadicStats dyadic;             // the grid, and the exact certification of the returned map
-  bool certified = false;         // the independent certifier accepted the returned map
+  int enlarged_references = 0;  // 3D triangles below the size floor (zero area included)
+  int fattened_references = 0;  // 3D triangles thinner than the aspect floor
+  int step_halvings = 0;        // trial steps halved in all line searches
+  int exact_rejections = 0;     // trial steps whose map the exact checks rejected (check_map)
+  DyadicStats dyadic;           // the grid, and the exact certification of the returned map
+  bool certified = false;       // the independent certifier accepted the returned map
 };
 
 struct SmoothResult {
