@@ -50,7 +50,7 @@ void run(const std::string& name, const igm::ValidMesh& mesh) {
       "%-14s g=%-3d IGM F=%-7zu V=%-7zu pipeline %.2fs | structure %.2fs, doubles %s (2^%d) %.2fs "
       "| smooth "
       "%.2fs (cpu %.2fs; setup %.2fs, certify %.2fs), %d it (%s), E %.4g -> %.4g, p99 s1/s2 %.4g "
-      "-> %.4g, free %d cones %d, reg %d+%d, halvings %d, "
+      "-> %.4g, free %d cones %d, reg %d+%d, factorizations %d, halvings %d, "
       "exact rejections %d, certified %s\n",
       name.c_str(), r.stats.genus, r.igm.triangles.size(), r.igm.positions.size(), pipeline_s,
       seamless_s, d.stats.on_grid ? "yes" : "NO", d.stats.grid_exponent, dyadic_s, st.seconds,
@@ -58,7 +58,7 @@ void run(const std::string& name, const igm::ValidMesh& mesh) {
       st.energy.front(), st.energy.back(),
       igm_test::measure_distortion(r.igm, r.igm.corner_uv).p99_conformal,
       igm_test::measure_distortion(r.igm, sm.corner_uv).p99_conformal, st.free_vertices, st.cones,
-      st.enlarged_references, st.fattened_references, st.step_halvings, st.exact_rejections,
+      st.enlarged_references, st.fattened_references, st.factorizations, st.step_halvings, st.exact_rejections,
       st.certified ? "yes" : "NO");
   std::fflush(stdout);
 }

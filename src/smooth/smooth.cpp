@@ -21,7 +21,8 @@ using Clock = std::chrono::steady_clock;
 
 constexpr int kMaxTrials = 64;            // trial steps per line search
 constexpr double kArmijo = 1e-4;          // sufficient decrease: E(x + a d) <= E(x) + kArmijo a g.d
-constexpr double kRegularization = 1e-9;  // times the mean diagonal, added to the Hessian
+constexpr double kRegularization = 1e-9;  // times the diagonal, added to the Hessian
+constexpr double kTinyPivot = 1e-300;     // added to the diagonal: never exactly 0
 constexpr int kMaxRegularizations = 6;    // each 1000 times the last, when a factorization fails
 
 // R^k as a matrix (R the rotation by +90 degrees): uv = R^k x + t, so d uv / d x = R^k.
@@ -200,15 +201,16 @@ class Smoother {
     }
   }
 
-  // d = -H^-1 g with H + mu I, mu = kRegularization * mean diagonal, raised while the
+  // d = -H^-1 g for H + mu diag(H) (Levenberg-Marquardt with the diagonal's scale: the entries of
+  // thin triangles and ordinary ones differ by many orders of magnitude, and Cholesky's accuracy
+  // depends on the diagonally scaled matrix), mu = kRegularization, raised 1000 times while the
   // factorization fails or the solution is not finite (at most kMaxRegularizations times).
   bool solve(Eigen::VectorXd& d) {
-    double trace = 0;
-    for (double x : diag_) trace += x;
-    double mu = kRegularization * std::max(trace / static_cast<double>(diag_.size()), 1e-300);
     std::vector<double> diag(diag_.size());
+    double mu = kRegularization;
     for (int attempt = 0; attempt < kMaxRegularizations; ++attempt, mu *= 1e3) {
-      for (std::size_t i = 0; i < diag.size(); ++i) diag[i] = diag_[i] + mu;
+      ++stats_.factorizations;
+      for (std::size_t i = 0; i < diag.size(); ++i) diag[i] = diag_[i] * (1 + mu) + kTinyPivot;
       try {
         solver_.factorize(xadj_, adj_, values_, diag);
       } catch (const Error& e) {
