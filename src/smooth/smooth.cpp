@@ -68,9 +68,7 @@ class Smoother {
     stats_.fattened_references = rs.fattened;
   }
 
-  int free_vertices() const { return n_; }
   const std::vector<std::array<Vec2d, 3>>& corners() const { return corners_; }
-  const GridMap& map() const { return map_; }
 
   double energy(const std::vector<std::array<Vec2d, 3>>& corners) const {
     double e = 0;
