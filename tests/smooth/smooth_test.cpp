@@ -125,6 +125,18 @@ TEST_CASE(
   }
 }
 
+TEST_CASE("both factorizations: sparse Cholesky up to genus 8, SimplicialLDLT above") {
+  for (const int genus : {2, 9}) {
+    INFO("genus " << genus);
+    const IgmMesh igm = igm_test::pipeline_igm(genus, 900 * genus, 3);
+    Iterates seen;
+    const SmoothResult r = smooth_igm(igm, watched(seen, 10));
+    CHECK(r.stats.supernodal == (genus <= 8));
+    check_smoothed(igm, r, seen);
+    CHECK(r.stats.energy.back() < 0.5 * r.stats.energy.front());
+  }
+}
+
 TEST_CASE("the elephant's IGM smooths: less distorted, certified") {
   IGM_REQUIRE_DATA(dir);
   const ValidMesh mesh = load_mesh(dir / "meshes" / "clean" / "elephant.off");

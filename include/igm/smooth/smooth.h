@@ -83,6 +83,7 @@ struct SmoothStats {
   int enlarged_references = 0;  // 3D triangles below the size floor (zero area included)
   int fattened_references = 0;  // 3D triangles thinner than the aspect floor
   int factorizations = 0;       // of the Newton systems (more than iterations where one failed)
+  bool supernodal = false;      // by SparseCholesky (genus <= 8), else by Eigen's SimplicialLDLT
   int step_halvings = 0;        // trial steps halved in all line searches
   int exact_rejections = 0;     // trial steps whose map the exact checks rejected (check_map)
   DyadicStats dyadic;           // the grid, and the exact certification of the returned map
@@ -105,12 +106,13 @@ struct SmoothResult {
 /// normalized (4 at best). The total UV area does not change when non-cone vertices move, so
 /// the scale is fixed. Projected Newton: per-triangle Hessians made positive semi-definite through
 /// the analytic eigensystem (the one eigenvalue that can be negative replaced by its absolute
-/// value), a sparse Cholesky solve (embed/sparse_cholesky.h) of the system with its diagonal
-/// raised by 1e-9 of itself (more where the factorization fails), a line search that starts at
-/// step_fraction of the first degeneracy (Smith & Schaefer 2015) and halves until the energy
-/// decreases enough (Armijo) and the new map, rounded onto the dyadic grid (dyadic.h), passes
-/// the exact checks (check_map). So every accepted iterate is a certified map in doubles, the
-/// energy never increases, and the last one is returned.
+/// value), a sparse Cholesky solve of the system with its diagonal raised by 1e-9 of itself
+/// (more where the factorization fails; embed/sparse_cholesky.h up to genus 8, above it Eigen's
+/// SimplicialLDLT with AMD ordering, whose cost does not grow with the handles), a line search
+/// that starts at step_fraction of the first degeneracy (Smith & Schaefer 2015) and halves until
+/// the energy decreases enough (Armijo) and the new map, rounded onto the dyadic grid (dyadic.h),
+/// passes the exact checks (check_map). So every accepted iterate is a certified map in doubles,
+/// the energy never increases, and the last one is returned.
 /// Pre: `igm` is a valid IGM (seamless_structure checks it and throws igm::Error naming the
 /// element otherwise), finite positions (igm::Error(NonFinite) naming the vertex otherwise).
 /// A trial step that would take a vertex UV beyond the grid's bound (8 times the largest input
