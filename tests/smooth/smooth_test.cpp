@@ -128,7 +128,7 @@ TEST_CASE(
 TEST_CASE("both factorizations: sparse Cholesky up to genus 8, SimplicialLDLT above") {
   for (const int genus : {2, 9}) {
     INFO("genus " << genus);
-    const IgmMesh igm = igm_test::pipeline_igm(genus, 900 * genus, 3);
+    const IgmMesh igm = igm_test::pipeline_igm(genus, 500 * genus, 3);
     Iterates seen;
     const SmoothResult r = smooth_igm(igm, watched(seen, 10));
     CHECK(r.stats.supernodal == (genus <= 8));
