@@ -1,6 +1,8 @@
 #include "igm/output/igm_mesh.h"
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <ostream>
 #include <string>
 
@@ -14,6 +16,49 @@ void put_double(std::ostream& out, double x) {
   char buf[32];
   int n = std::snprintf(buf, sizeof buf, "%.17g", x);
   out.write(buf, n);
+}
+
+// The exact decimal expansion of a finite double x = M 2^E (M odd): an integer when E >= 0, else
+// M 5^-E / 10^-E, that is -E digits after the point (at most 1074).
+std::string exact_decimal(double x) {
+  if (x == 0) return "0";
+  int e = 0;
+  const double m = std::frexp(x, &e);  // x = m 2^e, 0.5 <= |m| < 1
+  long long mant = std::llabs(static_cast<long long>(std::ldexp(m, 53)));  // exact: 53 bits
+  int exp2 = e - 53;
+  while (mant % 2 == 0) mant /= 2, ++exp2;  // at most 52 steps
+  Integer digits(static_cast<long>(mant));
+  std::string s;
+  if (exp2 >= 0) {
+    mpz_mul_2exp(digits.get_mpz_t(), digits.get_mpz_t(), static_cast<mp_bitcnt_t>(exp2));
+    s = digits.get_str();
+  } else {
+    const std::size_t frac = static_cast<std::size_t>(-exp2);
+    Integer five;
+    mpz_ui_pow_ui(five.get_mpz_t(), 5, frac);
+    digits *= five;
+    s = digits.get_str();
+    if (s.size() <= frac) s.insert(0, frac + 1 - s.size(), '0');
+    s.insert(s.size() - frac, 1, '.');
+  }
+  return x < 0 ? "-" + s : s;
+}
+
+// A UV coordinate of the doubles file: its exact decimal expansion when it is exactly a double,
+// else %.17g of the double nearest to it toward zero.
+void put_uv_coordinate(std::ostream& out, const Rational& q) {
+  const double d = to_double(q);
+  const mpz_srcptr den = q.get_den_mpz_t();
+  if (mpz_scan1(den, 0) == mpz_sizeinbase(den, 2) - 1 && std::isfinite(d) && to_rational(d) == q)
+    out << exact_decimal(d);
+  else
+    put_double(out, d);
+}
+
+void check_uv_count(const IgmMesh& igm, const std::vector<std::array<Point2q, 3>>& corner_uv) {
+  if (corner_uv.size() != igm.triangles.size())
+    throw Error(ErrorKind::InvalidArgument, "IGM has " + std::to_string(igm.triangles.size()) + " triangles but " +
+                                                std::to_string(corner_uv.size()) + " UV triples");
 }
 
 void put_positions(std::ostream& out, const std::vector<Vec3d>& positions) {
@@ -31,11 +76,9 @@ void put_positions(std::ostream& out, const std::vector<Vec3d>& positions) {
 }  // namespace
 
 void write_igm_obj(std::ostream& out, const IgmMesh& igm, bool exact) {
-  if (igm.corner_uv.size() != igm.triangles.size())
-    throw Error(ErrorKind::InvalidArgument, "IGM has " + std::to_string(igm.triangles.size()) + " triangles but " +
-                                                std::to_string(igm.corner_uv.size()) + " UV triples");
+  check_uv_count(igm, igm.corner_uv);
   out << (exact ? "# igm exact IGM: one vt per face corner, exact rationals p/q\n"
-                : "# igm IGM: one vt per face corner (doubles rounded from exact rationals)\n");
+                : "# igm IGM: one vt per face corner (exact decimals where exactly doubles, else doubles rounded toward zero)\n");
   put_positions(out, igm.positions);
   for (const auto& tri : igm.corner_uv)
     for (const Point2q& uv : tri) {
@@ -43,9 +86,9 @@ void write_igm_obj(std::ostream& out, const IgmMesh& igm, bool exact) {
       if (exact) {
         out << to_string(uv.x) << ' ' << to_string(uv.y);
       } else {
-        put_double(out, to_double(uv.x));
+        put_uv_coordinate(out, uv.x);
         out << ' ';
-        put_double(out, to_double(uv.y));
+        put_uv_coordinate(out, uv.y);
       }
       out << '\n';
     }
@@ -54,6 +97,17 @@ void write_igm_obj(std::ostream& out, const IgmMesh& igm, bool exact) {
     for (int i = 0; i < 3; ++i) out << ' ' << igm.triangles[f][i] + 1 << '/' << 3 * f + i + 1;
     out << '\n';
   }
+}
+
+certify::IgmInput certify_input(const IgmMesh& igm, const std::vector<std::array<Point2q, 3>>& corner_uv) {
+  check_uv_count(igm, corner_uv);
+  certify::IgmInput in;
+  in.faces = igm.triangles;
+  in.num_vertices = static_cast<std::int64_t>(igm.positions.size());
+  in.corner_uv.reserve(3 * corner_uv.size());
+  for (const auto& tri : corner_uv)
+    for (const Point2q& uv : tri) in.corner_uv.push_back({uv.x, uv.y});
+  return in;
 }
 
 void write_quad_obj(std::ostream& out, const QuadMesh& q) {

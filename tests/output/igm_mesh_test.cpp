@@ -1,31 +1,19 @@
 #include <doctest/doctest.h>
 
+#include <array>
+#include <cmath>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "certify/certify.h"
 #include "igm/output/igm_mesh.h"
 #include "igm/output/schema_svg.h"
+#include "square_torus.h"
 
 using namespace igm;
 
-namespace {
-// The unit-square torus split into 2 triangles: one vertex, every corner UV on the square.
-IgmMesh square_torus(int n) {
-  IgmMesh m;
-  auto id = [n](int i, int j) { return ((j % n + n) % n) * n + ((i % n + n) % n); };
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) m.positions.push_back({double(i), double(j), 0});
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      auto P = [](int a, int b) { return Point2q{Rational(a), Rational(b)}; };
-      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      m.corner_uv.push_back({P(i, j), P(i + 1, j), P(i + 1, j + 1)});
-      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-      m.corner_uv.push_back({P(i, j), P(i + 1, j + 1), P(i, j + 1)});
-    }
-  return m;
-}
-}  // namespace
+using igm_test::square_torus;
 
 TEST_CASE("exact and double IGM files are read back by the certifier as valid") {
   IgmMesh m = square_torus(4);
@@ -66,4 +54,73 @@ TEST_CASE("quad OBJ and schema SVG are well formed") {
   std::size_t lines = 0;
   for (std::size_t p = t.find("<line"); p != std::string::npos; p = t.find("<line", p + 1)) ++lines;
   CHECK(lines == 5);
+}
+
+namespace {
+// The `vt` lines of an OBJ text, each coordinate as written.
+std::vector<std::array<std::string, 2>> vt_fields(const std::string& text) {
+  std::vector<std::array<std::string, 2>> out;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("vt ", 0) == 0) {
+      std::istringstream f(line.substr(3));
+      std::array<std::string, 2> uv;
+      f >> uv[0] >> uv[1];
+      out.push_back(uv);
+    }
+  return out;
+}
+}  // namespace
+
+TEST_CASE("the doubles file writes a UV coordinate that is a double as its exact decimal expansion") {
+  // One triangle (the writer does not judge the map): expectations computed by hand / Python's
+  // Decimal of the doubles.
+  IgmMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  m.triangles = {{0, 1, 2}};
+  const double tiny = std::ldexp(1.0, -1074);
+  m.corner_uv = {{Point2q{to_rational(0.1), to_rational(-tiny)}, Point2q{Rational(3), Rational(-5, 8)},
+                  Point2q{Rational(1, 3), Rational(1, 2) * to_rational(tiny)}}};
+  std::ostringstream s;
+  write_igm_obj(s, m, false);
+  const auto vt = vt_fields(s.str());
+  REQUIRE(vt.size() == 3);
+  CHECK(vt[0][0] == "0.1000000000000000055511151231257827021181583404541015625");
+  CHECK(vt[0][1].size() == 1077);  // "-0." and 1074 digits
+  CHECK(vt[0][1].rfind("-0.000000000", 0) == 0);
+  CHECK(vt[0][1].substr(vt[0][1].size() - 20) == "19718265533447265625");
+  CHECK(vt[1][0] == "3");
+  CHECK(vt[1][1] == "-0.625");
+  CHECK(vt[2][0] == "0.33333333333333331");  // not a double: %.17g of its truncation, as before
+  CHECK(vt[2][1] == "0");                     // 2^-1075 is below every double: truncated to 0
+  // Every exact one reads back as the same rational.
+  CHECK(parse_rational(vt[0][0]) == m.corner_uv[0][0].x);
+  CHECK(parse_rational(vt[0][1]) == m.corner_uv[0][0].y);
+  CHECK(parse_rational(vt[1][1]) == m.corner_uv[0][1].y);
+  CHECK(parse_rational(vt[2][0]) != m.corner_uv[0][2].x);
+}
+
+TEST_CASE("a map on a double grid certifies from the doubles file and reads back exactly") {
+  // Vertex (1, 1) of the 4 x 4 torus moved in all its corners (no seam there: all of them are at
+  // (1, 1)) to (1 + 3 2^-45, 1 - 2^-44): doubles, the map still valid.
+  IgmMesh m = square_torus(4);
+  const Point2q moved{Rational(1) + Rational(3) * to_rational(std::ldexp(1.0, -45)),
+                      Rational(1) - to_rational(std::ldexp(1.0, -44))};
+  for (std::size_t f = 0; f < m.triangles.size(); ++f)
+    for (int i = 0; i < 3; ++i)
+      if (m.triangles[f][i] == 5) m.corner_uv[f][i] = moved;
+  std::ostringstream s;
+  write_igm_obj(s, m, false);
+  const std::string text = s.str();
+  CHECK(text.find("vt 1.000000000000085265128291212022304534912109375 0.99999999999994315658113919198513031005859375") !=
+        std::string::npos);
+  CHECK(igm::certify::certify_igm_text(text).valid());
+  const auto vt = vt_fields(text);
+  REQUIRE(vt.size() == 3 * m.triangles.size());
+  for (std::size_t c = 0; c < vt.size(); ++c) {
+    const Point2q& uv = m.corner_uv[c / 3][c % 3];
+    CHECK(parse_rational(vt[c][0]) == uv.x);
+    CHECK(parse_rational(vt[c][1]) == uv.y);
+  }
 }

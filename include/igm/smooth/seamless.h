@@ -1,0 +1,86 @@
+#pragma once
+// The seamless structure of an IGM, derived exactly from its corner UVs: the rigid transition
+// across every edge, the total angle of every vertex, and per vertex a reference corner with the
+// rigid map of each of its corners from the reference chart. With it a map is given by one UV per
+// vertex (x_v, in the vertex's reference chart): corner c of vertex v gets T_c(x_v). Moving the
+// x_v of non-cone vertices keeps every transition and every cone exactly as they are, so any such
+// map whose triangles stay positive is again a valid IGM (smooth.h, dyadic.h).
+#include <array>
+#include <vector>
+
+#include "igm/exact/predicates.h"
+#include "igm/mesh/trimesh.h"
+#include "igm/output/igm_mesh.h"
+
+namespace igm {
+
+/// The rigid motion x -> R^k x + t of the plane: R the rotation by +90 degrees, k in 0..3, t an
+/// integer vector.
+struct GridMotion {
+  int k = 0;
+  Integer tx = 0, ty = 0;
+  bool is_identity() const { return k == 0 && sgn(tx) == 0 && sgn(ty) == 0; }
+  friend bool operator==(const GridMotion& a, const GridMotion& b) {
+    return a.k == b.k && a.tx == b.tx && a.ty == b.ty;
+  }
+};
+
+/// m(p) = R^k p + t, exact.
+Point2q apply(const GridMotion& m, const Point2q& p);
+/// a after b: x -> a(b(x)).
+GridMotion compose(const GridMotion& a, const GridMotion& b);
+/// The inverse motion: inverse(m)(m(x)) = x.
+GridMotion inverse(const GridMotion& m);
+
+struct SeamlessStructure {
+  /// The IGM's triangles as a half-edge mesh. Corner i of face f is half-edge c = 3f + i (its
+  /// origin is triangles[f][i]); "corner c" below means that half-edge.
+  TriMesh mesh;
+  /// Per half-edge h: the transition from the chart of face(h) to the chart of face(twin(h)):
+  /// the UV of either end of the edge in face(twin(h)) is transition[h] of its UV in face(h).
+  /// transition[twin(h)] == inverse(transition[h]).
+  std::vector<GridMotion> transition;
+  /// Per vertex: its total UV angle is angle_index[v] * pi/2 (4: a regular vertex), counted
+  /// exactly as the certifier does (quadrant crossings of each corner's wedge).
+  std::vector<int> angle_index;
+  /// Per vertex: its reference corner (mesh.vertex_halfedge(v)); x_v is that corner's UV.
+  std::vector<int> reference_corner;
+  /// Per corner c of vertex v: uv_c = corner_motion[c](x_v), exactly; the identity at the
+  /// reference corner.
+  std::vector<GridMotion> corner_motion;
+  /// Per vertex: x_v, the UV of its reference corner (exact; an integer point at a cone).
+  std::vector<Point2q> vertex_uv;
+
+  bool is_cone(int v) const { return angle_index[v] != 4; }
+  int num_vertices() const { return mesh.num_vertices(); }
+};
+
+/// Per vertex of `mesh`, the total UV angle of its corners in units of pi/2, counted exactly as the
+/// certifier does (certify/README.md check 4: each corner's wedge crosses (q_b - q_a) mod 4 of the
+/// half-open quadrants' boundaries, decided by exact comparisons). A regular vertex has 4. Pre:
+/// three UVs per face of `mesh`, every triangle strictly positive (else the count means nothing).
+/// Cost O(F).
+std::vector<int> angle_indices(const TriMesh& mesh,
+                               const std::vector<std::array<Point2q, 3>>& corner_uv);
+std::vector<int> angle_indices(const TriMesh& mesh,
+                               const std::vector<std::array<Vec2d, 3>>& corner_uv);
+
+/// Derives the seamless structure of `igm` from its exact corner UVs. Across every edge the
+/// transition is the unique x -> R^k x + t (k in 0..3) with R^k e_A = e_B for the edge's UV
+/// vectors in both faces, and t must be integer (the same for both ends by construction). The
+/// corner maps compose these transitions around each vertex's fan from its reference corner; at a
+/// regular vertex the composition around the whole fan must be the identity (at a cone it is a
+/// rotation about the cone's integer point, or the identity when the angle is a multiple of 2 pi).
+/// Everything is exact; doubles only pick the first rotation to try.
+/// Pre: `igm` is a valid IGM (what the certifier checks): closed manifold triangles over
+/// positions.size() vertices, every vertex used, every UV triangle strictly positive (exact
+/// orient2d), every transition rigid with integer translation, every cone (angle != 2 pi) at an
+/// integer point. Throws igm::Error naming the element otherwise: InvalidArgument (sizes, a
+/// vertex used by no face, a face repeating a vertex, a non-positive UV triangle (face), an edge
+/// without a rigid transition (its two vertices), a cone off an integer point or a regular
+/// vertex whose fan does not close up (vertex)), NonManifoldEdge / NonManifoldVertex /
+/// Boundary from the half-edge construction or the fan walk.
+/// Cost: O(F log F) plus O(F) exact operations on the UVs' rationals.
+SeamlessStructure seamless_structure(const IgmMesh& igm);
+
+}  // namespace igm

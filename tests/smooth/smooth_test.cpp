@@ -1,0 +1,263 @@
+// Tests of the smoother (smooth/smooth.h): every accepted iterate a valid IGM, the energy never
+// rising, transitions and cones untouched, the result certified (from memory and from the doubles
+// file) and less distorted; the fallbacks; hostile geometry.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "distortion.h"
+#include "igm/core/error.h"
+#include "igm/smooth/smooth.h"
+#include "random_mesh.h"
+#include "smooth_fixture.h"
+#include "test_data.h"
+
+using namespace igm;
+using igm_test::certify_uv;
+
+namespace {
+
+// What the on_iterate callback saw: the energies, and how many iterates had a triangle that the
+// exact orient2d (run here, on the doubles handed out) does not find strictly positive.
+struct Iterates {
+  std::vector<double> energy;
+  int with_bad_triangle = 0;
+};
+
+SmoothOptions watched(Iterates& seen, int iterations) {
+  SmoothOptions o;
+  o.max_iterations = iterations;
+  o.on_iterate = [&seen](const SmoothIterate& it) {
+    CHECK(it.iteration == static_cast<int>(seen.energy.size()));
+    seen.energy.push_back(it.energy);
+    for (const auto& t : *it.corner_uv)
+      if (orient2d(t[0], t[1], t[2]) != Sign::Positive) {
+        ++seen.with_bad_triangle;
+        break;
+      }
+  };
+  return o;
+}
+
+// Everything a smoothing must keep: the energy never rises over the accepted iterates, each of
+// them is flip-free, the result is certified (in memory, by the smoother's own report, and from
+// the doubles file, read back exactly), and its transitions, angles and cones are the input's.
+void check_smoothed(const IgmMesh& igm, const SmoothResult& r, const Iterates& seen) {
+  CHECK(r.stats.returned == SmoothReturned::Smoothed);
+  CHECK(r.stats.dyadic.on_grid);
+  REQUIRE(seen.energy.size() == static_cast<std::size_t>(r.stats.iterations) + 1);
+  CHECK(seen.energy == r.stats.energy);
+  for (std::size_t i = 1; i < seen.energy.size(); ++i) CHECK(seen.energy[i] <= seen.energy[i - 1]);
+  for (double e : seen.energy) CHECK(std::isfinite(e));
+  CHECK(seen.with_bad_triangle == 0);
+  CHECK(r.stats.certified);
+  CHECK(r.report.valid());
+  CHECK(certify_uv(igm, r.corner_uv).valid());
+  IgmMesh out = igm;
+  out.corner_uv = r.corner_uv;
+  const SeamlessStructure before = seamless_structure(igm), after = seamless_structure(out);
+  CHECK(igm_test::structure_difference(before, after) == "");
+  int cone_corners_moved = 0;
+  for (int c = 0; c < before.mesh.num_halfedges(); ++c)
+    if (before.is_cone(before.mesh.origin(c))) {
+      const Point2q &p = igm.corner_uv[c / 3][c % 3], &q = r.corner_uv[c / 3][c % 3];
+      cone_corners_moved += p.x != q.x || p.y != q.y;
+    }
+  CHECK(cone_corners_moved == 0);
+  std::ostringstream s;
+  write_igm_obj(s, out, false);
+  CHECK(certify::certify_igm_text(s.str()).valid());
+}
+
+}  // namespace
+
+TEST_CASE("the torus from two starts converges to the same map, up to a translation") {
+  // The 4 x 4 square torus (its seam triangles are long in 3D, so the map is not an isometry) as
+  // it is and with vertex (1, 1) moved: both runs converge, to one map up to the translation of
+  // every vertex at once (the energy does not see it).
+  const IgmMesh plain = igm_test::square_torus(4);
+  const IgmMesh moved = igm_test::moved_torus({Rational(5, 4), Rational(9, 8)});
+  Iterates seen_plain, seen_moved;
+  SmoothOptions oa = watched(seen_plain, 50), ob = watched(seen_moved, 50);
+  oa.tolerance = ob.tolerance = 1e-14;  // Newton's quadratic convergence: a few more iterations
+  const SmoothResult a = smooth_igm(plain, oa);
+  const SmoothResult b = smooth_igm(moved, ob);
+  check_smoothed(plain, a, seen_plain);
+  check_smoothed(moved, b, seen_moved);
+  CHECK(a.stats.stop == SmoothStop::Converged);
+  CHECK(b.stats.stop == SmoothStop::Converged);
+  CHECK(b.stats.energy.front() > a.stats.energy.front());
+  CHECK(a.stats.energy.back() == doctest::Approx(b.stats.energy.back()).epsilon(1e-8));
+  CHECK(a.stats.free_vertices == 16);
+  CHECK(a.stats.cones == 0);
+  const double dx = to_double(b.corner_uv[0][0].x - a.corner_uv[0][0].x);
+  const double dy = to_double(b.corner_uv[0][0].y - a.corner_uv[0][0].y);
+  double worst = 0;
+  for (std::size_t f = 0; f < a.corner_uv.size(); ++f)
+    for (int i = 0; i < 3; ++i) {
+      worst = std::max(worst, std::abs(to_double(b.corner_uv[f][i].x - a.corner_uv[f][i].x) - dx));
+      worst = std::max(worst, std::abs(to_double(b.corner_uv[f][i].y - a.corner_uv[f][i].y) - dy));
+    }
+  CHECK(worst < 1e-6);
+}
+
+TEST_CASE(
+    "generated meshes of genus 1-3: monotone, flip-free, structure kept, certified, less "
+    "distorted") {
+  for (int genus : {1, 2, 3}) {
+    INFO("genus " << genus);
+    const IgmMesh igm = igm_test::pipeline_igm(genus, 600 * genus, 7);
+    Iterates seen;
+    const SmoothResult r = smooth_igm(igm, watched(seen, 25));
+    check_smoothed(igm, r, seen);
+    const igm_test::Distortion before = igm_test::measure_distortion(igm, igm.corner_uv);
+    const igm_test::Distortion after = igm_test::measure_distortion(igm, r.corner_uv);
+    MESSAGE("genus " << genus << ": " << igm.triangles.size() << " triangles, "
+                     << r.stats.iterations << " iterations, SD " << before.sd_energy << " -> "
+                     << after.sd_energy << ", p99 s1/s2 " << before.p99_conformal << " -> "
+                     << after.p99_conformal);
+    CHECK(after.sd_energy < 0.5 * before.sd_energy);
+    CHECK(after.p99_conformal < 0.9 * before.p99_conformal);
+    CHECK(r.stats.energy.back() < r.stats.energy.front());
+  }
+}
+
+TEST_CASE("both factorizations: sparse Cholesky up to genus 8, SimplicialLDLT above") {
+  for (const int genus : {2, 9}) {
+    INFO("genus " << genus);
+    const IgmMesh igm = igm_test::pipeline_igm(genus, 500 * genus, 3);
+    Iterates seen;
+    const SmoothResult r = smooth_igm(igm, watched(seen, 10));
+    CHECK(r.stats.supernodal == (genus <= 8));
+    check_smoothed(igm, r, seen);
+    CHECK(r.stats.energy.back() < 0.5 * r.stats.energy.front());
+  }
+}
+
+TEST_CASE("the elephant's IGM smooths: less distorted, certified") {
+  IGM_REQUIRE_DATA(dir);
+  const ValidMesh mesh = load_mesh(dir / "meshes" / "clean" / "elephant.off");
+  const IgmMesh igm = compute_igm(mesh).igm;
+  Iterates seen;
+  const SmoothResult r = smooth_igm(igm, watched(seen, 40));
+  check_smoothed(igm, r, seen);
+  const igm_test::Distortion before = igm_test::measure_distortion(igm, igm.corner_uv);
+  const igm_test::Distortion after = igm_test::measure_distortion(igm, r.corner_uv);
+  MESSAGE("elephant: " << igm.triangles.size() << " triangles, " << r.stats.iterations
+                       << " iterations, SD " << before.sd_energy << " -> " << after.sd_energy
+                       << ", p99 s1/s2 " << before.p99_conformal << " -> " << after.p99_conformal);
+  CHECK(after.sd_energy < 0.01 * before.sd_energy);
+  CHECK(after.p99_conformal < 0.9 * before.p99_conformal);
+}
+
+TEST_CASE("a map that does not round onto the grid is returned exact and says so") {
+  const Rational eps = make_rational(1, Integer(3) * (Integer(1) << 70));
+  const IgmMesh igm = igm_test::sliver_torus(eps);
+  const SmoothResult r = smooth_igm(igm);
+  CHECK(r.stats.returned == SmoothReturned::InputExact);
+  CHECK(r.stats.stop == SmoothStop::NotStarted);
+  CHECK(r.stats.iterations == 0);
+  CHECK_FALSE(r.stats.dyadic.on_grid);
+  CHECK(r.stats.dyadic.nonpositive == 1);
+  CHECK(r.stats.dyadic.first_nonpositive == igm_test::kSliverFace);
+  CHECK(r.stats.reason.find("stays exact") != std::string::npos);
+  CHECK(igm_test::changed_corners(r.corner_uv, igm.corner_uv) == 0);
+  CHECK(r.stats.certified);
+}
+
+TEST_CASE("hostile geometry: zero-area and extreme triangles, no NaN, certified") {
+  using igm_test::Geometry;
+  for (const Geometry geometry : {Geometry::Collapse, Geometry::Collinear, Geometry::Coincident,
+                                  Geometry::Tiny, Geometry::Huge, Geometry::Mixed, Geometry::Extreme}) {
+    igm_test::RandomMeshSpec spec;
+    spec.genus = 2;
+    spec.faces = 300;
+    spec.seed = 11;
+    spec.geometry = geometry;
+    INFO(igm_test::describe(spec));
+    const IgmMesh igm = compute_igm(validate(igm_test::random_closed_mesh(spec))).igm;
+    // Zero-area triangles, counted on the positions scaled by a power of two to at most 1 (so
+    // that tiny and huge coordinates neither underflow nor overflow here).
+    double largest = 0;
+    for (const Vec3d& p : igm.positions)
+      largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+    const double k = std::ldexp(1.0, -std::ilogb(largest) - 1);
+    int zero_area = 0;
+    for (const auto& t : igm.triangles) {
+      const Vec3d &a = igm.positions[t[0]], &b = igm.positions[t[1]], &c = igm.positions[t[2]];
+      const double u[3] = {k * b.x - k * a.x, k * b.y - k * a.y, k * b.z - k * a.z};
+      const double v[3] = {k * c.x - k * a.x, k * c.y - k * a.y, k * c.z - k * a.z};
+      const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                           u[0] * v[1] - u[1] * v[0]};
+      zero_area += n[0] == 0 && n[1] == 0 && n[2] == 0;
+    }
+    if (geometry == Geometry::Collapse || geometry == Geometry::Collinear ||
+        geometry == Geometry::Coincident)
+      REQUIRE(zero_area > 0);
+    Iterates seen;
+    const SmoothResult r = smooth_igm(igm, watched(seen, 20));
+    MESSAGE(std::string(igm_test::to_string(geometry))
+            << ": " << zero_area << " zero-area triangles of " << igm.triangles.size()
+            << "; references enlarged " << r.stats.enlarged_references << ", fattened "
+            << r.stats.fattened_references << "; energy " << r.stats.energy.front() << " -> "
+            << r.stats.energy.back() << " in " << r.stats.iterations << " iterations");
+    CHECK(r.stats.enlarged_references + r.stats.fattened_references >= zero_area);
+    check_smoothed(igm, r, seen);
+  }
+}
+
+TEST_CASE("options, budgets and callbacks") {
+  const IgmMesh igm = igm_test::pipeline_igm(2, 400, 5);
+  SUBCASE("bad options and positions are errors") {
+    SmoothOptions o;
+    o.step_fraction = 1;
+    CHECK_THROWS_AS(smooth_igm(igm, o), Error);
+    o = {};
+    o.max_iterations = -1;
+    CHECK_THROWS_AS(smooth_igm(igm, o), Error);
+    o = {};
+    o.tolerance = std::nan("");
+    CHECK_THROWS_AS(smooth_igm(igm, o), Error);
+    IgmMesh bad = igm;
+    bad.positions[3].y = std::nan("");
+    const auto e = igm_test::error_of([&] { smooth_igm(bad); });
+    REQUIRE(e.has_value());
+    CHECK(e->kind() == ErrorKind::NonFinite);
+    CHECK(e->elements() == std::vector<std::int64_t>{3});
+  }
+  SUBCASE("no iteration: the input on the grid, certified") {
+    SmoothOptions o;
+    o.max_iterations = 0;
+    const SmoothResult r = smooth_igm(igm, o);
+    CHECK(r.stats.returned == SmoothReturned::InputOnGrid);
+    CHECK(r.stats.stop == SmoothStop::IterationBudget);
+    CHECK(r.stats.energy.size() == 1);
+    CHECK(r.stats.certified);
+  }
+  SUBCASE("a time budget stops after the iteration that passes it; progress sees every iteration") {
+    SmoothOptions o;
+    o.time_budget_seconds = 1e-12;
+    std::vector<SmoothProgress> progress;
+    o.progress = [&progress](const SmoothProgress& p) { progress.push_back(p); };
+    const SmoothResult r = smooth_igm(igm, o);
+    CHECK(r.stats.stop == SmoothStop::TimeBudget);
+    CHECK(r.stats.iterations == 1);
+    REQUIRE(progress.size() == 1);
+    CHECK(progress[0].iteration == 1);
+    CHECK(progress[0].energy == r.stats.energy[1]);
+    CHECK(progress[0].step > 0);
+    CHECK(progress[0].step <= 1);
+    CHECK(r.stats.certified);
+  }
+  SUBCASE("without the certifier: not certified, not claimed") {
+    SmoothOptions o;
+    o.max_iterations = 2;
+    o.certify = false;
+    const SmoothResult r = smooth_igm(igm, o);
+    CHECK_FALSE(r.stats.certified);
+    CHECK(certify_uv(igm, r.corner_uv).valid());
+  }
+}
