@@ -3,7 +3,8 @@
 // template, the disk's affine map, N = 4 per layout edge, uniform Tutte weights and uniform side
 // parameters) against the layouts of layout/quad_layout.h with sizing and per-patch maps.
 // usage: igm_bench_layouts [--quads Q] [--config NAME ...] [--only MESH ...] [--generated G,G,...]
-//   configs: before, paper, kite, spread, and the spread layout with one choice changed: s-udisk
+//   configs: before, paper, kite, spread, and the spread layout with one choice changed: s-nosm
+//   (not smoothed), s-udisk
 //   (uniform disk map, uniform sides), s-cotan, s-unif (cotangent or uniform patch weights),
 //   s-affine (the affine map); default: all. Every output is certified or the line says NOT CERTIFIED.
 #include <chrono>
@@ -36,6 +37,7 @@ std::vector<Config> configs(std::int64_t quads) {
   before.disk_weights = igm::WeightKind::Uniform;
   before.disk_arc_length = false;
   before.patch_weights = igm::WeightKind::Uniform;  // genus 0: the orbifold map as it was
+  before.smooth = false;
   c.push_back({"before", before});
   for (igm::LayoutKind kind : {igm::LayoutKind::Paper, igm::LayoutKind::Kite, igm::LayoutKind::Spread}) {
     igm::PipelineOptions o;
@@ -45,6 +47,10 @@ std::vector<Config> configs(std::int64_t quads) {
   }
   // Ablations of the default (spread): one choice changed each (docs/layouts.md).
   igm::PipelineOptions o;
+  o.quads = quads;
+  o.smooth = false;
+  c.push_back({"s-nosm", o});  // the layout's map as it is, unsmoothed
+  o = igm::PipelineOptions{};
   o.quads = quads;
   o.disk_weights = igm::WeightKind::Uniform;
   o.disk_arc_length = false;

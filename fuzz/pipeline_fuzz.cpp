@@ -93,6 +93,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   o.root = root_bytes == 0xFFFF ? -1 : static_cast<int>(root_bytes % static_cast<std::uint64_t>(mesh.mesh.num_vertices()));
   o.max_witnesses = 3;
   o.quality = false;
+  o.smooth_iterations = 3;
   o.normal_form = (flags & 0x40) != 0;
   try {
     const igm::PipelineResult r = igm::compute_igm(mesh, o);

@@ -161,7 +161,10 @@ int extract_command(const std::vector<std::string_view>& args) {
     igm::certify::Report quad_report = igm::certify::certify_quads(qin, qopt);
     quad_report.source = out_path;
     std::ostringstream obj_text;
-    igm::write_quad_obj(obj_text, igm::QuadMesh{q.positions, q.quads});
+    igm::QuadMesh mesh;
+    mesh.positions = q.positions;
+    mesh.quads = q.quads;
+    igm::write_quad_obj(obj_text, mesh);
     igm::write_text_file(out_path, obj_text.str());
     const int code = quad_report.valid() ? kExitCertified : kExitRejected;
     if (!json_path.empty()) write_json(json_path, code, x.report, &q, &quad_report);

@@ -80,7 +80,7 @@ void build_kite(QuadLayout& L, const Point2q& centre) {
 // The spread layout's automatic rows: min(g, max(1, round(sqrt(2g)))).
 int automatic_rows(int g) { return std::min(g, std::max(1, static_cast<int>(std::lround(std::sqrt(2.0 * g))))); }
 
-void build_spread(QuadLayout& L, const Point2q& centre, int rows) {
+void build_spread(QuadLayout& L, const Point2q& centre, int rows, double ring_depth) {
   const int g = L.genus, N = L.num_corners();
   if (g == 1) {  // no index to spread: the square itself (as the paper's template for a torus)
     if (rows > 1) throw Error(ErrorKind::InvalidArgument, "spread layout: a torus has one row, got " + std::to_string(rows));
@@ -107,7 +107,10 @@ void build_spread(QuadLayout& L, const Point2q& centre, int rows) {
   // genus >= 3 (docs/layouts.md).
   const double pi = std::acos(-1.0);
   const double x = pi / N;
-  const double depth = std::max(std::tan(x) / 6, (4.0 / 3.0) * std::sin(x) * std::sin(x));
+  const double depth = std::max(ring_depth * (2.0 / 3.0) * std::tan(x), (4.0 / 3.0) * std::sin(x) * std::sin(x));
+  if (!(ring_depth > 0) || !(depth < 0.9 * std::cos(x)))
+    throw Error(ErrorKind::InvalidArgument, "spread layout: the ring depth " + std::to_string(ring_depth) +
+                                                " does not fit a " + std::to_string(N) + "-gon");
   const Rational rho = dyadic(1.0 - depth, 24);
   for (int k = 0; k < N; ++k) y[k] = add_point(L, lerp_point(centre, L.points[k], rho));
   for (int k = 0; k < N; ++k) {
@@ -411,7 +414,7 @@ QuadLayout make_layout(const std::vector<Point2q>& corners, const Point2q& centr
       build_kite(L, centre);
       break;
     case LayoutKind::Spread:
-      build_spread(L, centre, options.rows);
+      build_spread(L, centre, options.rows, options.ring_depth);
       break;
   }
   finish_layout(L);

@@ -12,10 +12,12 @@
 #include "igm/arrange/overlay.h"
 #include "igm/core/error.h"
 #include "igm/embed/polygon.h"
+#include "igm/extract/isolines.h"
 #include "igm/extract/patch_grid.h"
 #include "igm/igm/patch_mesh.h"
 #include "igm/mesh/scale.h"
 #include "igm/mesh/surface_point.h"
+#include "igm/smooth/dyadic.h"
 #include "pipeline_internal.h"
 
 namespace igm {
@@ -91,18 +93,12 @@ void StageReporter::done(const char* name, Clock::time_point t0, std::string det
   if (options.progress) options.progress(e);
 }
 
-void certify_outputs(PipelineResult& result, int genus, const PipelineOptions& options) {
+void certify_outputs(PipelineResult& result, int genus, const PipelineOptions& options, bool igm_report_done) {
   const IgmMesh& igm = result.igm;
   const QuadMesh& quads = result.quads;
   certify::Options copt;
   copt.max_witnesses = options.max_witnesses;
-  certify::IgmInput cin;
-  cin.faces = igm.triangles;
-  cin.num_vertices = static_cast<std::int64_t>(igm.positions.size());
-  cin.corner_uv.reserve(3 * igm.corner_uv.size());
-  for (const auto& tri : igm.corner_uv)
-    for (const Point2q& uv : tri) cin.corner_uv.push_back({uv.x, uv.y});
-  result.igm_report = certify::certify_igm(std::move(cin), copt);
+  if (!igm_report_done) result.igm_report = certify::certify_igm(certify_input(igm, igm.corner_uv), copt);
   certify::QuadInput qin;
   qin.quads = quads.quads;
   qin.num_vertices = static_cast<std::int64_t>(quads.positions.size());
@@ -125,6 +121,59 @@ void measure_quality(PipelineResult& result, const ValidMesh& input, const Pipel
   qo.distance = options.quality_distance;
   result.quad_quality = measure_quads(result.quads.positions, result.quads.quads, input.positions, input_triangles, qo);
   stage.done("quality", t0, summary_line(result.igm_quality, result.quad_quality));
+}
+
+void smooth_extract_certify(PipelineResult& result, int genus, const PipelineOptions& options, StageReporter& stage,
+                            const std::vector<Vec3d>& input_positions, const std::function<std::string()>& structured) {
+  IgmMesh& igm = result.igm;
+  PipelineStats& stats = result.stats;
+  auto t0 = Clock::now();
+  std::string how;
+  if (options.smooth) {
+    SmoothOptions so;
+    so.max_iterations = options.smooth_iterations;
+    so.time_budget_seconds = options.smooth_seconds;
+    so.certify = false;  // the isolines' extraction runs the certifier on the result below
+    so.progress = options.smooth_progress;
+    SmoothResult smoothed = smooth_igm(igm, so);
+    igm.corner_uv = std::move(smoothed.corner_uv);
+    stats.smooth = std::move(smoothed.stats);
+    stats.uv_doubles = stats.smooth.returned != SmoothReturned::InputExact;
+    const SmoothStats& ss = stats.smooth;
+    stage.done("smooth", t0,
+               format("%.0f iterations, energy %.4g -> %.4g, ", ss.iterations, ss.energy.empty() ? 0.0 : ss.energy.front(),
+                      ss.energy.empty() ? 0.0 : ss.energy.back()) +
+                   to_string(ss.stop) + (stats.uv_doubles ? ", UVs in doubles" : ", UVs exact rationals"));
+    t0 = Clock::now();
+    IsolineInput in;
+    in.triangles = igm.triangles;
+    in.corner_uv = igm.corner_uv;
+    IsolineOptions io;
+    io.max_witnesses = options.max_witnesses;
+    IsolineResult x = extract_isolines(in, io);
+    result.igm_report = std::move(x.report);
+    if (x.quads) {
+      QuadMesh& quads = result.quads;
+      quads.quads = std::move(x.quads->quads);
+      quads.positions.reserve(x.quads->vertices.size());
+      quads.locations.reserve(x.quads->vertices.size());
+      for (const IsolineQuadVertex& v : x.quads->vertices) add_quad_vertex(quads, igm, v.triangle, v.barycentric, input_positions);
+    }
+    how = "the integer isolines";
+  } else {
+    DyadicResult rounded = round_to_dyadic(igm);
+    if (rounded.stats.on_grid) igm.corner_uv = std::move(rounded.corner_uv);
+    stats.dyadic = std::move(rounded.stats);
+    stats.uv_doubles = stats.dyadic.on_grid;
+    how = structured();
+  }
+  stats.max_uv_bits = max_uv_bits(igm.corner_uv);
+  stats.quads = static_cast<int>(result.quads.quads.size());
+  stage.done("extract", t0,
+             format("%.0f quads, %.0f vertices from ", stats.quads, double(result.quads.positions.size())) + how);
+  t0 = Clock::now();
+  certify_outputs(result, genus, options, /*igm_report_done=*/options.smooth);
+  stage.done("certify", t0, "IGM: " + certify::summary(result.igm_report) + "; quads: " + certify::summary(result.quad_report));
 }
 
 std::vector<SurfacePoint> take_locations(RefinedSurface& surface, std::size_t more) {
@@ -235,6 +284,7 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
   LayoutOptions layout_options;
   layout_options.kind = options.layout;
   layout_options.rows = options.layout_rows;
+  layout_options.ring_depth = options.layout_ring_depth;
   const QuadLayout layout = make_layout(corners, centre, mates, layout_options);
   std::vector<Segment2> segments;
   segments.reserve(layout.edges.size() + layout.quads.size());
@@ -305,19 +355,9 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
                  format(", %.0f patches refined, UV bits max %.0f", double(maps.stats.patches_refined),
                         double(stats.max_uv_bits)));
 
-  // --- extract: the a x b grid of every layout quad, 3D positions by exact location ---
-  t0 = Clock::now();
-  const PatchGrid grid = extract_patch_grids(layout, patches, sizing, maps.corner_uv);
   igm.positions = std::move(patches.positions);
   igm.locations = std::move(patches.locations);
   igm.corner_uv = std::move(maps.corner_uv);
-  QuadMesh& quads = result.quads;
-  quads.quads = grid.quads;
-  quads.positions.reserve(grid.vertices.size());
-  quads.locations.reserve(grid.vertices.size());
-  for (const GridVertex& v : grid.vertices) add_quad_vertex(quads, igm, v.triangle, v.barycentric, surface.input_positions);
-  stats.quads = static_cast<int>(quads.quads.size());
-  stage.done("extract", t0, format("%.0f quads, %.0f vertices", stats.quads, double(quads.positions.size())));
 
   // --- the picture ---
   SchemaDrawing& d = result.schema;
@@ -341,10 +381,17 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
   overlay = OverlayResult{};
   disk = PlanarTriangulation{};
 
-  // --- certify: the independent judge, on both outputs ---
-  t0 = Clock::now();
-  certify_outputs(result, g, options);
-  stage.done("certify", t0, "IGM: " + certify::summary(result.igm_report) + "; quads: " + certify::summary(result.quad_report));
+  // --- smooth, extract (the a x b grid of every layout quad, or the smoothed map's isolines),
+  // certify ---
+  smooth_extract_certify(result, g, options, stage, surface.input_positions, [&] {
+    const PatchGrid grid = extract_patch_grids(layout, patches, sizing, igm.corner_uv);
+    QuadMesh& quads = result.quads;
+    quads.quads = grid.quads;
+    quads.positions.reserve(grid.vertices.size());
+    quads.locations.reserve(grid.vertices.size());
+    for (const GridVertex& v : grid.vertices) add_quad_vertex(quads, igm, v.triangle, v.barycentric, surface.input_positions);
+    return std::string("the layout's rectangles");
+  });
   measure_quality(result, input, options, stage);
   return result;
 }

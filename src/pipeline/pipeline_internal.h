@@ -3,6 +3,7 @@
 // and the certification of a run's outputs shared by both branches (pipeline.cpp).
 #include <array>
 #include <chrono>
+#include <functional>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -37,9 +38,19 @@ PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions&
 void measure_quality(PipelineResult& result, const ValidMesh& input, const PipelineOptions& options,
                      StageReporter& stage);
 
-/// Runs the independent certifier on result.igm (checks 1-4) and result.quads (check 5, expected
-/// genus `genus`) and stores both reports in `result`.
-void certify_outputs(PipelineResult& result, int genus, const PipelineOptions& options);
+/// The stages after the map, shared by both branches: with options.smooth, "smooth" (smooth_igm on
+/// result.igm, its UVs replaced by the smoothed ones) then "extract" by the integer isolines
+/// (extract/isolines.h, whose certifier report becomes result.igm_report); without it, the map put
+/// on a double grid where that keeps it valid (round_to_dyadic), then "extract" by `structured`,
+/// which fills result.quads from the map's own structure (the layout's rectangles, the
+/// pillowcase's cells), and the certifier on the IGM. Then the certifier on the quads ("certify").
+void smooth_extract_certify(PipelineResult& result, int genus, const PipelineOptions& options, StageReporter& stage,
+                            const std::vector<Vec3d>& input_positions, const std::function<std::string()>& structured);
+
+/// Runs the independent certifier on result.igm (checks 1-4; not when `igm_report_done`: the
+/// extraction by isolines ran it) and result.quads (check 5, expected genus `genus`) and stores
+/// the reports in `result`.
+void certify_outputs(PipelineResult& result, int genus, const PipelineOptions& options, bool igm_report_done = false);
 
 /// The first output locations (IgmMesh::locations): the input vertices as weight-1 points, then the
 /// surface's constructed points, moved out of `surface` (surface.constructed is left empty), with

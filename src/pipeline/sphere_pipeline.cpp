@@ -144,19 +144,6 @@ PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions&
                 double(nf) / std::max(1, stats.input_faces), stats.max_uv_bits);
   done("igm", line);
 
-  // --- extract: the 2 N^2 cells of the domain, vertices located exactly ---
-  const OrbifoldQuadMesh grid = extract_orbifold_quads(cut.disk_triangles, embedding.uv, n[0], n[1]);
-  QuadMesh& quads = result.quads;
-  quads.quads = grid.quads;
-  quads.positions.reserve(grid.triangle.size());
-  quads.locations.reserve(grid.triangle.size());
-  for (std::size_t v = 0; v < grid.triangle.size(); ++v)  // igm triangle f = disk triangle f, in output ids
-    add_quad_vertex(quads, igm, grid.triangle[v], grid.barycentric[v], surface.input_positions);
-  stats.quads = static_cast<int>(quads.quads.size());
-  std::snprintf(line, sizeof line, "%d x %d per unit: %d quads, %zu vertices", n[0], n[1], stats.quads,
-                quads.positions.size());
-  done("extract", line);
-
   // --- the picture: the disk in UV, its 6 sides coloured by pair, the domain's grid, the cones ---
   SchemaDrawing& d = result.schema;
   for (int c = 0; c < 6; ++c) {
@@ -181,9 +168,24 @@ PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions&
       if (t[i] < t[(i + 1) % 3]) d.mesh_edges.push_back({uvd[t[i]], uvd[t[(i + 1) % 3]]});
   embedding = OrbifoldTutteResult{};
 
-  // --- certify: the independent judge, on both outputs ---
-  certify_outputs(result, 0, options);
-  done("certify", "IGM: " + certify::summary(result.igm_report) + "; quads: " + certify::summary(result.quad_report));
+  // --- smooth, extract (the 2 a b cells of the domain, or the smoothed map's isolines), certify ---
+  smooth_extract_certify(result, 0, options, stage, surface.input_positions, [&] {
+    // The cells of the domain, located in the disk's map: its vertices' UVs back from the IGM's
+    // corners (put on a double grid, they may differ from the embedding's), unscaled.
+    std::vector<Point2q> disk_uv(cut.disk_to_surface.size());
+    const Rational sx = make_rational(Integer(1), Integer(n[0])), sy = make_rational(Integer(1), Integer(n[1]));
+    for (int f = 0; f < nf; ++f)
+      for (int i = 0; i < 3; ++i)
+        disk_uv[cut.disk_triangles[f][i]] = {Rational(igm.corner_uv[f][i].x * sx), Rational(igm.corner_uv[f][i].y * sy)};
+    const OrbifoldQuadMesh grid = extract_orbifold_quads(cut.disk_triangles, disk_uv, n[0], n[1]);
+    QuadMesh& quads = result.quads;
+    quads.quads = grid.quads;
+    quads.positions.reserve(grid.triangle.size());
+    quads.locations.reserve(grid.triangle.size());
+    for (std::size_t v = 0; v < grid.triangle.size(); ++v)  // igm triangle f = disk triangle f, in output ids
+      add_quad_vertex(quads, igm, grid.triangle[v], grid.barycentric[v], surface.input_positions);
+    return std::to_string(n[0]) + " x " + std::to_string(n[1]) + " cells per unit of the pillowcase";
+  });
   measure_quality(result, input, options, stage);
   return result;
 }

@@ -100,18 +100,32 @@ PipelineStats check_run(const ValidMesh& mesh, PipelineOptions options, bool che
   certify::Options qo;
   qo.expected_genus = g;
   CHECK(certify::certify_quads_text(quads.str(), qo).valid());
+  // Where the map is in doubles, the doubles file (what other tools read) certifies as it is.
+  if (r.stats.uv_doubles) {
+    std::ostringstream doubles;
+    write_igm_obj(doubles, r.igm, false);
+    CHECK(certify::certify_igm_text(doubles.str()).valid());
+  }
   return r.stats;
 }
 
-PipelineOptions with_quads(std::int64_t quads, LayoutKind kind = LayoutKind::Spread) {
+// The layout's own map (smoothing off: the subject of most tests here is the construction; the
+// smoothed pipeline has its own tests below, and the shared meshes run it with a short budget).
+PipelineOptions unsmoothed() {
   PipelineOptions o;
+  o.smooth = false;
+  return o;
+}
+
+PipelineOptions with_quads(std::int64_t quads, LayoutKind kind = LayoutKind::Spread) {
+  PipelineOptions o = unsmoothed();
   o.quads = quads;
   o.layout = kind;
   return o;
 }
 
 PipelineOptions with_resolution(int n, LayoutKind kind = LayoutKind::Spread, bool normal_form = false) {
-  PipelineOptions o;
+  PipelineOptions o = unsmoothed();
   o.resolution = n;
   o.layout = kind;
   o.normal_form = normal_form;
@@ -145,7 +159,7 @@ TEST_CASE("the paper's layout at resolution N keeps its 5g N^2 quads and the aff
 }
 
 TEST_CASE("generated genus 12, 25 and 50 (odd and even): certified") {
-  for (int g : {12, 25, 50}) check_run(igm_test::generated_mesh(g, 200 * g, std::uint64_t(g)), PipelineOptions{});
+  for (int g : {12, 25, 50}) check_run(igm_test::generated_mesh(g, 200 * g, std::uint64_t(g)), unsmoothed());
 }
 
 TEST_CASE("with the gluing word in normal form (handle slides) the outputs are certified too") {
@@ -157,7 +171,7 @@ TEST_CASE("with the gluing word in normal form (handle slides) the outputs are c
   for (const char* name : {"eight.off", "joint.off", "helmet.off", "anchor.off", "elephant.off", "couplingdown.off"}) {
     INFO(std::string(name));
     PipelineOptions o = with_quads(2000);
-    o.normal_form = true;
+    o.normal_form = true;  // (unsmoothed, as with_quads)
     check_run(load_mesh(dir / "meshes" / "clean" / name), o);
   }
 }
@@ -170,7 +184,7 @@ TEST_CASE("sizing: --quads Q lands within a quarter of Q from 1,000 to 100,000, 
     CHECK(std::llabs(st.quads - q) <= q / 4);
   }
   // Halving the edge length gives about four times the quads.
-  PipelineOptions o;
+  PipelineOptions o = unsmoothed();
   o.edge_length = 2.0;
   const PipelineResult a = compute_igm(mesh, o);
   o.edge_length = 1.0;
@@ -183,6 +197,55 @@ TEST_CASE("sizing: --quads Q lands within a quarter of Q from 1,000 to 100,000, 
   CHECK(ratio < 5.0);
 }
 
+TEST_CASE("smoothing (the default): the same cones and quad count, a certified doubles file, a better map") {
+  for (int g : {0, 1, 2, 3}) {
+    CAPTURE(g);
+    const ValidMesh mesh = igm_test::generated_mesh(g, 1500 + 500 * g, 21);
+    PipelineOptions plain = unsmoothed();
+    plain.quads = 1500;
+    PipelineOptions smooth = plain;
+    smooth.smooth = true;
+    smooth.smooth_iterations = 30;
+    int iterations_seen = 0;
+    smooth.smooth_progress = [&](const SmoothProgress& p) { iterations_seen = p.iteration; };
+    const PipelineResult a = compute_igm(mesh, plain), b = compute_igm(mesh, smooth);
+    REQUIRE(a.certified());
+    REQUIRE(b.certified());
+    CHECK(b.quads.quads.size() == a.quads.quads.size());  // the integer lengths do not move
+    CHECK(b.igm_report.check(4)->histogram == a.igm_report.check(4)->histogram);  // nor the cones
+    CHECK(b.stats.smooth.iterations > 0);
+    CHECK(iterations_seen == b.stats.smooth.iterations);
+    const std::vector<double>& e = b.stats.smooth.energy;
+    for (std::size_t i = 1; i < e.size(); ++i) CHECK(e[i] <= e[i - 1]);
+    CHECK(b.stats.uv_doubles);
+    std::ostringstream doubles;
+    write_igm_obj(doubles, b.igm, false);
+    CHECK(certify::certify_igm_text(doubles.str()).valid());
+    CHECK(uv_area2(b.igm) == Rational(2 * static_cast<long>(b.quads.quads.size())));
+    // A better map: less distortion (the energy the smoothing lowers), better quads.
+    CHECK(b.igm_quality.symmetric_dirichlet < a.igm_quality.symmetric_dirichlet);
+    CHECK(b.igm_quality.conformal.p99 < a.igm_quality.conformal.p99);
+    if (g >= 2) CHECK(b.quad_quality.sj_median > a.quad_quality.sj_median);
+    // The smoothed quads come from the isolines: at exact points of the input surface.
+    CHECK(refinement_violation(mesh, b.igm, true) == "");
+  }
+}
+
+TEST_CASE("the unsmoothed map is put on a double grid where that keeps it valid, and its doubles file certifies") {
+  for (int g : {0, 2}) {
+    const ValidMesh mesh = igm_test::generated_mesh(g, 1200, 4);
+    PipelineOptions o = unsmoothed();
+    o.quads = 800;
+    const PipelineResult r = compute_igm(mesh, o);
+    REQUIRE(r.certified());
+    CHECK(r.stats.dyadic.on_grid);
+    CHECK(r.stats.uv_doubles);
+    std::ostringstream doubles;
+    write_igm_obj(doubles, r.igm, false);
+    CHECK(certify::certify_igm_text(doubles.str()).valid());
+  }
+}
+
 TEST_CASE("both branches report every stage once, in order, through progress and in the stats") {
   // Genus 0 has no arrangement stage (the pillowcase quads are read off the embedding).
   for (int g : {0, 2}) {
@@ -191,11 +254,12 @@ TEST_CASE("both branches report every stage once, in order, through progress and
     std::vector<StageEvent> seen;
     PipelineOptions options;
     options.resolution = 3;
+    options.smooth_iterations = 3;
     options.progress = [&](const StageEvent& e) { seen.push_back(e); };
     const PipelineResult r = compute_igm(mesh, options);
     const std::vector<std::string> expected =
-        g == 0 ? std::vector<std::string>{"topology", "embed", "igm", "extract", "certify"}
-               : std::vector<std::string>{"topology", "embed", "arrange", "igm", "extract", "certify"};
+        g == 0 ? std::vector<std::string>{"topology", "embed", "igm", "smooth", "extract", "certify"}
+               : std::vector<std::string>{"topology", "embed", "arrange", "igm", "smooth", "extract", "certify"};
     // The quality report runs after the certifier, on what was certified.
     const std::vector<std::string> expected_all = [&] {
       auto e = expected;
@@ -252,7 +316,7 @@ TEST_CASE("bad options give typed errors") {
 
 TEST_CASE("the memory limit: an arrangement needing more than it stops in the arrange stage") {
   const ValidMesh mesh = igm_test::generated_mesh(2, 600, 3);
-  PipelineOptions o;
+  PipelineOptions o = unsmoothed();
   const PipelineResult r = compute_igm(mesh, o);  // the default limit: this machine's memory
   REQUIRE(r.certified());
   const auto need = static_cast<std::uint64_t>(kBytesPerIgmTriangle * r.stats.output_triangles);
@@ -284,24 +348,26 @@ TEST_CASE("shared clean meshes of genus >= 1 are certified") {
   for (const char* name : {"mpi_triang.off", "pipe.off", "knot.off", "eight.off", "joint.off", "helmet.off",
                            "anchor.off", "elephant.off", "couplingdown.off"}) {
     INFO(std::string(name));
-    const PipelineStats st = check_run(load_mesh(dir / "meshes" / "clean" / name), PipelineOptions{});
+    PipelineOptions o;  // the default pipeline, smoothing included, with a short budget
+    o.smooth_iterations = 10;
+    const PipelineStats st = check_run(load_mesh(dir / "meshes" / "clean" / name), o);
     CHECK(st.output_triangles <= 5 * st.input_faces);  // issue 6's size target for g <= 10
   }
   for (const char* name : {"3torus.off", "double-torus-example.off", "hole.off"}) {
     INFO(std::string(name));
-    check_run(load_mesh(dir / "meshes" / "polygonal" / name), PipelineOptions{});
+    check_run(load_mesh(dir / "meshes" / "polygonal" / name), unsmoothed());
   }
 }
 
 TEST_CASE("cheese (genus 133, 17.8k faces) is certified") {
   IGM_REQUIRE_DATA(dir);
-  check_run(load_mesh(dir / "meshes" / "clean" / "cheese.off"), PipelineOptions{});
+  check_run(load_mesh(dir / "meshes" / "clean" / "cheese.off"), unsmoothed());
 }
 
 TEST_CASE("a generated 1M-face torus: every triangle certified, N x N quads") {
   const ValidMesh torus = igm_test::generated_mesh(1, 1000000, 77);
   REQUIRE(torus.mesh.num_faces() >= 1000000);
-  PipelineOptions o;
+  PipelineOptions o = unsmoothed();
   o.resolution = 3;
   const PipelineResult r = compute_igm(torus, o);
   CHECK(r.stats.tutte.interior_vertices > 490000);
@@ -319,9 +385,11 @@ namespace {
 
 // Independent re-check of a genus-0 run, ending with the certifier on the written files.
 void check_sphere(const ValidMesh& mesh, int resolution, const std::vector<int>& cones = {}, bool reread = true,
-                  bool check_areas = true) {
+                  bool check_areas = true, int smooth_iterations = 0) {
   PipelineOptions options;
   options.resolution = resolution;
+  options.smooth = smooth_iterations > 0;
+  options.smooth_iterations = smooth_iterations;
   options.cones = cones;
   const PipelineResult r = compute_igm(mesh, options);
   const int N = resolution;
@@ -391,14 +459,16 @@ TEST_CASE("genus 0: shared spheres (tetrahedron .. armadillo, bull self-intersec
   int N = 1;
   for (const char* name : {"tetrahedron.off", "icosahedron.off", "cube.off", "sphere.off", "bull.off", "armadillo.off"}) {
     INFO(std::string(name));
-    check_sphere(load_mesh(dir / "meshes" / "clean" / name), N);
+    // smoothed briefly (the default pipeline) except the 52k-face armadillo
+    check_sphere(load_mesh(dir / "meshes" / "clean" / name), N, {}, true, true,
+                 std::string(name) == "armadillo.off" ? 0 : 5);
     N = N % 4 + 1;  // resolutions 1, 2, 3, 4, 1, 2
   }
   check_sphere(load_mesh(dir / "meshes" / "clean" / "tetrahedron.off"), 3);
   // cones close together on the bull: the double solution flips triangles, the refinement fixes them
   const ValidMesh bull = load_mesh(dir / "meshes" / "clean" / "bull.off");
   check_sphere(bull, 3, {0, 1, 2, 3});
-  PipelineOptions o;
+  PipelineOptions o = unsmoothed();
   o.cones = {0, 1, 2, 3};
   const PipelineResult r = compute_igm(bull, o);
   CHECK(r.stats.orbifold.refinement.flips_double > 0);
@@ -436,7 +506,7 @@ TEST_CASE("genus 0: the tetrahedron and a 3-vertex sphere at any scale or with c
 TEST_CASE("genus 0: sized by a quad count or an edge length, a x b quads per unit, the IGM on their grid") {
   const ValidMesh m = igm_test::generated_mesh(0, 4000, 12);
   for (std::int64_t q : {1000, 10000}) {
-    PipelineOptions o;
+    PipelineOptions o = unsmoothed();
     o.quads = q;
     const PipelineResult r = compute_igm(m, o);
     CHECK(r.certified());
@@ -444,7 +514,7 @@ TEST_CASE("genus 0: sized by a quad count or an edge length, a x b quads per uni
     CHECK(r.stats.quads == 2 * r.stats.grid[0] * r.stats.grid[1]);
     CHECK(uv_area2(r.igm) == Rational(2 * r.stats.quads));
   }
-  PipelineOptions o;
+  PipelineOptions o = unsmoothed();
   o.edge_length = 0.5;
   const PipelineResult a = compute_igm(m, o);
   o.edge_length = 0.25;
@@ -485,7 +555,7 @@ TEST_CASE("the refinement check rejects a corrupted refinement (genus 2 and genu
     INFO("genus " << g);
     const ValidMesh mesh = igm_test::generated_mesh(g, 600, 9);
     const int n = mesh.mesh.num_vertices();
-    PipelineOptions o;
+    PipelineOptions o = unsmoothed();
     o.resolution = 3;
     const PipelineResult r = compute_igm(mesh, o);
     REQUIRE(r.certified());

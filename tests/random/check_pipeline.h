@@ -38,6 +38,7 @@ inline Outcome run_pipeline(const igm::PolygonSoup& soup, int expected_genus, in
   igm::PipelineOptions o;
   o.resolution = resolution;
   o.quality = false;  // hundreds of meshes: the certificates are the subject here
+  o.smooth_iterations = 3;  // every smoothed iterate is certified: a few are enough here
   o.root = root < 0 ? -1 : root % mesh.mesh.num_vertices();
   o.normal_form = normal_form;
   if (expected_genus == 0 && !kGenus0Certifies) {

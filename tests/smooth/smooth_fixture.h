@@ -37,9 +37,21 @@ inline igm::IgmMesh sliver_torus(const igm::Rational& eps) {
   return moved_torus({igm::Rational(3, 2), igm::Rational(1, 2) + eps});
 }
 
-/// The pipeline's IGM of a generated mesh (certified by the pipeline).
+/// The options of a hard starting map for the smoother: the paper's template, its affine map, 4 x 4
+/// quads per layout quad (the pipeline before the per-patch maps: large distortion), unsmoothed.
+inline igm::PipelineOptions paper_affine_map() {
+  igm::PipelineOptions o;
+  o.layout = igm::LayoutKind::Paper;
+  o.patch_map = igm::PatchMapKind::Affine;
+  o.resolution = 4;
+  o.smooth = false;
+  o.quality = false;
+  return o;
+}
+
+/// The pipeline's IGM of a generated mesh (certified by the pipeline), as paper_affine_map makes it.
 inline igm::IgmMesh pipeline_igm(int genus, std::int64_t faces, std::uint64_t seed) {
-  return igm::compute_igm(generated_mesh(genus, faces, seed)).igm;
+  return igm::compute_igm(generated_mesh(genus, faces, seed), paper_affine_map()).igm;
 }
 
 /// The independent certifier on the mesh of `igm` with the UVs `corner_uv`.

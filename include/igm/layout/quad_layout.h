@@ -30,6 +30,10 @@ struct LayoutOptions {
   /// Spread only: rows of the inner grid (1 <= rows <= g; the grid has rows x (2g - rows) quads).
   /// 0: automatic, min(g, max(1, round(sqrt(2g)))) (documented in docs/layouts.md).
   int rows = 0;
+  /// Spread only: the ring's depth, in units of the depth that would make its quads square on the
+  /// regular polygon ((2/3) tan(pi/4g) R); at least twice the depth of the corners' chords, and
+  /// less than the polygon's inradius (docs/layouts.md). > 0.
+  double ring_depth = 1;
 };
 
 /// A layout edge (a segment between two layout points). `quad[0]` lies on its left when it runs

@@ -18,6 +18,7 @@
 #include "igm/output/igm_mesh.h"
 #include "igm/output/schema_svg.h"
 #include "igm/quality/quality.h"
+#include "igm/smooth/smooth.h"
 #include "igm/topology/cut_to_canonical_disk.h"
 
 namespace igm {
@@ -56,6 +57,7 @@ struct PipelineOptions {
   /// spread layout, its inner grid's rows (0: automatic).
   LayoutKind layout = LayoutKind::Spread;
   int layout_rows = 0;
+  double layout_ring_depth = 1;  // LayoutOptions::ring_depth
   /// How each layout quad is mapped onto its rectangle (igm/patch_maps.h), with which weights.
   PatchMapKind patch_map = PatchMapKind::Tutte;
   WeightKind patch_weights = WeightKind::MeanValue;
@@ -89,6 +91,16 @@ struct PipelineOptions {
   /// lower bound passes the limit (OverlayOptions::max_triangles), instead of running out of
   /// memory minutes later (cheese with the normal form: 36.7M triangles, ~70 GB).
   std::uint64_t memory_limit_bytes = 0;
+  /// Smooth the map (smooth/smooth.h: projected Newton on the symmetric Dirichlet energy, every
+  /// iterate a certified IGM in doubles; transitions, cones and quad counts unchanged), then take
+  /// the quads from its integer isolines (extract/isolines.h). Off: the layout's map, put on a
+  /// double grid where that keeps it valid (smooth/dyadic.h), and its rectangles' grids.
+  bool smooth = true;
+  /// The smoothing's budgets: Newton iterations, and wall seconds since it began (0: none).
+  int smooth_iterations = 100;
+  double smooth_seconds = 60;
+  /// Called after every smoothing iteration (the library never prints).
+  std::function<void(const SmoothProgress&)> smooth_progress;
   /// Measure the outputs' quality (quality/quality.h; never decides validity): the IGM's
   /// distortion and the quad mesh's shape, and with quality_distance the two-sided distance
   /// between the quad mesh and the input (the costly part: ~1 s on 1M input triangles).
@@ -109,6 +121,9 @@ struct PipelineStats {
   std::array<int, 2> grid{0, 0};    // genus 0: quads per unit of the pillowcase in x and y
   std::size_t max_uv_bits = 0;  // largest bit_size of an exact UV coordinate
   PatchMapStats patch_maps;
+  SmoothStats smooth;           // with PipelineOptions::smooth (iterations 0 otherwise)
+  DyadicStats dyadic;           // without it: the map put on a double grid (or why not)
+  bool uv_doubles = false;      // every written UV coordinate is exactly a double
   CutStats cut;
   TutteStats tutte;
   // genus 0 (orbifold Tutte): the cones (vertex ids of the input and of the IGM), the cut, the embedding
