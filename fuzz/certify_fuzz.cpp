@@ -14,8 +14,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const igm::certify::Report r = igm::certify::certify_igm_text(text, opt);
   const std::string j = igm::certify::to_json(r);
   if (j.empty() || (r.verdict == igm::certify::Verdict::Valid && !r.genus)) __builtin_trap();
+  // Open surfaces and components: a closed, connected valid IGM stays valid; a valid open one
+  // has its loops and genus.
+  igm::certify::Options open_opt = opt;
+  open_opt.allow_boundary = open_opt.allow_components = true;
+  const igm::certify::Report o = igm::certify::certify_igm_text(text, open_opt);
+  if (r.valid() && !o.valid()) __builtin_trap();
+  if (o.valid() && (!o.genus || !o.boundary_loops)) __builtin_trap();
+  (void)igm::certify::to_json(o);
   opt.expected_genus = 0;
   const igm::certify::Report q = igm::certify::certify_quads_text(text, opt);
   (void)igm::certify::to_json(q);
+  open_opt.expected_boundary_loops = 1;
+  open_opt.expected_components = {{0, 1}, {1, 0}};
+  (void)igm::certify::to_json(igm::certify::certify_quads_text(text, open_opt));
   return 0;
 }

@@ -1,5 +1,6 @@
 // igm-certify: judge an IGM (triangle OBJ with per-corner UVs) or a quad mesh exactly.
-//   igm-certify [--quad] [--genus G] [--json OUT] [--max-witnesses N] FILE
+//   igm-certify [--quad] [--genus G] [--boundary] [--components] [--boundary-loops B]
+//               [--component G:B]... [--json OUT] [--max-witnesses N] FILE
 // JSON certificate on stdout (or OUT), one summary line on stderr.
 // Exit: 0 valid, 1 invalid, 2 unreadable input or bad arguments.
 #include <cstdio>
@@ -14,7 +15,16 @@ namespace {
 
 int usage(const char* msg) {
   std::fprintf(stderr,
-               "igm-certify: %s\nusage: igm-certify [--quad] [--genus G] [--json OUT] [--max-witnesses N] FILE\n",
+               "igm-certify: %s\n"
+               "usage: igm-certify [--quad] [--genus G] [--boundary] [--components]\n"
+               "                   [--boundary-loops B] [--component G:B]... [--json OUT]\n"
+               "                   [--max-witnesses N] FILE\n"
+               "  --boundary         accept boundary edges (open surfaces)\n"
+               "  --components       accept several connected components\n"
+               "  --genus G          (--quad) the total genus must be G\n"
+               "  --boundary-loops B (--quad) the total number of boundary loops must be B\n"
+               "  --component G:B    (--quad, repeatable) the components' (genus, loops) must be\n"
+               "                     these, in any order\n",
                msg);
   return 2;
 }
@@ -24,6 +34,19 @@ bool parse_int(const char* s, long long& out) {
   char* end = nullptr;
   out = std::strtoll(s, &end, 10);
   return end && *end == '\0';
+}
+
+// "G:B" with non-negative integers.
+bool parse_component(const char* s, igm::certify::ComponentTopology& out) {
+  if (!s) return false;
+  const std::string a = s;
+  const std::size_t colon = a.find(':');
+  long long g = 0, b = 0;
+  if (colon == std::string::npos || !parse_int(a.substr(0, colon).c_str(), g) ||
+      !parse_int(a.substr(colon + 1).c_str(), b) || g < 0 || b < 0)
+    return false;
+  out = {g, b};
+  return true;
 }
 
 }  // namespace
@@ -40,6 +63,19 @@ int main(int argc, char** argv) {
     } else if (a == "--genus") {
       if (i + 1 >= argc || !parse_int(argv[++i], v) || v < 0) return usage("--genus needs a non-negative integer");
       opt.expected_genus = v;
+    } else if (a == "--boundary") {
+      opt.allow_boundary = true;
+    } else if (a == "--components") {
+      opt.allow_components = true;
+    } else if (a == "--boundary-loops") {
+      if (i + 1 >= argc || !parse_int(argv[++i], v) || v < 0)
+        return usage("--boundary-loops needs a non-negative integer");
+      opt.expected_boundary_loops = v;
+    } else if (a == "--component") {
+      igm::certify::ComponentTopology c;
+      if (i + 1 >= argc || !parse_component(argv[++i], c))
+        return usage("--component needs GENUS:LOOPS (non-negative integers)");
+      opt.expected_components.push_back(c);
     } else if (a == "--json") {
       if (i + 1 >= argc) return usage("--json needs a file name");
       json_out = argv[++i];
@@ -59,6 +95,14 @@ int main(int argc, char** argv) {
   }
   if (file.empty()) return usage("missing FILE");
   if (opt.expected_genus && !quad) return usage("--genus applies to --quad");
+  if ((opt.expected_boundary_loops || !opt.expected_components.empty()) && !quad)
+    return usage("--boundary-loops and --component apply to --quad");
+  bool loops_expected = opt.expected_boundary_loops.value_or(0) > 0;
+  for (const auto& c : opt.expected_components) loops_expected |= c.boundary_loops > 0;
+  if (loops_expected && !opt.allow_boundary)
+    return usage("boundary loops expected: add --boundary");
+  if (opt.expected_components.size() > 1 && !opt.allow_components)
+    return usage("several --component expected: add --components");
   const igm::certify::Report r =
       quad ? igm::certify::certify_quads_file(file, opt) : igm::certify::certify_igm_file(file, opt);
   const std::string json = igm::certify::to_json(r);

@@ -100,6 +100,17 @@ int compare(const mpq_class& a, double da, const mpq_class& b, double db, bool f
   return c < 0 ? -1 : (c > 0 ? 1 : 0);
 }
 
+// The segment a-b is parallel to an axis (u or v constant along it), exactly.
+bool axis_parallel(const ExactPoint& a, const ExactPoint& b) {
+  const bool f = a.filterable && b.filterable;
+  return compare(a.x, a.ax, b.x, b.ax, f) == 0 || compare(a.y, a.ay, b.y, b.ay, f) == 0;
+}
+
+// The segment a-b lies on an integer isoline: u = c or v = c along it, c in Z.
+bool on_integer_isoline(const ExactPoint& a, const ExactPoint& b) {
+  return (a.x == b.x && is_integer(a.x)) || (a.y == b.y && is_integer(a.y));
+}
+
 int quadrant(const ExactPoint& o, const ExactPoint& p) {
   const bool f = o.filterable && p.filterable;
   const int sx = compare(p.x, p.ax, o.x, o.ax, f), sy = compare(p.y, p.ay, o.y, o.ay, f);
@@ -139,13 +150,8 @@ Report certify_igm_data(IgmData& d, const Options& opt, const std::string& sourc
   CheckResult c1;
   c1.id = 1;
   c1.name = "topology";
-  Topology t = detail::analyze_topology(d.V, d.face_begin, d.corner_vertex, W, c1);
-  rep.num_vertices = d.V;
-  rep.num_edges = t.E;
-  rep.num_faces = F;
-  rep.euler_characteristic = t.euler;
-  if (t.ok) rep.genus = (2 - t.euler) / 2;
-  c1.counts.emplace_back("genus", rep.genus ? *rep.genus : -1);
+  Topology t = detail::analyze_topology(d.V, d.face_begin, d.corner_vertex, opt, c1);
+  detail::fill_mesh(rep, t, c1);
 
   // ---- check 2: strictly positive UV triangles ----
   CheckResult c2;
@@ -183,11 +189,28 @@ Report certify_igm_data(IgmData& d, const Options& opt, const std::string& sourc
   // of vertices on non-rigid edges (check 4, "nonrigid ring").
   std::vector<signed char> edge_near_k(static_cast<std::size_t>(t.E), -1);
   std::int64_t checked = 0, not_interior = 0, fail_rot = 0, fail_trans = 0, zero_len = 0;
+  std::int64_t bnd_checked = 0, bnd_off = 0;
   mpq_class e1x, e1y, e2x, e2y, tx, ty;
   for (std::int64_t e = 0; e < t.E; ++e) {  // bound: E edges
     const std::int64_t h0 = t.edge_halfedges[t.edge_start[e]];
     if (t.twin[h0] < 0) {
       ++not_interior;
+      if (!opt.allow_boundary || !t.on_boundary(h0)) continue;
+      // A boundary edge lies on an integer isoline of its face's chart (rigid transitions keep
+      // both the direction class and integrality, so the chart does not matter).
+      ++bnd_checked;
+      const std::int64_t hu = t.origin(h0) < t.target(h0) ? h0 : t.next(h0);
+      const std::int64_t hv = hu == h0 ? t.next(h0) : h0;
+      const ExactPoint &pu = uv(hu), &pv = uv(hv);
+      if (!on_integer_isoline(pu, pv)) {
+        ++bnd_off;
+        add_witness(c3, W,
+                    {"edge", {t.origin(hu), t.origin(hv)},
+                     "boundary edge not on an integer isoline (u or v constant and integer)",
+                     {{"face", std::to_string(t.corner_face[h0])},
+                      {"uv_u", point_string(pu.x, pu.y)},
+                      {"uv_v", point_string(pv.x, pv.y)}}});
+      }
       continue;
     }
     // h1: a -> b with a < b, in face f1; h2: b -> a in face f2.
@@ -282,37 +305,66 @@ Report certify_igm_data(IgmData& d, const Options& opt, const std::string& sourc
                {"translation_not_integer", fail_trans}, {"zero_length_both_sides", zero_len},
                {"edges_not_interior", not_interior}};
   c3.note = "k maps the chart of the face left of u->v (u<v) onto the chart of the face right of it";
-  c3.status = (fail_rot + fail_trans) > 0 ? Status::Fail : (not_interior > 0 || t.E == 0 ? Status::Incomplete : Status::Pass);
+  if (opt.allow_boundary) {
+    c3.counts.insert(c3.counts.end(), {{"boundary_edges_checked", bnd_checked},
+                                       {"boundary_edges_on_isoline", bnd_checked - bnd_off},
+                                       {"boundary_edges_off_isoline", bnd_off}});
+    c3.note += "; boundary edges: u or v constant and integer along the edge in its face's chart";
+  }
+  if (fail_rot + fail_trans + bnd_off > 0) {
+    c3.status = Status::Fail;
+  } else {
+    const bool unjudged = not_interior > bnd_checked || t.E == 0;  // e.g. non-manifold edges
+    c3.status = unjudged ? Status::Incomplete : Status::Pass;
+  }
 
   // ---- check 4: vertex indices (total angle k*pi/2), cones on integer points, Poincare-Hopf ----
   CheckResult c4;
   c4.id = 4;
   c4.name = "cones";
   c4.histogram_name = "vertex_index_k";
-  std::int64_t determined = 0, undetermined = 0, cones = 0, off_integer = 0, nonpositive = 0, inconsistent = 0;
-  std::int64_t nonrigid_ring = 0, nonrigid_cones = 0, nonrigid_off_integer = 0;
-  std::int64_t ph_sum = 0;
+  if (opt.allow_boundary) c4.boundary_histogram_name = "boundary_index_k";
+  // One vertex's walk over its corners: interior vertices around the closed ring, boundary
+  // vertices (allow_boundary) across the open fan from the outgoing to the incoming boundary edge.
+  struct Walk {
+    enum Kind { Determined, NonrigidRing, Undetermined, Inconsistent } kind = Undetermined;
+    std::int64_t k = 0;                   // quadrant boundaries crossed: angle k*pi/2
+    const ExactPoint* non_int = nullptr;  // a corner UV that is not an integer point
+    bool boundary = false;
+    const char* why = "";                 // reason when undetermined
+  };
   mpq_class rx, ry, gx, gy, cr;
-  for (std::int64_t v = 0; v < d.V; ++v) {  // bound: V vertices, each ring walk <= degree steps
-    const std::int64_t start = t.vertex_corner[v];
-    if (start < 0) continue;
-    bool ok = t.vertex_manifold[v] != 0;
+  auto walk = [&](std::int64_t v) {
+    Walk w;
+    w.boundary = opt.allow_boundary && t.boundary_out[v] >= 0;
+    if (!t.vertex_manifold[v]) {
+      w.why = "non-manifold vertex";
+      return w;
+    }
+    const std::int64_t start = w.boundary ? t.boundary_out[v] : t.vertex_corner[v];
+    if (w.boundary && !axis_parallel(uv(start), uv(t.next(start)))) {
+      w.why = "outgoing boundary edge not parallel to an axis";
+      return w;
+    }
     bool rigid = true;  // every edge of the ring passed check 3
+    bool fan_end = false;
     std::int64_t sum_c = 0, hol = 0, steps = 0, h = start;
-    const ExactPoint* non_int = nullptr;
-    while (ok) {  // bound: vertex_degree[v] steps (checked)
+    int q_first = -1, q_last = -1;
+    for (;;) {  // bound: vertex_degree[v] steps (checked)
       if (++steps > t.vertex_degree[v]) {
-        ok = false;
-        break;
+        w.why = "corner ring does not close";
+        return w;
       }
       const std::int64_t f = t.corner_face[h], p = t.prev(h);
       const ExactPoint& pv = uv(h);
-      if (!non_int && !(is_integer(pv.x) && is_integer(pv.y))) non_int = &pv;
+      if (!w.non_int && !(is_integer(pv.x) && is_integer(pv.y))) w.non_int = &pv;
       const int q1 = quadrant(pv, uv(t.next(h))), q2 = quadrant(pv, uv(p));
       if (q1 < 0 || q2 < 0) {
-        ok = false;
-        break;
+        w.why = "zero-length UV edge at the vertex";
+        return w;
       }
+      if (q_first < 0) q_first = q1;
+      q_last = q2;
       int c;
       if (orient[f] > 0) {
         c = (q2 - q1 + 4) % 4;  // ccw turn in (0, pi): 0..2 quadrant boundaries
@@ -322,14 +374,22 @@ Report certify_igm_data(IgmData& d, const Options& opt, const std::string& sourc
         c = q1 == q2 ? 0 : 3;  // collinear: same direction 0, opposite directions undecidable
       }
       if (c == 3 || c == -3) {
-        ok = false;
-        break;
+        w.why = "antiparallel corner (degenerate triangle)";
+        return w;
       }
       sum_c += c;
+      if (w.boundary && t.on_boundary(p)) {  // the incoming boundary edge ends the fan
+        if (!axis_parallel(pv, uv(p))) {
+          w.why = "incoming boundary edge not parallel to an axis";
+          return w;
+        }
+        fan_end = true;
+        break;
+      }
       const std::int64_t e = t.edge_of[p];
       if (e < 0 || t.twin[p] < 0) {
-        ok = false;
-        break;
+        w.why = "ring crosses a boundary or non-manifold edge";
+        return w;
       }
       int k = edge_k[e];
       const std::int64_t hn = t.twin[p];  // v -> b in the next face
@@ -338,13 +398,13 @@ Report certify_igm_data(IgmData& d, const Options& opt, const std::string& sourc
         // crossed by the gap between the transported direction and the next face's direction.
         k = edge_near_k[e];
         if (k < 0) {
-          ok = false;
-          break;
+          w.why = "ring crosses a zero-length or tied non-rigid edge";
+          return w;
         }
         rigid = false;
         const int r = ((t.origin(p) < t.target(p) ? k : -k) % 4 + 4) % 4;
-        const ExactPoint &ov = uv(p == h ? h : t.next(p)), &ob = uv(p);  // in face f: v and b
-        const ExactPoint &nv = uv(hn), &nb = uv(t.next(hn));               // in the next face
+        const ExactPoint &ov = pv, &ob = uv(p);                // in face f: v and b
+        const ExactPoint &nv = uv(hn), &nb = uv(t.next(hn));  // in the next face
         gx = ob.x - ov.x;
         gy = ob.y - ov.y;
         switch (r) {  // (rx, ry) = R^r (gx, gy)
@@ -363,8 +423,8 @@ Report certify_igm_data(IgmData& d, const Options& opt, const std::string& sourc
         b2.y = gy;
         const int qa = quadrant(zero, a), qb = quadrant(zero, b2);
         if (qa < 0 || qb < 0) {
-          ok = false;
-          break;
+          w.why = "zero-length UV edge at the vertex";
+          return w;
         }
         int g;
         if (sgn(cr) > 0) {
@@ -375,58 +435,128 @@ Report certify_igm_data(IgmData& d, const Options& opt, const std::string& sourc
           g = qa == qb ? 0 : 3;
         }
         if (g == 3 || g == -3) {
-          ok = false;
-          break;
+          w.why = "antiparallel gap across a non-rigid edge";
+          return w;
         }
         sum_c += g;
       }
       hol += (t.origin(p) < t.target(p)) ? k : -k;
       h = hn;
-      if (h == start) break;
+      if (h == start) break;  // interior ring closed (a boundary fan never returns to start)
     }
-    if (ok && steps != t.vertex_degree[v]) ok = false;
-    if (ok && ((sum_c + hol) % 4 + 4) % 4 != 0) {
-      ++inconsistent;  // cannot happen: the transported path closes up (internal cross-check)
-      ok = false;
+    if (steps != t.vertex_degree[v] || w.boundary != fan_end) {
+      w.why = "corner ring does not cover the vertex";
+      return w;
     }
-    if (!ok) {
+    // The quadrant of the direction followed along the walk moves by c per corner and by the
+    // rotation per crossed edge: a closed ring returns to its start quadrant, an open fan ends in
+    // the quadrant of its incoming boundary edge. Internal cross-check: cannot fail.
+    const std::int64_t drift = w.boundary ? q_first + sum_c + hol - q_last : sum_c + hol;
+    if ((drift % 4 + 4) % 4 != 0) {
+      w.kind = Walk::Inconsistent;
+      w.why = "transport inconsistent (internal error)";
+      return w;
+    }
+    w.k = sum_c;
+    w.kind = rigid ? Walk::Determined : Walk::NonrigidRing;
+    return w;
+  };
+
+  const std::size_t NC = t.components.size();
+  std::vector<std::int64_t> comp_ph(NC, 0);   // sum (4 - k) + sum_boundary (2 - k)
+  std::vector<char> comp_exact(NC, 1);        // every vertex of the component determined
+  std::int64_t determined = 0, undetermined = 0, cones = 0, off_integer = 0, nonpositive = 0;
+  std::int64_t inconsistent = 0, nonrigid_ring = 0, nonrigid_cones = 0, nonrigid_off_integer = 0;
+  std::int64_t bnd_vertices = 0, bnd_determined = 0, bnd_corners = 0, bnd_off_integer = 0;
+  std::int64_t bnd_nonpositive = 0;
+  for (std::int64_t v = 0; v < d.V; ++v) {  // bound: V vertices, each walk <= degree steps
+    if (t.vertex_corner[v] < 0) continue;
+    const Walk w = walk(v);
+    const std::int32_t comp = t.vertex_component[v];
+    const std::int64_t k = w.k;
+    const std::int64_t flat = w.boundary ? 2 : 4;  // index of a regular vertex
+    const std::string ks = std::to_string(k);
+    if (w.boundary) ++bnd_vertices;
+    if (w.kind == Walk::Undetermined || w.kind == Walk::Inconsistent) {
+      if (w.kind == Walk::Inconsistent) ++inconsistent;
       ++undetermined;
+      comp_exact[comp] = 0;
+      if (w.boundary)
+        add_witness(c4, W, {"vertex", {v}, "boundary angle undetermined", {{"why", w.why}}});
       continue;
     }
-    const std::int64_t k = sum_c;
-    if (!rigid) {
+    if (w.kind == Walk::NonrigidRing) {
       // Index with the nearest rotation across this ring's non-rigid edges: reported, not exact.
       ++nonrigid_ring;
-      if (k != 4) ++nonrigid_cones;
-      if (k != 4 && non_int) {
+      comp_exact[comp] = 0;
+      if (k != flat) ++nonrigid_cones;
+      if (k != flat && w.non_int) {
         ++nonrigid_off_integer;
         add_witness(c4, W,
-                    {"vertex", {v}, "cone not on an integer point (ring has non-rigid edges; index with nearest rotations)",
-                     {{"k", std::to_string(k)}, {"uv", point_string(non_int->x, non_int->y)}}});
+                    {"vertex", {v},
+                     w.boundary ? "boundary corner not on an integer point (ring has non-rigid "
+                                  "edges; index with nearest rotations)"
+                                : "cone not on an integer point (ring has non-rigid edges; index "
+                                  "with nearest rotations)",
+                     {{"k", ks}, {"uv", point_string(w.non_int->x, w.non_int->y)}}});
       }
       continue;
     }
     ++determined;
+    comp_ph[comp] += flat - k;
+    if (w.boundary) {
+      ++bnd_determined;
+      ++c4.boundary_histogram[k];
+      if (k != 2) ++bnd_corners;
+      if (k <= 0) {
+        ++bnd_nonpositive;
+        add_witness(c4, W, {"vertex", {v}, "boundary index k <= 0 (angle not positive)",
+                            {{"k", ks}}});
+      }
+      if (k != 2 && w.non_int) {
+        ++bnd_off_integer;
+        add_witness(c4, W, {"vertex", {v}, "boundary corner (k != 2) not on an integer point",
+                            {{"k", ks}, {"uv", point_string(w.non_int->x, w.non_int->y)}}});
+      }
+      continue;
+    }
     ++c4.histogram[k];
-    ph_sum += 4 - k;
     if (k != 4) ++cones;
     if (k <= 0) {
       ++nonpositive;
-      add_witness(c4, W, {"vertex", {v}, "index k <= 0 (total angle not positive)", {{"k", std::to_string(k)}}});
+      add_witness(c4, W, {"vertex", {v}, "index k <= 0 (total angle not positive)", {{"k", ks}}});
     }
-    if (k != 4 && non_int) {
+    if (k != 4 && w.non_int) {
       ++off_integer;
-      add_witness(c4, W,
-                  {"vertex", {v}, "cone not on an integer point",
-                   {{"k", std::to_string(k)}, {"uv", point_string(non_int->x, non_int->y)}}});
+      add_witness(c4, W, {"vertex", {v}, "cone not on an integer point",
+                          {{"k", ks}, {"uv", point_string(w.non_int->x, w.non_int->y)}}});
     }
   }
-  const bool ph_checkable = undetermined == 0 && nonrigid_ring == 0 && t.ok;
-  const bool ph_ok = ph_checkable && ph_sum == 4 * t.euler;
-  if (ph_checkable && !ph_ok) {
-    add_witness(c4, W, {"mesh", {}, "Poincare-Hopf violated: sum(4-k) != 4*chi",
-                        {{"sum_4_minus_k", std::to_string(ph_sum)}, {"4_chi", std::to_string(4 * t.euler)}}});
+  // Poincare-Hopf per component, where every vertex of the component has an exact index.
+  std::int64_t ph_sum = 0, comps_checked = 0, comps_failed = 0;
+  for (std::size_t c = 0; c < NC; ++c) {  // bound: components <= V
+    if (!t.ok || !comp_exact[c]) continue;
+    ++comps_checked;
+    ph_sum += comp_ph[c];
+    const Topology::Component& tc = t.components[c];
+    rep.components[c].poincare_hopf_sum = comp_ph[c];
+    if (comp_ph[c] == 4 * tc.euler()) continue;
+    ++comps_failed;
+    Witness w{"mesh", {}, "Poincare-Hopf violated: sum(4-k) != 4*chi",
+              {{"sum_4_minus_k", std::to_string(comp_ph[c])},
+               {"4_chi", std::to_string(4 * tc.euler())}}};
+    if (opt.allow_boundary) {
+      w.reason = "Poincare-Hopf violated: sum_interior(4-k) + sum_boundary(2-k) != 4*chi";
+      w.values[0].first = "sum_index_defects";
+    }
+    if (NC > 1) {
+      w.kind = "component";
+      w.ids = {tc.first_vertex};
+      w.reason += " of the component";
+    }
+    add_witness(c4, W, std::move(w));
   }
+  const bool ph_checkable = t.ok && comps_checked == std::int64_t(NC);
   c4.counts = {{"vertices_determined", determined},
                {"vertices_nonrigid_ring", nonrigid_ring},
                {"vertices_undetermined", undetermined},
@@ -440,24 +570,82 @@ Report certify_igm_data(IgmData& d, const Options& opt, const std::string& sourc
                {"poincare_hopf_expected", ph_checkable ? 4 * t.euler : 0},
                {"poincare_hopf_checked", ph_checkable ? 1 : 0},
                {"transport_inconsistent", inconsistent}};
+  if (opt.allow_boundary) {
+    c4.counts.insert(c4.counts.end(), {{"boundary_vertices", bnd_vertices},
+                                       {"boundary_vertices_determined", bnd_determined},
+                                       {"boundary_corners", bnd_corners},
+                                       {"boundary_corners_off_integer", bnd_off_integer},
+                                       {"boundary_nonpositive_index", bnd_nonpositive}});
+  }
+  if (opt.allow_components) {
+    c4.counts.insert(c4.counts.end(), {{"poincare_hopf_components_checked", comps_checked},
+                                       {"poincare_hopf_components_failed", comps_failed}});
+  }
   c4.note =
       "determined: ring of rigid edges, exact index; nonrigid_ring: ring crosses edges that failed check 3, index "
       "computed with the nearest rotation there (reported, not a proof); undetermined: non-manifold ring, "
       "zero-length or tied edge, or antiparallel corner";
-  if (off_integer > 0 || nonrigid_off_integer > 0 || nonpositive > 0 || (ph_checkable && !ph_ok)) {
+  if (opt.allow_boundary)
+    c4.note += "; boundary vertices: angle k*pi/2 over the fan between their boundary edges, "
+               "flat at k = 2, exact when both boundary edges are axis-parallel";
+  const bool failed = off_integer > 0 || nonrigid_off_integer > 0 || nonpositive > 0 ||
+                      bnd_off_integer > 0 || bnd_nonpositive > 0 || comps_failed > 0;
+  if (failed) {
     c4.status = Status::Fail;
   } else if (!ph_checkable) {
     c4.status = Status::Incomplete;
   } else {
     c4.status = Status::Pass;
   }
-
   rep.checks.push_back(std::move(c1));
   rep.checks.push_back(std::move(c2));
   rep.checks.push_back(std::move(c3));
   rep.checks.push_back(std::move(c4));
   finish(rep);
   return rep;
+}
+
+// Quad mode: when an expectation is given, counts it ("expected_<name>") and requires the found
+// value to be defined and equal (else a mesh witness with both). Returns false on a mismatch.
+bool expect(CheckResult& c, std::size_t max_witnesses, const std::string& name,
+            const std::optional<std::int64_t>& found, const std::optional<std::int64_t>& expected,
+            const char* reason) {
+  if (!expected) return true;
+  c.counts.emplace_back("expected_" + name, *expected);
+  if (found == expected) return true;
+  add_witness(c, max_witnesses,
+              {"mesh", {}, reason,
+               {{name, found ? std::to_string(*found) : "undefined"},
+                {"expected", std::to_string(*expected)}}});
+  return false;
+}
+
+// The components' (genus, loops) equal the expected ones as multisets; a component with an
+// undefined genus or loop count matches nothing.
+bool components_match(const Report& rep, std::vector<ComponentTopology> expected) {
+  std::vector<ComponentTopology> found;
+  for (const auto& c : rep.components) {  // bound: components
+    if (!c.genus || !c.boundary_loops) return false;
+    found.push_back({*c.genus, *c.boundary_loops});
+  }
+  std::sort(found.begin(), found.end());
+  std::sort(expected.begin(), expected.end());
+  return found == expected;
+}
+
+// "(g, b) x n" groups of a multiset, sorted; -1 stands for undefined.
+std::string multiset_string(std::vector<ComponentTopology> m) {
+  std::sort(m.begin(), m.end());
+  std::string s;
+  for (std::size_t i = 0; i < m.size();) {  // bound: |m|, each group consumed once
+    std::size_t j = i;
+    while (j < m.size() && m[j] == m[i]) ++j;
+    if (!s.empty()) s += ", ";
+    s += "(genus " + std::to_string(m[i].genus) + ", loops " +
+         std::to_string(m[i].boundary_loops) + ") x " + std::to_string(j - i);
+    i = j;
+  }
+  return s.empty() ? "none" : s;
 }
 
 // Checks 1 + 5 on a polygon mesh (quad mode).
@@ -470,7 +658,7 @@ Report certify_quad_data(std::int64_t V, const std::vector<std::int64_t>& face_b
   c5.id = 5;
   c5.name = "quad_mesh";
   c5.histogram_name = "valence";
-  Topology t = detail::analyze_topology(V, face_begin, corner_vertex, opt.max_witnesses, c5);
+  Topology t = detail::analyze_topology(V, face_begin, corner_vertex, opt, c5);
   const std::int64_t F = std::int64_t(face_begin.size()) - 1;
   std::int64_t non_quads = 0;
   for (std::int64_t f = 0; f < F; ++f) {  // bound: F
@@ -487,23 +675,22 @@ Report certify_quad_data(std::int64_t V, const std::vector<std::int64_t>& face_b
     ++valence[t.target(h)];
   }
   for (std::int64_t v = 0; v < V; ++v) ++c5.histogram[valence[v]];  // bound: V
-  rep.num_vertices = V;
-  rep.num_edges = t.E;
-  rep.num_faces = F;
-  rep.euler_characteristic = t.euler;
   bool ok = t.ok && non_quads == 0;
-  if (t.ok) rep.genus = (2 - t.euler) / 2;
   c5.counts.emplace_back("non_quad_faces", non_quads);
-  c5.counts.emplace_back("genus", rep.genus ? *rep.genus : -1);
-  if (opt.expected_genus) {
-    c5.counts.emplace_back("expected_genus", *opt.expected_genus);
-    if (!rep.genus || *rep.genus != *opt.expected_genus) {
-      ok = false;
-      add_witness(c5, opt.max_witnesses,
-                  {"mesh", {}, "genus differs from the expected genus",
-                   {{"genus", rep.genus ? std::to_string(*rep.genus) : "undefined"},
-                    {"expected", std::to_string(*opt.expected_genus)}}});
-    }
+  detail::fill_mesh(rep, t, c5);
+  ok &= expect(c5, opt.max_witnesses, "genus", rep.genus, opt.expected_genus,
+                "genus differs from the expected genus");
+  ok &= expect(c5, opt.max_witnesses, "boundary_loops", rep.boundary_loops,
+                opt.expected_boundary_loops, "number of boundary loops differs from the expected one");
+  if (!opt.expected_components.empty() && !components_match(rep, opt.expected_components)) {
+    ok = false;
+    std::vector<ComponentTopology> found;
+    for (const auto& c : rep.components)  // bound: components
+      found.push_back({c.genus.value_or(-1), c.boundary_loops.value_or(-1)});
+    add_witness(c5, opt.max_witnesses,
+                {"mesh", {}, "components' (genus, boundary loops) differ from the expected ones",
+                 {{"found", multiset_string(found)},
+                  {"expected", multiset_string(opt.expected_components)}}});
   }
   c5.status = ok ? Status::Pass : Status::Fail;
   rep.checks.push_back(std::move(c5));

@@ -23,9 +23,26 @@ struct Topology {
   std::vector<std::int64_t> vertex_corner; // one corner per vertex, -1 if unreferenced
   std::vector<std::int32_t> vertex_degree; // number of corners at each vertex
   std::vector<char> vertex_manifold;       // 1 when its corners form one fan
-  bool closed_manifold_oriented = false;   // no boundary, non-manifold or inconsistent edge/vertex
+  std::vector<std::int64_t> boundary_out;  // per vertex: outgoing boundary half-edge, -1 if none
+  std::vector<std::int32_t> vertex_component;  // index into components, -1 if unreferenced
+  struct Component {
+    std::int64_t first_vertex = 0, V = 0, E = 0, F = 0, boundary_edges = 0;
+    std::int64_t boundary_loops = -1;      // -1 unless manifold_oriented
+    std::int64_t euler() const { return V - E + F; }
+  };
+  std::vector<Component> components;       // by increasing first (smallest) vertex
+  bool manifold_oriented = false;          // no non-manifold or inconsistent edge/vertex, no face
+                                           // repeating a vertex (boundary edges allowed)
   bool ok = false;                         // check 1 passed (also connected, no degenerate faces)
   std::int64_t euler = 0;
+  std::int64_t boundary_edges = 0, boundary_vertices = 0;
+  std::int64_t boundary_loops = -1;        // -1 unless manifold_oriented
+
+  /// h lies on an edge with exactly one half-edge (a boundary edge).
+  bool on_boundary(std::int64_t h) const {
+    const std::int64_t e = edge_of[h];
+    return e >= 0 && edge_start[e + 1] - edge_start[e] == 1;
+  }
 
   std::int64_t origin(std::int64_t h) const { return (*corner_vertex)[h]; }
   std::int64_t next(std::int64_t h) const {
@@ -39,11 +56,17 @@ struct Topology {
   std::int64_t target(std::int64_t h) const { return origin(next(h)); }
 };
 
-/// Builds the adjacency and fills check 1 (topology) counts, status and witnesses.
+/// Builds the adjacency and fills check 1 (topology) counts, status and witnesses; boundary
+/// edges and several components pass where options allow them. Also counts boundary loops
+/// (walking boundary half-edges) and per-component V, E, F, loops when manifold and oriented.
 /// Pre: every corner_vertex in [0, V). Cost O(C log C) for C corners.
 Topology analyze_topology(std::int64_t V, const std::vector<std::int64_t>& face_begin,
-                          const std::vector<int>& corner_vertex, std::size_t max_witnesses,
+                          const std::vector<int>& corner_vertex, const Options& options,
                           CheckResult& check);
+
+/// Fills the report's mesh fields (counts, euler, genus, boundary loops, components) from the
+/// topology and appends the "genus" count to check 1 (or 5).
+void fill_mesh(Report& report, const Topology& t, CheckResult& check);
 
 /// Adds a witness unless the cap is reached; always counts it in check.offending.
 void add_witness(CheckResult& check, std::size_t max_witnesses, Witness w);

@@ -35,6 +35,25 @@ void put_string(std::string& out, const std::string& s) {
   out.push_back('"');
 }
 
+std::string opt_int(const std::optional<std::int64_t>& x) {
+  return x ? std::to_string(*x) : std::string("null");
+}
+
+void put_histogram(std::string& o, const char* key, const std::string& name,
+                   const std::map<std::int64_t, std::int64_t>& bins) {
+  app(o, ",\n     \"", key, "\": {\"name\": ");
+  put_string(o, name);
+  o += ", \"bins\": {";
+  bool first = true;
+  for (const auto& [k, v] : bins) {  // bound: |bins|
+    if (!first) o += ", ";
+    first = false;
+    put_string(o, std::to_string(k));
+    app(o, ": ", std::to_string(v));
+  }
+  o += "}}";
+}
+
 }  // namespace
 
 std::string to_json(const Report& r) {
@@ -48,7 +67,7 @@ std::string to_json(const Report& r) {
   o += "\",\n  \"valid\": ";
   o += r.valid() ? "true" : "false";
   o += ",\n  \"exit_code\": ";
-    o += std::to_string(exit_code(r));
+  o += std::to_string(exit_code(r));
   o += ",\n  \"index_base\": 0,\n  \"error\": ";
   if (r.verdict == Verdict::Unreadable) {
     o += "{\"message\": ";
@@ -67,7 +86,22 @@ std::string to_json(const Report& r) {
   o += r.euler_characteristic ? std::to_string(*r.euler_characteristic) : std::string("null");
   o += ", \"genus\": ";
   o += r.genus ? std::to_string(*r.genus) : std::string("null");
-  o += "}";
+  app(o, ", \"boundary_edges\": ", std::to_string(r.num_boundary_edges),
+      ", \"boundary_loops\": ", opt_int(r.boundary_loops),
+      ", \"connected_components\": ", std::to_string(r.components.size()), "}");
+  o += ",\n  \"components\": [";
+  for (std::size_t i = 0; i < r.components.size(); ++i) {  // bound: components <= V
+    const ComponentInfo& c = r.components[i];
+    app(o, i ? ",\n    " : "\n    ", "{\"first_vertex\": ", std::to_string(c.first_vertex),
+        ", \"vertices\": ", std::to_string(c.vertices), ", \"edges\": ", std::to_string(c.edges),
+        ", \"faces\": ", std::to_string(c.faces));
+    app(o, ", \"boundary_edges\": ", std::to_string(c.boundary_edges), ", \"boundary_loops\": ",
+        opt_int(c.boundary_loops), ", \"euler_characteristic\": ",
+        std::to_string(c.euler_characteristic), ", \"genus\": ", opt_int(c.genus));
+    app(o, ", \"poincare_hopf_sum\": ", opt_int(c.poincare_hopf_sum),
+        ", \"poincare_hopf_expected\": ", std::to_string(4 * c.euler_characteristic), "}");
+  }
+  o += r.components.empty() ? "]" : "\n  ]";
   o += ",\n  \"checks\": [";
   for (std::size_t i = 0; i < r.checks.size(); ++i) {  // bound: <= 5 checks
     const CheckResult& c = r.checks[i];
@@ -83,23 +117,12 @@ std::string to_json(const Report& r) {
       if (k) o += ", ";
       put_string(o, c.counts[k].first);
       o += ": ";
-    o += std::to_string(c.counts[k].second);
+      o += std::to_string(c.counts[k].second);
     }
     o += "}";
-    if (!c.histogram_name.empty()) {
-      o += ",\n     \"histogram\": {\"name\": ";
-      put_string(o, c.histogram_name);
-      o += ", \"bins\": {";
-      bool first = true;
-      for (const auto& [k, v] : c.histogram) {
-        if (!first) o += ", ";
-        first = false;
-        put_string(o, std::to_string(k));
-        o += ": ";
-    o += std::to_string(v);
-      }
-      o += "}}";
-    }
+    if (!c.histogram_name.empty()) put_histogram(o, "histogram", c.histogram_name, c.histogram);
+    if (!c.boundary_histogram_name.empty())
+      put_histogram(o, "boundary_histogram", c.boundary_histogram_name, c.boundary_histogram);
     o += ",\n     \"offending\": ";
     o += std::to_string(c.offending);
     o += ", \"witnesses_shown\": ";
@@ -142,6 +165,9 @@ std::string summary(const Report& r) {
   if (r.verdict == Verdict::Unreadable) return s + ": " + r.error;
   app(s, ": V=", std::to_string(r.num_vertices), " E=", std::to_string(r.num_edges), " F=",
       std::to_string(r.num_faces), " genus=", r.genus ? std::to_string(*r.genus) : std::string("?"));
+  if (r.boundary_loops && *r.boundary_loops > 0)
+    app(s, " boundary_loops=", std::to_string(*r.boundary_loops));
+  if (r.components.size() > 1) app(s, " components=", std::to_string(r.components.size()));
   for (const auto& c : r.checks) {
     app(s, "; ", std::to_string(c.id), ":", c.name, "=", to_string(c.status));
     if (c.offending) app(s, "(", std::to_string(c.offending), ")");

@@ -31,7 +31,81 @@ struct UnionFind {
   }
 };
 
+// Boundary vertices, each vertex's outgoing boundary half-edge, and the boundary loops (total and
+// per component). In a manifold, consistently oriented mesh the corners at a boundary vertex form
+// one open fan, whose first corner's outgoing edge and last corner's incoming edge are its only
+// boundary edges: one boundary half-edge leaves the vertex, so following "the boundary half-edge
+// leaving my target" walks each loop. Loops stay -1 when the mesh is not manifold and oriented.
+void count_boundary_loops(Topology& t) {
+  const std::int64_t C = std::int64_t(t.corner_vertex->size());
+  t.boundary_out.assign(static_cast<std::size_t>(t.V), -1);
+  std::vector<char> seen(static_cast<std::size_t>(t.V), 0);
+  bool unique_out = true;
+  std::int64_t halfedges = 0;
+  for (std::int64_t h = 0; h < C; ++h) {  // bound: C
+    if (!t.on_boundary(h)) continue;
+    ++halfedges;
+    for (std::int64_t v : {t.origin(h), t.target(h)}) {
+      if (!seen[v]) ++t.boundary_vertices;
+      seen[v] = 1;
+    }
+    std::int64_t& out = t.boundary_out[t.origin(h)];
+    if (out >= 0) unique_out = false;
+    out = h;
+  }
+  if (!t.manifold_oriented || !unique_out) return;
+  t.boundary_loops = 0;
+  for (auto& c : t.components) c.boundary_loops = 0;
+  std::vector<char> visited(static_cast<std::size_t>(C), 0);
+  for (std::int64_t h = 0; h < C; ++h) {  // bound: C, plus the loop walks below
+    if (visited[h] || !t.on_boundary(h)) continue;
+    std::int64_t g = h, steps = 0;
+    do {  // bound: `halfedges` steps over all loops together (each half-edge visited once)
+      visited[g] = 1;
+      g = t.boundary_out[t.target(g)];
+    } while (g >= 0 && g != h && !visited[g] && ++steps <= halfedges);
+    if (g != h) {  // cannot happen in a manifold, oriented mesh (internal cross-check)
+      t.boundary_loops = -1;
+      for (auto& c : t.components) c.boundary_loops = -1;
+      return;
+    }
+    ++t.boundary_loops;
+    ++t.components[t.vertex_component[t.origin(h)]].boundary_loops;
+  }
+}
+
 }  // namespace
+
+void fill_mesh(Report& rep, const Topology& t, CheckResult& check) {
+  rep.num_vertices = t.V;
+  rep.num_edges = t.E;
+  rep.num_faces = t.F;
+  rep.euler_characteristic = t.euler;
+  rep.num_boundary_edges = t.boundary_edges;
+  if (t.boundary_loops >= 0) rep.boundary_loops = t.boundary_loops;
+  std::int64_t genus_sum = 0;
+  bool all_genera = true;
+  for (const auto& c : t.components) {  // bound: number of components <= V
+    ComponentInfo info;
+    info.first_vertex = c.first_vertex;
+    info.vertices = c.V;
+    info.edges = c.E;
+    info.faces = c.F;
+    info.boundary_edges = c.boundary_edges;
+    info.euler_characteristic = c.euler();
+    const std::int64_t twice_genus = 2 - c.euler() - c.boundary_loops;
+    if (c.boundary_loops >= 0) info.boundary_loops = c.boundary_loops;
+    if (c.boundary_loops >= 0 && twice_genus >= 0 && twice_genus % 2 == 0) {
+      info.genus = twice_genus / 2;
+      genus_sum += twice_genus / 2;
+    } else {
+      all_genera = false;
+    }
+    rep.components.push_back(info);
+  }
+  if (t.ok && all_genera) rep.genus = genus_sum;
+  check.counts.emplace_back("genus", rep.genus ? *rep.genus : -1);
+}
 
 void add_witness(CheckResult& check, std::size_t max_witnesses, Witness w) {
   ++check.offending;
@@ -48,8 +122,9 @@ std::string point_string(const mpq_class& x, const mpq_class& y) {
 }
 
 Topology analyze_topology(std::int64_t V, const std::vector<std::int64_t>& face_begin,
-                          const std::vector<int>& corner_vertex, std::size_t max_witnesses,
+                          const std::vector<int>& corner_vertex, const Options& opt,
                           CheckResult& check) {
+  const std::size_t max_witnesses = opt.max_witnesses;
   Topology t;
   t.V = V;
   t.F = std::int64_t(face_begin.size()) - 1;
@@ -101,7 +176,8 @@ Topology analyze_topology(std::int64_t V, const std::vector<std::int64_t>& face_
     const std::size_t n = j - i;
     if (n == 1) {
       ++boundary;
-      add_witness(check, max_witnesses, {"edge", {u, v}, "boundary edge (one face)", {}});
+      if (!opt.allow_boundary)
+        add_witness(check, max_witnesses, {"edge", {u, v}, "boundary edge (one face)", {}});
     } else if (n > 2) {
       ++nonmanifold_edges;
       add_witness(check, max_witnesses,
@@ -150,27 +226,45 @@ Topology analyze_topology(std::int64_t V, const std::vector<std::int64_t>& face_
     }
     verts.unite(v, t.target(h));
   }
-  std::int64_t first_component_vertex = -1;
+  // Components: the union-find root of a component is its smallest vertex (unite keeps the
+  // smaller root), met first in increasing order.
+  t.vertex_component.assign(static_cast<std::size_t>(V), -1);
   for (std::int64_t v = 0; v < V; ++v) {  // bound: V
     if (t.vertex_corner[v] < 0) {
       ++unreferenced;
       add_witness(check, max_witnesses, {"vertex", {v}, "vertex used by no face", {}});
       continue;
     }
-    if (verts.find(v) == v) {
+    const std::int64_t r = verts.find(v);
+    if (r == v) {
       ++components;
-      if (first_component_vertex < 0) {
-        first_component_vertex = v;
-      } else {
-        add_witness(check, max_witnesses, {"vertex", {v}, "first vertex of another connected component", {}});
-      }
+      t.vertex_component[v] = static_cast<std::int32_t>(t.components.size());
+      t.components.push_back({});
+      t.components.back().first_vertex = v;
+      if (components > 1 && !opt.allow_components)
+        add_witness(check, max_witnesses,
+                    {"vertex", {v}, "first vertex of another connected component", {}});
+    } else {
+      t.vertex_component[v] = t.vertex_component[r];  // r < v: already numbered
     }
+    ++t.components[t.vertex_component[v]].V;
+  }
+  for (std::int64_t f = 0; f < t.F; ++f)  // bound: F
+    ++t.components[t.vertex_component[corner_vertex[face_begin[f]]]].F;
+  for (std::int64_t e = 0; e < t.E; ++e) {  // bound: E
+    const std::int64_t h = t.edge_halfedges[t.edge_start[e]];
+    Topology::Component& c = t.components[t.vertex_component[t.origin(h)]];
+    ++c.E;
+    if (t.edge_start[e + 1] - t.edge_start[e] == 1) ++c.boundary_edges;
   }
 
   t.euler = V - t.E + t.F;
-  t.closed_manifold_oriented = boundary == 0 && nonmanifold_edges == 0 && inconsistent == 0 &&
-                               nonmanifold_vertices == 0 && degenerate_faces == 0;
-  t.ok = t.closed_manifold_oriented && components == 1 && unreferenced == 0 && t.F > 0;
+  t.boundary_edges = boundary;
+  t.manifold_oriented = nonmanifold_edges == 0 && inconsistent == 0 && nonmanifold_vertices == 0 &&
+                        degenerate_faces == 0;
+  count_boundary_loops(t);
+  t.ok = t.manifold_oriented && (boundary == 0 || opt.allow_boundary) &&
+         (components == 1 || opt.allow_components) && unreferenced == 0 && t.F > 0;
   check.counts = {{"vertices", V},
                   {"edges", t.E},
                   {"faces", t.F},
@@ -181,7 +275,9 @@ Topology analyze_topology(std::int64_t V, const std::vector<std::int64_t>& face_
                   {"nonmanifold_vertices", nonmanifold_vertices},
                   {"faces_repeating_a_vertex", degenerate_faces},
                   {"unreferenced_vertices", unreferenced},
-                  {"connected_components", components}};
+                  {"connected_components", components},
+                  {"boundary_vertices", t.boundary_vertices},
+                  {"boundary_loops", t.boundary_loops}};
   if (t.F == 0) check.note = "no faces";
   check.status = t.ok ? Status::Pass : Status::Fail;
   return t;

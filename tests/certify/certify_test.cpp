@@ -10,14 +10,6 @@
 using namespace igm::certify;
 using namespace certify_test;
 
-namespace {
-const CheckResult& chk(const Report& r, int id) {
-  const CheckResult* c = r.check(id);
-  REQUIRE(c != nullptr);
-  return *c;
-}
-}  // namespace
-
 TEST_CASE("valid: n x n torus with wrap-around seams") {
   for (int n : {1, 2, 5}) {
     CAPTURE(n);

@@ -9,7 +9,7 @@
 #include <string>
 #include <sys/wait.h>
 
-#include "igm_builders.h"
+#include "boundary_builders.h"
 
 namespace fs = std::filesystem;
 using namespace certify_test;
@@ -94,6 +94,69 @@ TEST_CASE("cli: exit codes and JSON") {
   CHECK(run("--quad --genus 2 \"" + (dir / "cube_quads.obj").string() + "\"", out, dir) == 1);
   // a quad mesh is not an IGM
   CHECK(run("\"" + (dir / "cube_quads.obj").string() + "\"", out, dir) == 2);
+
+  fs::remove_all(dir);
+}
+
+TEST_CASE("cli: --boundary, --components, --boundary-loops, --component") {
+  const fs::path dir = tmp_dir();
+  std::string out;
+  auto file = [&](const char* name) { return " \"" + (dir / name).string() + "\""; };
+
+  write(dir / "disk.obj", to_obj(square_disk(3).igm));
+  CHECK(run(file("disk.obj"), out, dir) == 1);  // the old behaviour: a boundary fails check 1
+  CHECK(out.find("\"reason\": \"boundary edge (one face)\"") != std::string::npos);
+  CHECK(run("--boundary" + file("disk.obj"), out, dir) == 0);
+  CHECK(out.find("\"boundary_loops\": 1, \"connected_components\": 1}") != std::string::npos);
+  CHECK(out.find("\"boundary_index_k\", \"bins\": {\"1\": 4, \"2\": 8}") != std::string::npos);
+  CHECK(slurp(dir / "stderr.txt").find("boundary_loops=1") != std::string::npos);
+
+  GridPatch off = square_disk(3);
+  move_vertex(off.igm, off.id(1, 0), uv(1, mpq_class(1, 1000)));
+  write(dir / "off.obj", to_obj(off.igm));
+  CHECK(run("--boundary" + file("off.obj"), out, dir) == 1);
+  CHECK(out.find("boundary edge not on an integer isoline") != std::string::npos);
+
+  write(dir / "two.obj", to_obj(disjoint_union(torus(3), cube(1))));
+  CHECK(run(file("two.obj"), out, dir) == 1);
+  CHECK(run("--components" + file("two.obj"), out, dir) == 0);
+  CHECK(out.find("\"first_vertex\": 9") != std::string::npos);
+
+  // quad mode: a 3 x 3 grid disk, then the same grid with its centre punched out
+  write(dir / "grid.obj",
+        "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0\nv 2 1 0\nv 0 2 0\nv 1 2 0\nv 2 2 0\n"
+        "f 1 2 5 4\nf 2 3 6 5\nf 4 5 8 7\nf 5 6 9 8\n");
+  CHECK(run("--quad" + file("grid.obj"), out, dir) == 1);
+  CHECK(run("--quad --boundary" + file("grid.obj"), out, dir) == 0);
+  CHECK(run("--quad --boundary --boundary-loops 1 --genus 0" + file("grid.obj"), out, dir) == 0);
+  CHECK(run("--quad --boundary --boundary-loops 2" + file("grid.obj"), out, dir) == 1);
+  CHECK(out.find("number of boundary loops differs from the expected one") != std::string::npos);
+  CHECK(run("--quad --boundary --component 0:1" + file("grid.obj"), out, dir) == 0);
+  CHECK(run("--quad --boundary --component 1:1" + file("grid.obj"), out, dir) == 1);
+  std::string holed = "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\n";
+  for (int j = 1; j <= 3; ++j)
+    for (int i = 0; i <= 3; ++i)
+      holed += "v " + std::to_string(i) + " " + std::to_string(j) + " 0\n";
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) {
+      if (i == 1 && j == 1) continue;
+      const int a = 1 + i + 4 * j;
+      holed += "f " + std::to_string(a) + " " + std::to_string(a + 1) + " " +
+               std::to_string(a + 5) + " " + std::to_string(a + 4) + "\n";
+    }
+  write(dir / "holed.obj", holed);
+  CHECK(run("--quad --boundary --boundary-loops 2" + file("holed.obj"), out, dir) == 0);
+  CHECK(run("--quad --boundary --boundary-loops 1" + file("holed.obj"), out, dir) == 1);
+
+  // bad arguments
+  CHECK(run("--boundary-loops 1" + file("disk.obj"), out, dir) == 2);          // needs --quad
+  CHECK(run("--quad --boundary-loops 1" + file("grid.obj"), out, dir) == 2);   // needs --boundary
+  CHECK(run("--quad --boundary --boundary-loops -1" + file("grid.obj"), out, dir) == 2);
+  CHECK(run("--quad --boundary --component 0" + file("grid.obj"), out, dir) == 2);
+  CHECK(run("--quad --boundary --component 0:x" + file("grid.obj"), out, dir) == 2);
+  CHECK(run("--quad --boundary --component 0:1 --component 0:1" + file("grid.obj"), out, dir) == 2);
+  const std::string twice = "--quad --boundary --components --component 0:1 --component 0:1";
+  CHECK(run(twice + file("grid.obj"), out, dir) == 1);
 
   fs::remove_all(dir);
 }

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <doctest/doctest.h>
+
 #include "certify/certify.h"
 
 namespace certify_test {
@@ -69,8 +71,9 @@ inline IgmInput rotated_chart_torus(int n) {
 }
 
 /// Surface of the cube [0, m]^3 as m x m quads per side, every quad its own unit-square chart,
-/// each quad split into two triangles: 8 cones of index 3 at the corners.
-inline IgmInput cube(int m) {
+/// each quad split into two triangles: 8 cones of index 3 at the corners. `sides` keeps some of
+/// the six sides only (bit 2a + (s == m) for the side x_a = s): an open surface.
+inline IgmInput cube(int m, int sides = 63) {
   IgmInput in;
   std::map<std::array<int, 3>, int> ids;
   auto id = [&](std::array<int, 3> p) {
@@ -83,7 +86,8 @@ inline IgmInput cube(int m) {
   const Uv s00 = uv(0, 0), s10 = uv(1, 0), s11 = uv(1, 1), s01 = uv(0, 1);
   for (int a = 0; a < 3; ++a) {
     const int b = (a + 1) % 3, c = (a + 2) % 3;
-    for (int side : {0, m})
+    for (int side : {0, m}) {
+      if (((sides >> (2 * a + (side == m))) & 1) == 0) continue;
       for (int u = 0; u < m; ++u)
         for (int w = 0; w < m; ++w) {
           std::array<std::array<int, 3>, 4> q;
@@ -98,6 +102,7 @@ inline IgmInput cube(int m) {
           add_tri(in, v0, v1, v2, s00, s10, s11);
           add_tri(in, v0, v2, v3, s00, s11, s01);
         }
+    }
   }
   in.num_vertices = static_cast<std::int64_t>(ids.size());
   return in;
@@ -162,10 +167,30 @@ inline bool has_edge_witness(const igm::certify::CheckResult& c, std::int64_t u,
   return false;
 }
 
-inline bool has_witness(const igm::certify::CheckResult& c, const std::string& kind, std::int64_t id) {
+/// The witness of `kind` whose first id is `id`, or nullptr.
+inline const igm::certify::Witness* find_witness(const igm::certify::CheckResult& c,
+                                                 const std::string& kind, std::int64_t id) {
   for (const auto& w : c.witnesses)
-    if (w.kind == kind && !w.ids.empty() && w.ids[0] == id) return true;
-  return false;
+    if (w.kind == kind && !w.ids.empty() && w.ids[0] == id) return &w;
+  return nullptr;
+}
+
+inline bool has_witness(const igm::certify::CheckResult& c, const std::string& kind, std::int64_t id) {
+  return find_witness(c, kind, id) != nullptr;
+}
+
+/// The named value of a witness, or "<absent>".
+inline std::string value(const igm::certify::Witness& w, const std::string& key) {
+  for (const auto& [k, v] : w.values)
+    if (k == key) return v;
+  return "<absent>";
+}
+
+/// The check with this id; the test stops when it is missing.
+inline const igm::certify::CheckResult& chk(const igm::certify::Report& r, int id) {
+  const igm::certify::CheckResult* c = r.check(id);
+  REQUIRE(c != nullptr);
+  return *c;
 }
 
 }  // namespace certify_test

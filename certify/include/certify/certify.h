@@ -7,13 +7,19 @@
 //
 // Checks (all exact; doubles only feed a filter with a proven error bound):
 //   1 topology     closed, edge- and vertex-manifold, consistently oriented, connected; V,E,F, genus
+//                  (boundary edges with Options::allow_boundary, several components with
+//                  Options::allow_components)
 //   2 orientation  every UV triangle strictly positive (exact orient2d); flipped / degenerate counts
-//   3 transitions  every interior edge: x -> R^k x + t, k in {0..3}, t in Z^2, same for both ends
+//   3 transitions  every interior edge: x -> R^k x + t, k in {0..3}, t in Z^2, same for both ends;
+//                  every boundary edge (allow_boundary) on an integer isoline u = c or v = c
 //   4 cones        per-vertex index k (total angle k*pi/2) by exact quadrant counting; k != 4 must be
-//                  on an integer point; Poincare-Hopf  sum(4 - k) = 4 chi
-//   5 quad mesh    (quad mode) pure quads, closed manifold oriented connected, genus, valences
+//                  on an integer point; boundary vertices: angle k*pi/2, k >= 1, k != 2 on an
+//                  integer point; Poincare-Hopf per component sum_int(4-k) + sum_bnd(2-k) = 4 chi
+//   5 quad mesh    (quad mode) pure quads, manifold oriented (closed and connected unless allowed),
+//                  genus, boundary loops, per-component (genus, loops), valences
 // Ids in reports are 0-based (vertex v of an OBJ file is OBJ index v+1; faces in file order).
 #include <array>
+#include <compare>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -32,7 +38,8 @@ const char* to_string(Status s);
 const char* to_string(Verdict v);
 
 /// One offending element. kind: "face" (ids = {f}), "edge" (ids = {u, v}, vertex pair, u < v),
-/// "vertex" (ids = {v}). values: named exact values ("p/q" strings, points as "(x, y)").
+/// "vertex" (ids = {v}), "component" (ids = {its smallest vertex id}), "mesh" (ids = {}).
+/// values: named exact values ("p/q" strings, points as "(x, y)").
 struct Witness {
   std::string kind;
   std::vector<std::int64_t> ids;
@@ -47,6 +54,10 @@ struct CheckResult {
   std::vector<std::pair<std::string, std::int64_t>> counts;  // ordered, named counts
   std::string histogram_name;                                // e.g. "vertex_index_k", "valence"
   std::map<std::int64_t, std::int64_t> histogram;
+  /// Check 4 with Options::allow_boundary: boundary vertices by boundary index k (angle k*pi/2);
+  /// "vertex_index_k" then counts interior vertices only.
+  std::string boundary_histogram_name;
+  std::map<std::int64_t, std::int64_t> boundary_histogram;
   std::int64_t offending = 0;          // total number of offending elements (witnesses are capped)
   std::vector<Witness> witnesses;      // at most Options::max_witnesses
   std::string note;
@@ -54,6 +65,19 @@ struct CheckResult {
   /// The named count, or -1 if absent.
   std::int64_t count(const std::string& key) const;
   bool passed() const { return status == Status::Pass; }
+};
+
+/// One connected component (vertices joined by edges; unreferenced vertices belong to none).
+struct ComponentInfo {
+  std::int64_t first_vertex = 0;  // its smallest vertex id: names the component in witnesses
+  std::int64_t vertices = 0, edges = 0, faces = 0;
+  std::int64_t boundary_edges = 0;
+  std::optional<std::int64_t> boundary_loops;  // when the mesh is manifold and oriented
+  std::int64_t euler_characteristic = 0;       // V - E + F of the component
+  std::optional<std::int64_t> genus;           // (2 - chi - loops) / 2 when loops are defined
+  /// IGM mode: sum_interior (4 - k) + sum_boundary (2 - k) when every vertex of the component has
+  /// an exact index (check 4); Poincare-Hopf requires it to equal 4 chi.
+  std::optional<std::int64_t> poincare_hopf_sum;
 };
 
 struct Report {
@@ -64,7 +88,12 @@ struct Report {
   std::int64_t error_line = 0;         // 1-based line of the error in the file, 0 if none
   std::int64_t num_vertices = 0, num_edges = 0, num_faces = 0;
   std::optional<std::int64_t> euler_characteristic;  // V - E + F (when the edge count is defined)
-  std::optional<std::int64_t> genus;   // when closed, manifold, oriented and connected
+  /// When check 1 passes (closed, manifold, oriented, connected, or with boundary / several
+  /// components where allowed): the sum of the components' genera.
+  std::optional<std::int64_t> genus;
+  std::int64_t num_boundary_edges = 0;         // edges with exactly one face
+  std::optional<std::int64_t> boundary_loops;  // total, when the mesh is manifold and oriented
+  std::vector<ComponentInfo> components;       // by increasing first_vertex
   std::vector<CheckResult> checks;
 
   /// The check with this id (1..5), or nullptr.
@@ -72,9 +101,27 @@ struct Report {
   bool valid() const { return verdict == Verdict::Valid; }
 };
 
+/// Topology of one component, for quad-mode expectations.
+struct ComponentTopology {
+  std::int64_t genus = 0;
+  std::int64_t boundary_loops = 0;
+  auto operator<=>(const ComponentTopology&) const = default;
+};
+
+/// The defaults judge closed, connected surfaces only (a boundary edge or a second component
+/// fails check 1).
 struct Options {
   std::size_t max_witnesses = 20;
-  std::optional<std::int64_t> expected_genus;  // quad mode: check 5 also requires this genus
+  std::optional<std::int64_t> expected_genus;  // quad mode: check 5 requires this (total) genus
+  /// Surfaces with boundary: boundary edges pass check 1 and are judged by checks 3 and 4.
+  bool allow_boundary = false;
+  /// Several connected components: each is judged on its own (Poincare-Hopf per component).
+  bool allow_components = false;
+  /// Quad mode: check 5 also requires this total number of boundary loops.
+  std::optional<std::int64_t> expected_boundary_loops;
+  /// Quad mode, when not empty: the components' (genus, boundary loops), compared as multisets
+  /// (order free: a producer may number its output's components differently).
+  std::vector<ComponentTopology> expected_components;
 };
 
 /// In-memory IGM: triangles (0-based vertex ids) and one exact UV per face corner, three per face
