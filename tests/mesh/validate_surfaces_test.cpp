@@ -153,13 +153,15 @@ TEST_CASE("a triangulated annulus: two loops, the outer along, the inner against
   CHECK(e.elements() == std::vector<std::int64_t>{0, 7});  // the faces of edges 0 -> 1 and 4 -> 7
   CHECK(contains(e.what(), "(allow_boundary is off): 2 boundary loops (8 edges with one face)"));
 
-  // One face flipped: repaired with a warning, same surface.
-  Faces one = faces;
-  std::swap(one[3][1], one[3][2]);
-  const SurfaceSet r = validate_surfaces(make_soup(8, one));
+  // Two faces flipped (their boundary edges then come last, first in the repaired face):
+  // repaired with a warning, the same surface.
+  Faces two = faces;
+  for (int f : {0, 3}) std::swap(two[f][1], two[f][2]);
+  const SurfaceSet r = validate_surfaces(make_soup(8, two));
+  CHECK(r.components.at(0).triangles == c.triangles);
   CHECK(r.components.at(0).boundary_loops == c.boundary_loops);
   REQUIRE(r.warnings.size() == 1);
-  CHECK(contains(r.warnings[0], "re-oriented 1 triangle"));
+  CHECK(contains(r.warnings[0], "re-oriented 2 triangles"));
   // All faces flipped: the input's orientation wins, the loops run the other way.
   Faces all = faces;
   for (auto& f : all) std::swap(f[1], f[2]);
@@ -349,7 +351,7 @@ TEST_CASE("random open meshes: one surface of the generated genus and loop count
     spec.geometry =
         static_cast<igm_test::Geometry>(i % static_cast<int>(igm_test::Geometry::Count));
     CAPTURE(igm_test::describe(spec));
-    const PolygonSoup soup = igm_test::random_mesh(spec);
+    PolygonSoup soup = igm_test::random_mesh(spec);
     const SurfaceSet s = validate_surfaces(soup);
     REQUIRE(s.components.size() == 1);
     check_component(s.components[0]);
@@ -357,6 +359,14 @@ TEST_CASE("random open meshes: one surface of the generated genus and loop count
     CHECK(s.components[0].boundary_loops.size() == static_cast<std::size_t>(spec.boundaries));
     CHECK(s.components[0].triangles.size() == soup.num_faces());
     CHECK(s.warnings.empty());
+    // Every third face flipped: repaired back to the same triangles and loops.
+    for (std::size_t f = 0; f < soup.num_faces(); f += 3)
+      std::swap(soup.corners[3 * f + 1], soup.corners[3 * f + 2]);
+    const SurfaceSet r = validate_surfaces(soup);
+    REQUIRE(r.components.size() == 1);
+    CHECK(r.components[0].triangles == s.components[0].triangles);
+    CHECK(r.components[0].boundary_loops == s.components[0].boundary_loops);
+    CHECK(r.warnings.size() == 1);
   }
   igm_test::RandomMeshSpec open;
   open.boundaries = 2;
