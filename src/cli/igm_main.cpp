@@ -2,12 +2,14 @@
 // that new ones (e.g. `run`, the full pipeline) are one entry and one function each.
 // Exit codes: 0 success (a valid mesh for `info`), 2 invalid or unreadable input or a usage
 // error.
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -17,6 +19,7 @@
 #include "igm/io/write_mesh.h"
 #include "igm/mesh/generate.h"
 #include "igm/mesh/validate.h"
+#include "igm/mesh/validate_surfaces.h"
 #include "extract_command.h"
 #include "batch_command.h"
 #include "run_command.h"
@@ -61,9 +64,14 @@ const Command kCommands[] = {
               "                                in OUT/results.jsonl (resumable; several batches may share OUT), a summary\n"
               "  igm batch --summary -o OUT    the summary of OUT/results.jsonl",
      cmd_batch},
-    {"info", "igm info MESH                 read MESH (.obj .off .ply .stl), validate it, print what was found", cmd_info},
-    {"generate", "igm generate --genus G --faces N [--seed S] OUT.(obj|off)\n"
-                 "                                write a generated closed mesh of genus G with about N faces",
+    {"info", "igm info MESH [--split-nonmanifold]\n"
+             "                                read MESH (.obj .off .ply .stl), validate it, print what was found (with\n"
+             "                                boundaries or several components: each surface; --split-nonmanifold cuts\n"
+             "                                non-manifold vertices and edges apart first)",
+     cmd_info},
+    {"generate", "igm generate --genus G --faces N [--boundaries B] [--seed S] OUT.(obj|off)\n"
+                 "                                write a generated mesh of genus G with about N faces (closed, or with B\n"
+                 "                                boundary loops)",
      cmd_generate},
     {"help", "igm help | igm --help         this text", cmd_help},
 };
@@ -102,8 +110,9 @@ std::string ids_text(const std::vector<std::int64_t>& ids, std::size_t max) {
   return s;
 }
 
-// Prints the report; returns the exit code.
-int print_report(const std::string& name, const igm::MeshReport& r) {
+// Prints the report (`more` prints lines before the status); returns the exit code.
+int print_report(const std::string& name, const igm::MeshReport& r,
+                 const std::function<void()>& more) {
   std::printf("mesh: %s\n", name.c_str());
   std::printf("vertices: %lld", static_cast<long long>(r.vertices));
   if (r.unreferenced_vertices > 0) std::printf(" (%lld unreferenced)", static_cast<long long>(r.unreferenced_vertices));
@@ -133,6 +142,7 @@ int print_report(const std::string& name, const igm::MeshReport& r) {
     std::printf("problem: %s (%lld): %s\n", igm::to_string(p.kind), static_cast<long long>(p.count), p.message.c_str());
     if (!p.elements.empty()) std::printf("  elements: %s\n", ids_text(p.elements, 20).c_str());
   }
+  more();
   if (r.problems.empty()) {
     std::printf("status: valid\n");
     return kExitOk;
@@ -144,10 +154,54 @@ int print_report(const std::string& name, const igm::MeshReport& r) {
   return kExitInvalid;
 }
 
+// With boundaries, several components or non-manifold elements: the surfaces that
+// validate_surfaces finds (one line each), or why it rejects the mesh. Nothing otherwise.
+void print_surfaces(const igm::PolygonSoup& soup, const igm::MeshReport& r, bool split) {
+  if (!r.topology_checked || r.problems.empty() ||
+      (r.components <= 1 && r.boundary_loops == 0 && r.non_manifold_edges == 0 &&
+       r.non_manifold_vertices == 0))
+    return;
+  igm::SurfaceOptions o;
+  o.split_nonmanifold = split;
+  igm::SurfaceSet set;
+  try {
+    set = igm::validate_surfaces(soup, o);
+  } catch (const igm::Error& e) {
+    std::printf("surfaces: rejected: %s%s\n", e.what(),
+                split || (r.non_manifold_edges == 0 && r.non_manifold_vertices == 0)
+                    ? ""
+                    : " (--split-nonmanifold cuts non-manifold vertices and edges apart)");
+    return;
+  }
+  std::printf("surfaces: %zu\n", set.components.size());
+  for (std::size_t i = 0; i < set.components.size(); ++i) {
+    const igm::SurfaceComponent& c = set.components[i];
+    std::printf(
+        "surface %zu: faces %zu, vertices %zu, boundary loops %zu, genus %d, "
+        "euler characteristic %lld, first face %lld\n",
+        i, c.triangles.size(), c.positions.size(), c.boundary_loops.size(), c.genus,
+        static_cast<long long>(c.euler_characteristic), static_cast<long long>(c.input_face[0]));
+  }
+  // The warnings not printed already (the cuts, and the repairs after them).
+  for (const std::string& w : set.warnings)
+    if (std::find(r.warnings.begin(), r.warnings.end(), w) == r.warnings.end())
+      std::printf("surfaces warning: %s\n", w.c_str());
+}
+
 int cmd_info(const Args& args) {
-  if (args.size() != 1) return usage_error("info takes exactly one mesh file");
-  if (!args[0].empty() && args[0][0] == '-') return usage_error("unknown option '" + std::string(args[0]) + "'");
-  const std::string path(args[0]);
+  bool split = false;
+  std::string path;
+  for (const std::string_view a : args) {
+    if (a == "--split-nonmanifold") {
+      split = true;
+    } else if (!a.empty() && a[0] == '-') {
+      return usage_error("unknown option '" + std::string(a) + "'");
+    } else {
+      if (!path.empty()) return usage_error("info takes exactly one mesh file");
+      path = std::string(a);
+    }
+  }
+  if (path.empty()) return usage_error("info takes exactly one mesh file");
   igm::PolygonSoup soup;
   try {
     soup = igm::read_soup(std::filesystem::path(path));
@@ -155,7 +209,8 @@ int cmd_info(const Args& args) {
     std::fprintf(stderr, "igm: cannot read the mesh: %s\n", e.what());  // the message names the path
     return kExitInvalid;
   }
-  return print_report(path, igm::inspect(soup));
+  const igm::MeshReport report = igm::inspect(soup);
+  return print_report(path, report, [&] { print_surfaces(soup, report, split); });
 }
 
 bool parse_int(std::string_view s, std::int64_t& out) {
@@ -169,7 +224,7 @@ int cmd_generate(const Args& args) {
   std::string out;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string_view a = args[i];
-    if (a == "--genus" || a == "--faces" || a == "--seed") {
+    if (a == "--genus" || a == "--faces" || a == "--seed" || a == "--boundaries") {
       if (i + 1 >= args.size()) return usage_error(std::string(a) + " needs a value");
       std::int64_t v = 0;
       if (!parse_int(args[i + 1], v))
@@ -183,6 +238,9 @@ int cmd_generate(const Args& args) {
         if (v < 1 || v > (std::int64_t{1} << 28)) return usage_error("--faces must be in 1..2^28");
         o.faces = v;
         have_faces = true;
+      } else if (a == "--boundaries") {
+        if (v < 0 || v > 100000) return usage_error("--boundaries must be in 0..100000");
+        o.boundaries = static_cast<int>(v);
       } else {
         if (v < 0) return usage_error("--seed must be >= 0");
         o.seed = static_cast<std::uint64_t>(v);
@@ -200,16 +258,25 @@ int cmd_generate(const Args& args) {
   std::string ext = path.extension().string();
   if (ext != ".obj" && ext != ".off") return usage_error("the output file must end in .obj or .off");
   try {
-    const igm::PolygonSoup soup = igm::generate_closed_mesh(o);
-    const igm::ValidMesh m = igm::validate(soup);  // the generator's contract, checked
-    std::vector<std::array<int, 3>> tris(m.mesh.num_faces());
-    for (int f = 0; f < m.mesh.num_faces(); ++f) tris[f] = m.mesh.face_vertices(f);
+    const igm::PolygonSoup soup = igm::generate_mesh(o);
+    // The generator's contract, checked: one surface (closed: validate()'s mesh).
+    igm::SurfaceOptions check;
+    check.allow_boundary = o.boundaries > 0;
+    check.allow_components = false;
+    const igm::SurfaceSet set = igm::validate_surfaces(soup, check);
+    const igm::SurfaceComponent& m = set.components.front();
+    if (m.genus != o.genus || m.boundary_loops.size() != static_cast<std::size_t>(o.boundaries))
+      throw igm::Error(igm::ErrorKind::Internal,
+                       "the generated mesh has genus " + std::to_string(m.genus) + " and " +
+                           std::to_string(m.boundary_loops.size()) + " boundary loops");
     if (ext == ".obj")
-      igm::write_obj(path, m.positions, tris);
+      igm::write_obj(path, m.positions, m.triangles);
     else
-      igm::write_off(path, m.positions, tris);
-    std::printf("wrote %s: %d vertices, %d faces, genus %d\n", out.c_str(), m.mesh.num_vertices(), m.mesh.num_faces(),
-                m.genus);
+      igm::write_off(path, m.positions, m.triangles);
+    std::printf("wrote %s: %zu vertices, %zu faces, genus %d", out.c_str(), m.positions.size(),
+                m.triangles.size(), m.genus);
+    if (o.boundaries > 0) std::printf(", %d boundary loops", o.boundaries);
+    std::printf("\n");
   } catch (const igm::Error& e) {
     std::fprintf(stderr, "igm: generate: %s\n", e.what());
     return kExitInvalid;

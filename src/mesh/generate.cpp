@@ -11,9 +11,79 @@
 
 namespace igm {
 
+namespace {
+
+// A square hole: k x k cells from cell (i, j) of one sheet (0 top, 1 bottom).
+struct Hole {
+  int sheet, i, j;
+};
+
+// Chooses `count` holes (see generate.h): squares of cells that are all `good` (in the region,
+// no seam corner), on a lattice of pitch k + max(2, k) with the offset (o, o) that fits the most,
+// for the largest k <= max(1, min(W, H) / 16) that fits `count` (two sheets). Returns them with
+// k. Cost O(W H) per k tried: O(W H log(min(W, H))) in all (the lattice has W H / p^2 positions
+// per offset, p offsets).
+std::pair<std::vector<Hole>, int> choose_holes(const std::vector<char>& good, int W, int H,
+                                               int count, std::uint64_t seed, int genus,
+                                               std::int64_t faces) {
+  // prefix[(j)(W+1) + i]: good cells in [0, i) x [0, j)
+  std::vector<std::int32_t> prefix(static_cast<std::size_t>(W + 1) * (H + 1), 0);
+  auto at = [&](int i, int j) -> std::int32_t& {
+    return prefix[static_cast<std::size_t>(j) * (W + 1) + i];
+  };
+  for (int j = 0; j < H; ++j)
+    for (int i = 0; i < W; ++i)
+      at(i + 1, j + 1) =
+          at(i, j + 1) + at(i + 1, j) - at(i, j) + good[static_cast<std::size_t>(j) * W + i];
+  auto fits = [&](int i, int j, int k) {
+    return i + k <= W && j + k <= H &&
+           at(i + k, j + k) - at(i, j + k) - at(i + k, j) + at(i, j) == k * k;
+  };
+  int capacity = 0;  // at k = 1, for the message
+  for (int k = std::max(1, std::min(W, H) / 16); k >= 1; --k) {
+    const int p = k + std::max(2, k);
+    int best = -1, best_offset = 0;
+    for (int off = 0; off < p; ++off) {
+      int n = 0;
+      for (int j = off; j < H; j += p)
+        for (int i = off; i < W; i += p) n += fits(i, j, k);
+      if (n > best) best = n, best_offset = off;
+    }
+    if (k == 1) capacity = 2 * best;
+    if (2 * best < count) continue;
+    std::vector<Hole> all;
+    for (int sheet = 0; sheet < 2; ++sheet)
+      for (int j = best_offset; j < H; j += p)
+        for (int i = best_offset; i < W; i += p)
+          if (fits(i, j, k)) all.push_back({sheet, i, j});
+    std::mt19937_64 rng(seed ^ 0x9e3779b97f4a7c15ull);  // its own stream: the mesh's is untouched
+    std::shuffle(all.begin(), all.end(), rng);
+    all.resize(static_cast<std::size_t>(count));
+    return {all, k};
+  }
+  throw Error(ErrorKind::InvalidArgument,
+              std::to_string(count) + (count == 1 ? " boundary loop does" : " boundary loops do") +
+                  " not fit a generated mesh of genus " + std::to_string(genus) + " and about " +
+                  std::to_string(faces) + " faces: at most " + std::to_string(capacity) +
+                  " well-separated holes (more faces make room)");
+}
+
+}  // namespace
+
 PolygonSoup generate_closed_mesh(const GenerateOptions& o) {
+  if (o.boundaries != 0)
+    throw Error(ErrorKind::InvalidArgument,
+                "generate_closed_mesh makes closed meshes: boundaries must be 0, got " +
+                    std::to_string(o.boundaries));
+  return generate_mesh(o);
+}
+
+PolygonSoup generate_mesh(const GenerateOptions& o) {
   if (o.genus < 0 || o.genus > 100000)
     throw Error(ErrorKind::InvalidArgument, "genus must be in 0..100000, got " + std::to_string(o.genus));
+  if (o.boundaries < 0 || o.boundaries > 100000)
+    throw Error(ErrorKind::InvalidArgument,
+                "boundaries must be in 0..100000, got " + std::to_string(o.boundaries));
   if (o.faces < 0 || o.faces > (std::int64_t{1} << 28))
     throw Error(ErrorKind::InvalidArgument, "faces must be in 0..2^28, got " + std::to_string(o.faces));
   if (!(o.jitter >= 0.0 && o.jitter < 0.5))
@@ -70,6 +140,23 @@ PolygonSoup generate_closed_mesh(const GenerateOptions& o) {
         soup.positions.push_back({x, y, -1.0 + 0.1 * jit(rng)});
       }
     }
+  // Holes: removed[sheet][cell]. The coins below are drawn for removed cells too, so that the
+  // mesh with holes is the closed one without their faces.
+  std::array<std::vector<char>, 2> removed;
+  if (o.boundaries > 0) {
+    std::vector<char> good(static_cast<std::size_t>(W) * H, 0);
+    for (int j = 0; j < H; ++j)
+      for (int i = 0; i < W; ++i)
+        good[static_cast<std::size_t>(j) * W + i] =
+            cell_in(i, j) && !boundary[gid(i, j)] && !boundary[gid(i + 1, j)] &&
+            !boundary[gid(i, j + 1)] && !boundary[gid(i + 1, j + 1)];
+    const auto [holes, k] = choose_holes(good, W, H, o.boundaries, o.seed, g, o.faces);
+    for (auto& r : removed) r.assign(static_cast<std::size_t>(W) * H, 0);
+    for (const Hole& h : holes)
+      for (int j = h.j; j < h.j + k; ++j)
+        for (int i = h.i; i < h.i + k; ++i)
+          removed[h.sheet][static_cast<std::size_t>(j) * W + i] = 1;
+  }
   std::bernoulli_distribution coin(0.5);
   for (int j = 0; j < H; ++j)
     for (int i = 0; i < W; ++i) {
@@ -87,11 +174,26 @@ PolygonSoup generate_closed_mesh(const GenerateOptions& o) {
         tris = {{{c00, c10, c11}, {c00, c11, c01}}};
       else
         tris = {{{c00, c10, c01}, {c10, c11, c01}}};
+      const std::size_t cell = static_cast<std::size_t>(j) * W + i;
+      const bool keep_top = removed[0].empty() || !removed[0][cell];
+      const bool keep_bottom = removed[1].empty() || !removed[1][cell];
       for (const auto& t : tris) {
-        soup.add_face({top[t[0]], top[t[1]], top[t[2]]});
-        soup.add_face({bottom[t[0]], bottom[t[2]], bottom[t[1]]});
+        if (keep_top) soup.add_face({top[t[0]], top[t[1]], top[t[2]]});
+        if (keep_bottom) soup.add_face({bottom[t[0]], bottom[t[2]], bottom[t[1]]});
       }
     }
+  if (o.boundaries > 0) {  // drop the vertices inside the holes (renumbered in order)
+    std::vector<std::int64_t> id(soup.positions.size(), -1);
+    for (std::int64_t v : soup.corners) id[static_cast<std::size_t>(v)] = 0;
+    std::vector<Vec3d> kept;
+    for (std::size_t v = 0; v < id.size(); ++v)
+      if (id[v] == 0) {
+        id[v] = static_cast<std::int64_t>(kept.size());
+        kept.push_back(soup.positions[v]);
+      }
+    for (std::int64_t& v : soup.corners) v = id[static_cast<std::size_t>(v)];
+    soup.positions = std::move(kept);
+  }
   if (!o.shuffle) return soup;
 
   // Random relabelling: vertex permutation, face order, and a rotation of each face's corners.

@@ -10,6 +10,7 @@
 
 #include "igm/core/union_find.h"
 #include "igm/io/read_mesh.h"
+#include "validate_internal.h"
 
 namespace igm {
 
@@ -105,13 +106,11 @@ std::string plural(std::int64_t n, const char* one, const char* many) {
   return std::to_string(n) + " " + (n == 1 ? one : many);
 }
 
-struct Analysis {
-  MeshReport report;
-  std::vector<std::array<int, 3>> tris;  // input vertex ids, as triangulated (before flips)
-  std::vector<int> tri_face;             // triangle -> input polygon
-  std::vector<char> flip;                // triangle -> flip to repair the orientation
-  std::vector<char> keep_vertex;         // input vertex -> present in the mesh
-};
+std::string join_text(const std::vector<std::string>& parts) {
+  std::string s;
+  for (std::size_t i = 0; i < parts.size(); ++i) s += (i ? "; " : "") + parts[i];
+  return s;
+}
 
 bool is_finite(const Vec3d& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
@@ -147,7 +146,12 @@ void radix_sort(std::vector<HalfKey>& v) {
   }
 }
 
-Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
+}  // namespace
+
+namespace validate_internal {
+
+Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt, Mode mode) {
+  const bool surfaces = mode != Mode::Closed, split = mode == Mode::SplitSurfaces;
   Analysis a;
   MeshReport& r = a.report;
   r.warnings = soup.warnings;  // the reader's come first
@@ -307,6 +311,18 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
   std::vector<std::pair<int, int>> witness;  // (h1, h2) of each orientation contradiction
   std::vector<int> boundary;                 // boundary half-edges
   Collector nm_edges, inconsistent;
+  std::vector<std::string> cut_edges;  // split: every cut edge, named
+  if (surfaces) a.twin.assign(3 * T, -1);
+  // Pairs h1 and h2 as the two half-edges of a manifold edge (same: of the same direction).
+  const auto join = [&](int h1, int h2, bool same) {
+    corners.unite(h1, same ? h2 : hnext(h2));
+    corners.unite(hnext(h1), same ? hnext(h2) : h2);
+    if (!orient.unite(h1 / 3, h2 / 3, same ? 1 : 0)) witness.push_back({h1, h2});
+    if (surfaces) {
+      a.twin[h1] = h2;
+      a.twin[h2] = h1;
+    }
+  };
   for (std::size_t i = 0; i < keys.size();) {  // each round consumes one group of equal keys
     std::size_t j = i;
     while (j < keys.size() && keys[j].key == keys[i].key) ++j;
@@ -319,15 +335,38 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
     } else if (j - i == 2) {
       const int h2 = static_cast<int>(keys[i + 1].hd >> 1);
       const bool same = (keys[i].hd & 1) == (keys[i + 1].hd & 1);
-      corners.unite(h1, same ? h2 : hnext(h2));
-      corners.unite(hnext(h1), same ? hnext(h2) : h2);
-      if (!orient.unite(h1 / 3, h2 / 3, same ? 1 : 0)) witness.push_back({h1, h2});
+      join(h1, h2, same);
       if (same) {
         const int f1 = a.tri_face[h1 / 3], f2 = a.tri_face[h2 / 3];
         inconsistent.add_ids({f1, f2}, !inconsistent.named()
                                            ? std::string()
                                            : edge() + " in faces " + std::to_string(f1) + " and " + std::to_string(f2));
       }
+    } else if (split) {
+      // Cut: the k-th half-edge lo -> hi pairs with the k-th hi -> lo (both in input order,
+      // the stable sort keeps it); the others become boundary edges.
+      std::vector<int> up, down;
+      std::vector<std::int64_t> faces;
+      for (std::size_t k = i; k < j; ++k) {
+        const int h = static_cast<int>(keys[k].hd >> 1);
+        (keys[k].hd & 1 ? down : up).push_back(h);
+        faces.push_back(a.tri_face[h / 3]);
+      }
+      const int group = static_cast<int>(cut_edges.size());
+      const std::size_t pairs = std::min(up.size(), down.size());
+      for (std::size_t k = 0; k < pairs; ++k) {
+        join(up[k], down[k], false);
+        a.pieces.push_back({group, up[k], down[k]});
+      }
+      for (const auto* rest : {&up, &down})
+        for (std::size_t k = pairs; k < rest->size(); ++k) {
+          boundary.push_back((*rest)[k]);
+          a.pieces.push_back({group, (*rest)[k], -1});
+        }
+      const auto single = static_cast<std::int64_t>(j - i - 2 * pairs);
+      cut_edges.push_back(edge() + " of faces " + ids_text(faces, faces.size()) + " into " +
+                          plural(static_cast<std::int64_t>(pairs), "pair", "pairs") + " and " +
+                          plural(single, "boundary edge", "boundary edges"));
     } else {
       std::vector<std::int64_t> faces;
       int diag_face = -1;
@@ -350,21 +389,42 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
   r.inconsistently_oriented_edges = inconsistent.count;
   emit(ErrorKind::NonManifoldEdge, nm_edges,
        plural(nm_edges.count, "edge has", "edges have") + " more than two faces: " + nm_edges.list());
+  if (!cut_edges.empty()) {
+    r.non_manifold_edges = static_cast<std::int64_t>(cut_edges.size());
+    r.warnings.push_back(
+        "cut " + plural(r.non_manifold_edges, "edge", "edges") +
+        " with more than two faces (opposite faces paired in input order, the others"
+        " left as boundary edges): " +
+        join_text(cut_edges));
+  }
 
   // --- 9: fans per vertex ---
   std::vector<int> fans(nv, 0);
   for (std::size_t h = 0; h < 3 * T; ++h)
     if (corners.find(int(h)) == int(h)) ++fans[origin(int(h))];
   Collector nm_vertices;
+  std::vector<std::string> cut_vertices;  // split: every cut vertex, named
+  std::int64_t copies = 0;
   for (std::size_t v = 0; v < nv; ++v)
-    if (fans[v] > 1)
-      nm_vertices.add(static_cast<std::int64_t>(v),
-                      !nm_vertices.named() ? std::string()
-                                           : "vertex " + std::to_string(v) + " (" + std::to_string(fans[v]) + " fans)");
+    if (fans[v] > 1) {
+      const std::string name =
+          "vertex " + std::to_string(v) + " (" + std::to_string(fans[v]) + " fans)";
+      nm_vertices.add(static_cast<std::int64_t>(v), !nm_vertices.named() ? std::string() : name);
+      if (split) cut_vertices.push_back(name);
+      copies += fans[v];
+    }
   r.non_manifold_vertices = nm_vertices.count;
-  emit(ErrorKind::NonManifoldVertex, nm_vertices,
-       plural(nm_vertices.count, "vertex has", "vertices have") +
-           " faces forming more than one fan: " + nm_vertices.list());
+  if (split) {
+    if (!cut_vertices.empty())
+      r.warnings.push_back(
+          "cut " + plural(nm_vertices.count, "non-manifold vertex", "non-manifold vertices") +
+          " into one copy per fan (" + std::to_string(copies) +
+          " vertices in all): " + join_text(cut_vertices));
+  } else {
+    emit(ErrorKind::NonManifoldVertex, nm_vertices,
+         plural(nm_vertices.count, "vertex has", "vertices have") +
+             " faces forming more than one fan: " + nm_vertices.list());
+  }
 
   // --- 10: orientation (the parity unions were made with the edges above) ---
   {
@@ -478,15 +538,24 @@ Analysis analyze(const PolygonSoup& soup, const ValidateOptions& opt) {
   for (char k : a.keep_vertex) kept += k;
   r.euler_characteristic = kept - r.edges + static_cast<std::int64_t>(T);
   if (r.problems.empty()) r.genus = static_cast<int>((2 - r.euler_characteristic) / 2);
+  if (surfaces) {
+    a.corner_class.resize(3 * T);
+    for (std::size_t h = 0; h < 3 * T; ++h) a.corner_class[h] = corners.find(int(h));
+  }
   return a;
 }
 
-}  // namespace
+}  // namespace validate_internal
 
-MeshReport inspect(const PolygonSoup& soup, const ValidateOptions& options) { return analyze(soup, options).report; }
+using validate_internal::analyze;
+using validate_internal::Mode;
+
+MeshReport inspect(const PolygonSoup& soup, const ValidateOptions& options) {
+  return analyze(soup, options, Mode::Closed).report;
+}
 
 ValidMesh validate(const PolygonSoup& soup, const ValidateOptions& options) {
-  Analysis a = analyze(soup, options);
+  validate_internal::Analysis a = analyze(soup, options, Mode::Closed);
   if (!a.report.problems.empty()) {
     const MeshProblem& p = a.report.problems.front();
     throw Error(p.kind, p.message, p.elements);

@@ -1,25 +1,30 @@
 #pragma once
-// Random closed meshes with hostile geometry, shared by the randomized property tests
-// (tests/random/) and the pipeline fuzz target (fuzz/pipeline_fuzz.cpp).
+// Random meshes with hostile geometry, shared by the randomized property tests (tests/random/)
+// and the pipeline fuzz target (fuzz/pipeline_fuzz.cpp).
 //
-// A mesh is generate_closed_mesh(genus, faces, seed) (a tetrahedron for genus 0 below 16 faces),
-// refined by random edge and face splits, given near-degenerate or extreme geometry (which must
-// not matter for topology), and finally put in random vertex order, face order and corner
-// rotation. The combinatorics (closed, oriented, connected, genus g) are never changed by the
-// geometry, so validate() must accept every such mesh and the pipeline must certify it.
+// A mesh is generate_mesh(genus, faces, seed, boundaries) (a tetrahedron for a closed genus 0
+// below 16 faces), refined by random edge and face splits, given near-degenerate or extreme
+// geometry (which must not matter for topology), and finally put in random vertex order, face
+// order and corner rotation. The combinatorics (oriented, connected, genus g, `boundaries`
+// boundary loops) are never changed by the geometry, so validate() must accept every closed such
+// mesh and the pipeline must certify it; validate_surfaces() must find one surface of genus g
+// with `boundaries` loops in every one.
 #include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <numeric>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "igm/core/error.h"
 #include "igm/mesh/generate.h"
 #include "igm/mesh/soup.h"
 #include "igm/mesh/trimesh.h"
 #include "igm/mesh/validate.h"
+#include "igm/mesh/validate_surfaces.h"
 
 namespace igm_test {
 
@@ -51,13 +56,15 @@ struct RandomMeshSpec {
   int face_splits = 0;           // random face splits after generation
   Geometry geometry = Geometry::Plain;
   bool permute = true;           // random vertex order, face order and corner rotation
+  int boundaries = 0;            // boundary loops (generate.h: B <= the generator's capacity)
 };
 
 inline std::string describe(const RandomMeshSpec& s) {
   return "genus " + std::to_string(s.genus) + ", faces " + std::to_string(s.faces) + ", seed " +
          std::to_string(s.seed) + ", jitter " + std::to_string(s.jitter) + ", edge splits " +
-         std::to_string(s.edge_splits) + ", face splits " + std::to_string(s.face_splits) + ", geometry " +
-         to_string(s.geometry) + (s.permute ? ", permuted" : "");
+         std::to_string(s.edge_splits) + ", face splits " + std::to_string(s.face_splits) +
+         ", geometry " + to_string(s.geometry) + (s.permute ? ", permuted" : "") +
+         (s.boundaries > 0 ? ", boundaries " + std::to_string(s.boundaries) : "");
 }
 
 /// The triangles of a mesh as a soup over `positions`.
@@ -136,11 +143,72 @@ inline void apply_geometry(std::vector<igm::Vec3d>& p, Geometry geometry, std::m
   }
 }
 
-/// The random closed mesh of `spec` (see the top of this file). Deterministic in `spec`.
-inline igm::PolygonSoup random_closed_mesh(const RandomMeshSpec& spec) {
+/// Random edge and face splits of an oriented triangle surface with boundary (TriMesh needs a
+/// closed one): an edge split replaces its one or two triangles by two each, a face split one
+/// triangle by three around a new vertex. Bound: edge_splits + face_splits iterations.
+inline void split_open_mesh(std::vector<std::array<int, 3>>& tris, std::vector<igm::Vec3d>& pos,
+                            int edge_splits, int face_splits, std::mt19937_64& rng) {
+  std::map<std::pair<int, int>, int> half;  // (origin, target) -> 3 t + i
+  const auto set = [&](int t, int i) {
+    half[{tris[static_cast<std::size_t>(t)][static_cast<std::size_t>(i)],
+          tris[static_cast<std::size_t>(t)][static_cast<std::size_t>((i + 1) % 3)]}] = 3 * t + i;
+  };
+  for (int t = 0; t < static_cast<int>(tris.size()); ++t)
+    for (int i = 0; i < 3; ++i) set(t, i);
+  // Triangle (a, b, c) of half-edge h = a -> b becomes (a, m, c), and (m, b, c) is added.
+  const auto cut = [&](int h, int m) {
+    const int t = h / 3, i = h % 3;
+    auto& tri = tris[static_cast<std::size_t>(t)];
+    const int b = tri[static_cast<std::size_t>((i + 1) % 3)],
+              c = tri[static_cast<std::size_t>((i + 2) % 3)];
+    half.erase({tri[static_cast<std::size_t>(i)], b});
+    tri[static_cast<std::size_t>((i + 1) % 3)] = m;
+    set(t, i);
+    set(t, (i + 1) % 3);
+    tris.push_back({m, b, c});
+    for (int k = 0; k < 3; ++k) set(static_cast<int>(tris.size()) - 1, k);
+  };
+  auto mid = [](const igm::Vec3d& a, const igm::Vec3d& b) {
+    return igm::Vec3d{0.5 * a.x + 0.5 * b.x, 0.5 * a.y + 0.5 * b.y, 0.5 * a.z + 0.5 * b.z};
+  };
+  int e = edge_splits, f = face_splits;
+  while (e + f > 0) {
+    const int nt = static_cast<int>(tris.size());
+    if (f == 0 || (e > 0 && rng() % static_cast<unsigned>(e + f) < static_cast<unsigned>(e))) {
+      const int h = static_cast<int>(rng() % static_cast<unsigned>(3 * nt));
+      const int a = tris[static_cast<std::size_t>(h / 3)][static_cast<std::size_t>(h % 3)];
+      const int b = tris[static_cast<std::size_t>(h / 3)][static_cast<std::size_t>((h + 1) % 3)];
+      const int m = static_cast<int>(pos.size());
+      pos.push_back(mid(pos[static_cast<std::size_t>(a)], pos[static_cast<std::size_t>(b)]));
+      const auto twin = half.find({b, a});
+      const int h2 = twin == half.end() ? -1 : twin->second;
+      cut(h, m);
+      if (h2 >= 0) cut(h2, m);
+      --e;
+    } else {
+      const int t = static_cast<int>(rng() % static_cast<unsigned>(nt));
+      const auto v = tris[static_cast<std::size_t>(t)];
+      const int m = static_cast<int>(pos.size());
+      pos.push_back(
+          mid(mid(pos[static_cast<std::size_t>(v[0])], pos[static_cast<std::size_t>(v[1])]),
+              pos[static_cast<std::size_t>(v[2])]));
+      half.erase({v[1], v[2]});
+      half.erase({v[2], v[0]});
+      tris[static_cast<std::size_t>(t)] = {v[0], v[1], m};
+      tris.push_back({v[1], v[2], m});
+      tris.push_back({v[2], v[0], m});
+      for (int s : {t, nt, nt + 1})
+        for (int k = 0; k < 3; ++k) set(s, k);
+      --f;
+    }
+  }
+}
+
+/// The random mesh of `spec` (see the top of this file). Deterministic in `spec`.
+inline igm::PolygonSoup random_mesh(const RandomMeshSpec& spec) {
   std::mt19937_64 rng(spec.seed);
   igm::PolygonSoup soup;
-  if (spec.genus == 0 && spec.faces < 16) {
+  if (spec.genus == 0 && spec.faces < 16 && spec.boundaries == 0) {
     soup.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
     for (auto t : {std::array<std::int64_t, 3>{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}}) soup.add_face(t.begin(), t.end());
   } else {
@@ -150,9 +218,16 @@ inline igm::PolygonSoup random_closed_mesh(const RandomMeshSpec& spec) {
     g.seed = rng();
     g.jitter = spec.jitter;
     g.shuffle = false;  // permuted below, after the refinements
-    soup = igm::generate_closed_mesh(g);
+    g.boundaries = spec.boundaries;
+    soup = igm::generate_mesh(g);
   }
-  if (spec.edge_splits > 0 || spec.face_splits > 0) {
+  if (spec.boundaries > 0 && (spec.edge_splits > 0 || spec.face_splits > 0)) {
+    igm::SurfaceComponent c = igm::validate_surfaces(soup).components.at(0);
+    split_open_mesh(c.triangles, c.positions, spec.edge_splits, spec.face_splits, rng);
+    soup = igm::PolygonSoup{};
+    soup.positions = std::move(c.positions);
+    for (const auto& t : c.triangles) soup.add_face({t[0], t[1], t[2]});
+  } else if (spec.edge_splits > 0 || spec.face_splits > 0) {
     igm::ValidMesh v = igm::validate(soup);
     igm::TriMesh& m = v.mesh;
     std::vector<igm::Vec3d>& pos = v.positions;
@@ -180,6 +255,13 @@ inline igm::PolygonSoup random_closed_mesh(const RandomMeshSpec& spec) {
   apply_geometry(soup.positions, spec.geometry, rng);
   if (spec.permute) soup = permute_soup(soup, rng);
   return soup;
+}
+
+/// random_mesh for a closed spec (boundaries = 0), as the closed-mesh suites call it.
+inline igm::PolygonSoup random_closed_mesh(const RandomMeshSpec& spec) {
+  if (spec.boundaries != 0)
+    throw igm::Error(igm::ErrorKind::InvalidArgument, "random_closed_mesh: boundaries != 0");
+  return random_mesh(spec);
 }
 
 }  // namespace igm_test

@@ -1,5 +1,6 @@
 #pragma once
-// Validation of a polygon soup into a closed, manifold, oriented, connected triangle mesh.
+// Validation of a polygon soup into a closed, manifold, oriented, connected triangle mesh
+// (validate_surfaces.h accepts boundaries and several components, and cuts non-manifold input).
 //
 // Checks, in this order (the order decides which problem validate() throws when several
 // exist; inspect() reports every one of them, in the same order):

@@ -1,0 +1,175 @@
+// `igm generate --boundaries` and `igm info` on meshes with boundaries, several components or
+// non-manifold elements (the closed-mesh output is tested in igm_cli_test.cpp).
+#include <doctest/doctest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "igm/io/read_mesh.h"
+#include "igm/mesh/validate_surfaces.h"
+#include "test_data.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Output {
+  int code = -1;
+  std::string out, err;
+};
+
+std::string file_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::string q(const std::string& s) {  // shell-quoted
+  std::string r = "'";
+  for (char c : s) r += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return r + "'";
+}
+
+fs::path scratch() {
+  const fs::path d = fs::temp_directory_path() / ("igm-surfaces-cli-" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  return d;
+}
+
+// `igm ARGS` with its exit code, stdout and stderr.
+Output run_igm(const std::string& args) {
+  const fs::path d = scratch();
+  const int status = std::system(
+      (q(IGM_CLI_PATH) + " " + args + " >" + q((d / "o").string()) + " 2>" + q((d / "e").string()))
+          .c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, file_text(d / "o"), file_text(d / "e")};
+}
+
+bool has(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+}  // namespace
+
+TEST_CASE("generate --boundaries writes one surface of genus G with B loops, info reports it") {
+  const fs::path d = scratch();
+  const std::string file = (d / "holes.obj").string();
+  const Output w = run_igm("generate --genus 2 --faces 3000 --boundaries 4 --seed 3 " + q(file));
+  CHECK(w.code == 0);
+  CHECK(has(w.out, "genus 2, 4 boundary loops\n"));
+  const igm::SurfaceSet s = igm::validate_surfaces(igm::read_soup(file));
+  REQUIRE(s.components.size() == 1);
+  CHECK(s.components[0].genus == 2);
+  CHECK(s.components[0].boundary_loops.size() == 4);
+  const std::string faces = std::to_string(s.components[0].triangles.size());
+  const std::string vertices = std::to_string(s.components[0].positions.size());
+  CHECK(has(w.out, "wrote " + file + ": " + vertices + " vertices, " + faces + " faces, genus 2"));
+
+  // info: the closed-mesh report (a boundary is a problem for `igm run`), then the surface.
+  const Output r = run_igm("info " + q(file));
+  CHECK(r.code == 2);
+  CHECK(has(r.out, "boundary loops: 4\n"));
+  CHECK(has(r.out, "problem: boundary (4)"));
+  CHECK(has(
+      r.out,
+      "surfaces: 1\nsurface 0: faces " + faces + ", vertices " + vertices +
+          ", boundary loops 4, genus 2, euler characteristic -6, first face 0\n"));  // 2 - 4 - 4
+  CHECK(has(r.out, "status: invalid"));
+
+  // Too many loops for the size: exit 2 with the capacity.
+  const Output big =
+      run_igm("generate --genus 0 --faces 100 --boundaries 3 " + q((d / "x.obj").string()));
+  CHECK(big.code == 2);
+  CHECK(has(big.err, "invalid_argument: 3 boundary loops do not fit"));
+  CHECK(has(big.err, "at most 2 well-separated holes"));
+  for (const char* bad : {"--boundaries -1", "--boundaries x", "--boundaries"}) {
+    CAPTURE(bad);
+    const Output u = run_igm(std::string("generate --genus 1 --faces 500 ") + bad + " " +
+                             q((d / "y.obj").string()));
+    CHECK(u.code == 2);
+    CHECK(has(u.err, "usage:"));
+  }
+  // B = 0 is the closed mesh, byte for byte.
+  run_igm("generate --genus 1 --faces 400 --seed 2 " + q((d / "a.off").string()));
+  run_igm("generate --genus 1 --faces 400 --seed 2 --boundaries 0 " + q((d / "b.off").string()));
+  CHECK(file_text(d / "a.off") == file_text(d / "b.off"));
+  CHECK(!file_text(d / "a.off").empty());
+  fs::remove_all(d);
+}
+
+TEST_CASE("info: a closed valid mesh prints no surface lines, --split-nonmanifold is accepted") {
+  const fs::path d = scratch();
+  const std::string file = (d / "closed.off").string();
+  REQUIRE(run_igm("generate --genus 1 --faces 500 " + q(file)).code == 0);
+  for (const char* opt : {"", "--split-nonmanifold "}) {
+    CAPTURE(opt);
+    const Output r = run_igm(std::string("info ") + opt + q(file));
+    CHECK(r.code == 0);
+    CHECK(!has(r.out, "surfaces:"));  // (the scratch folder's name has "surfaces" in it)
+    CHECK(!has(r.out, "surface 0"));
+    CHECK(has(r.out, "status: valid"));
+  }
+  CHECK(run_igm("info --split " + q(file)).code == 2);
+  CHECK(run_igm("info --split-nonmanifold").code == 2);
+  fs::remove_all(d);
+}
+
+TEST_CASE("info on the shared meshes: surfaces per component, non-manifold ones only when split") {
+  IGM_REQUIRE_DATA(dir);
+  const fs::path m = dir / "meshes" / "invalid";
+  {
+    const Output r = run_igm("info " + q((m / "knot2.off").string()));
+    CHECK(r.code == 2);
+    CHECK(has(r.out, "surfaces: 2\n"));
+    CHECK(has(
+        r.out,
+        "surface 0: faces 5760, vertices 2880, boundary loops 0, genus 1, euler characteristic 0, "
+        "first face 0\n"));
+    CHECK(has(
+        r.out,
+        "surface 1: faces 5760, vertices 2880, boundary loops 0, genus 1, euler characteristic 0, "
+        "first face 1\n"));
+  }
+  {
+    const Output r = run_igm("info " + q((m / "double-torus-3-holes.off").string()));
+    CHECK(has(r.out, "surfaces: 1\n"));
+    CHECK(has(r.out, "boundary loops 3, genus 2, euler characteristic -5"));
+  }
+  {
+    const Output r = run_igm("info " + q((m / "blobby_3cc.off").string()));
+    CHECK(has(r.out, "surfaces: 3\n"));
+    CHECK(has(r.out, "surface 2: "));
+  }
+  {
+    const Output r = run_igm("info " + q((m / "polygon_mesh.off").string()));
+    CHECK(r.code == 2);
+    CHECK(has(r.out, "surfaces: rejected: non_manifold_vertex: 2 vertices"));
+    CHECK(has(r.out, "(--split-nonmanifold cuts non-manifold vertices and edges apart)"));
+    const Output s = run_igm("info --split-nonmanifold " + q((m / "polygon_mesh.off").string()));
+    CHECK(s.code == 2);  // the closed-mesh status is unchanged
+    CHECK(has(s.out, "non-manifold vertices: 2\n"));
+    // 16,344 vertices + 3 copies - 48,612 edges + 32,245 faces = -20 = 2 - 2 * 4 - 14
+    CHECK(has(s.out,
+              "surfaces: 1\nsurface 0: faces 32245, vertices 16347, boundary loops 14, genus 4, "
+              "euler characteristic -20, first face 0\n"));
+    CHECK(has(
+        s.out,
+        "surfaces warning: cut 2 non-manifold vertices into one copy per fan (5 vertices in all): "
+        "vertex 4113 (3 fans); vertex 4349 (2 fans)\n"));
+  }
+  {
+    const Output r = run_igm("info --split-nonmanifold " + q((m / "pig.stl").string()));
+    CHECK(has(r.out, "surfaces: 17\n"));  // 17 edge-connected face sets (counted apart, in Python)
+    CHECK(has(r.out, "surfaces warning: cut 421 non-manifold vertices"));
+  }
+  {
+    const Output r = run_igm("info --split-nonmanifold " + q((m / "b9.ply").string()));
+    CHECK(r.code == 2);
+    CHECK(!has(r.out, "surfaces:"));
+    CHECK(has(r.out, "problem: no_faces"));
+  }
+}
