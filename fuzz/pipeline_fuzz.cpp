@@ -101,7 +101,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (!r.igm_report.valid()) finding("IGM rejected by the certifier", s, igm::certify::summary(r.igm_report).c_str());
     if (!r.quad_report.valid()) finding("quads rejected by the certifier", s, igm::certify::summary(r.quad_report).c_str());
     // Layout quads: 2 for a sphere ([0,2] x [0,1]), else the default layout's.
-    const int layout = s.genus == 0 ? 2 : igm::layout_quad_count(o.layout, s.genus);
+    const int layout = s.genus == 0 ? 2 : igm::layout_quad_count(o.layout, 4 * s.genus);
     if (r.igm_report.genus != s.genus || r.quad_report.genus != s.genus ||
         static_cast<int>(r.quads.quads.size()) != layout * resolution * resolution)
       finding("wrong genus or quad count", s, "");

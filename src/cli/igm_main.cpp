@@ -83,7 +83,8 @@ void print_usage(std::FILE* out) {
                "  igm                           `run` on a built-in generated mesh of genus 2 (outputs in ./out)\n");
   for (const Command& c : kCommands) std::fprintf(out, "  %s\n", c.usage);
   std::fprintf(out,
-               "\nexit codes: 0 success (info: the mesh is valid after repairs; run, extract: outputs certified), 1 (run,\n"
+               "\nexit codes: 0 success (info: `igm run` accepts the mesh after repairs; run, extract: outputs\n"
+               "certified), 1 (run,\n"
                "extract) the certifier rejected an input IGM or an output, 2 invalid or unreadable\n"
                "input, or a usage error. Element ids in messages are 0-based (vertices and faces in file order).\n");
 }
@@ -110,9 +111,11 @@ std::string ids_text(const std::vector<std::int64_t>& ids, std::size_t max) {
   return s;
 }
 
-// Prints the report (`more` prints lines before the status); returns the exit code.
+// Prints the report (`more` prints lines before the status and says whether the mesh's surfaces
+// are valid although the single-closed-surface check found problems: boundaries or several
+// components, which `igm run` maps one by one); returns the exit code.
 int print_report(const std::string& name, const igm::MeshReport& r,
-                 const std::function<void()>& more) {
+                 const std::function<bool()>& more) {
   std::printf("mesh: %s\n", name.c_str());
   std::printf("vertices: %lld", static_cast<long long>(r.vertices));
   if (r.unreferenced_vertices > 0) std::printf(" (%lld unreferenced)", static_cast<long long>(r.unreferenced_vertices));
@@ -142,9 +145,13 @@ int print_report(const std::string& name, const igm::MeshReport& r,
     std::printf("problem: %s (%lld): %s\n", igm::to_string(p.kind), static_cast<long long>(p.count), p.message.c_str());
     if (!p.elements.empty()) std::printf("  elements: %s\n", ids_text(p.elements, 20).c_str());
   }
-  more();
+  const bool surfaces_valid = more();
   if (r.problems.empty()) {
     std::printf("status: valid\n");
+    return kExitOk;
+  }
+  if (surfaces_valid) {
+    std::printf("status: valid as surfaces (open or several: `igm run` maps each, boundaries on integer isolines)\n");
     return kExitOk;
   }
   std::printf("status: invalid (%zu problem kinds)\n", r.problems.size());
@@ -155,12 +162,13 @@ int print_report(const std::string& name, const igm::MeshReport& r,
 }
 
 // With boundaries, several components or non-manifold elements: the surfaces that
-// validate_surfaces finds (one line each), or why it rejects the mesh. Nothing otherwise.
-void print_surfaces(const igm::PolygonSoup& soup, const igm::MeshReport& r, bool split) {
+// validate_surfaces finds (one line each), or why it rejects the mesh. Nothing otherwise. Returns
+// whether it accepts them.
+bool print_surfaces(const igm::PolygonSoup& soup, const igm::MeshReport& r, bool split) {
   if (!r.topology_checked || r.problems.empty() ||
       (r.components <= 1 && r.boundary_loops == 0 && r.non_manifold_edges == 0 &&
        r.non_manifold_vertices == 0))
-    return;
+    return false;
   igm::SurfaceOptions o;
   o.split_nonmanifold = split;
   igm::SurfaceSet set;
@@ -171,7 +179,7 @@ void print_surfaces(const igm::PolygonSoup& soup, const igm::MeshReport& r, bool
                 split || (r.non_manifold_edges == 0 && r.non_manifold_vertices == 0)
                     ? ""
                     : " (--split-nonmanifold cuts non-manifold vertices and edges apart)");
-    return;
+    return false;
   }
   std::printf("surfaces: %zu\n", set.components.size());
   for (std::size_t i = 0; i < set.components.size(); ++i) {
@@ -186,6 +194,7 @@ void print_surfaces(const igm::PolygonSoup& soup, const igm::MeshReport& r, bool
   for (const std::string& w : set.warnings)
     if (std::find(r.warnings.begin(), r.warnings.end(), w) == r.warnings.end())
       std::printf("surfaces warning: %s\n", w.c_str());
+  return true;
 }
 
 int cmd_info(const Args& args) {
@@ -210,7 +219,7 @@ int cmd_info(const Args& args) {
     return kExitInvalid;
   }
   const igm::MeshReport report = igm::inspect(soup);
-  return print_report(path, report, [&] { print_surfaces(soup, report, split); });
+  return print_report(path, report, [&] { return print_surfaces(soup, report, split); });
 }
 
 bool parse_int(std::string_view s, std::int64_t& out) {

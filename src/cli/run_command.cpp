@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -14,7 +15,9 @@
 
 #include "igm/core/error.h"
 #include "igm/mesh/generate.h"
+#include "igm/io/read_mesh.h"
 #include "igm/mesh/validate.h"
+#include "igm/mesh/validate_surfaces.h"
 #include "igm/output/igm_mesh.h"
 #include "igm/output/quad_svg.h"
 #include "igm/output/schema_svg.h"
@@ -34,7 +37,7 @@ bool parse_int(std::string_view s, long long& out) {
 int usage(const std::string& message) {
   std::fprintf(stderr,
                "igm run: %s\nusage: igm run MESH [-o DIR] [--quads Q | --edge-length H | --resolution N]\n"
-               "               [--layout spread|kite|paper] [--map tutte|affine] [--root V]\n"
+               "               [--layout spread|kite|paper] [--map tutte|affine] [--no-smooth] [--root V]\n"
                "               [--normal-form [--restarts K|auto]] [--cones A,B,C,D] [--memory-limit-mb M]\n"
                "  writes DIR/NAME.igm.obj, NAME.igm.exact, NAME.quad.obj, NAME.cert.json, NAME.schema.svg,\n"
                "  NAME.quad.svg (a shaded picture of the quads, cones marked by valence)\n"
@@ -48,6 +51,11 @@ int usage(const std::string& message) {
                "                  centre) or paper (Livesu's template: 8g at the root, 3g at the centre)\n"
                "  --map M         each layout quad mapped onto its rectangle by a Tutte map from its own\n"
                "                  geometry (tutte, default) or through the disk's map (affine, the paper's)\n"
+               "  --no-smooth     keep the layout's map (default: smoothed, every iterate a certified IGM)\n"
+               "  --smooth-iterations N, --smooth-seconds S  the smoothing's budgets (default 100 iterations,\n"
+               "                  10 s per 100k IGM triangles within 5..60 s; 0 s: no time limit)\n"
+               "  --split-nonmanifold  cut non-manifold vertices and edges apart (each cut named in a warning)\n"
+               "                  and map the resulting open surfaces\n"
                "  --cones A,B,C,D genus 0: the four cone vertices (0-based input ids) in path order\n"
                "  --memory-limit-mb M  genus >= 1: stop with exit 2 in the arrangement once the rest would\n"
                "                  need more than M MB (default: this machine's memory)\n"
@@ -88,24 +96,93 @@ std::string json_escape(const std::string& s) {
   return r;
 }
 
+// The options with a line per stage, and per smoothing iteration once it has run 2 s (at most one a
+// second), on the terminal.
+igm::PipelineOptions with_progress(igm::PipelineOptions options) {
+  options.progress = [](const igm::StageEvent& e) {
+    std::printf("[%-8s] %8.3f s  %s\n", e.stage.c_str(), e.seconds, e.detail.c_str());
+    std::fflush(stdout);
+  };
+  auto last = std::make_shared<double>(0.0);
+  options.smooth_progress = [last](const igm::SmoothProgress& p) {
+    if (p.seconds < 2 || p.seconds < *last + 1) return;
+    *last = p.seconds;
+    std::printf("[smooth  ] %8.3f s  iteration %d: energy %.6g\n", p.seconds, p.iteration, p.energy);
+    std::fflush(stdout);
+  };
+  return options;
+}
+
+void create_folder(const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw igm::Error(igm::ErrorKind::Io, "cannot create output folder " + dir.string() + ": " + ec.message());
+}
+
+// Several surfaces or open ones (igm::compute_igms): one output with all of them, the certificate
+// listing each surface.
+int run_surfaces(const igm::SurfaceSet& set, const std::string& name, const std::filesystem::path& dir,
+                 const igm::PipelineOptions& base) {
+  for (const std::string& w : set.warnings) std::printf("warning: %s\n", w.c_str());
+  std::printf("[input]    %s: %zu surface%s\n", name.c_str(), set.components.size(), set.components.size() == 1 ? "" : "s");
+  for (std::size_t c = 0; c < set.components.size(); ++c) {
+    const igm::SurfaceComponent& comp = set.components[c];
+    std::printf("[input]    surface %zu: %zu vertices, %zu faces, genus %d, %zu boundary loop%s\n", c,
+                comp.positions.size(), comp.triangles.size(), comp.genus, comp.boundary_loops.size(),
+                comp.boundary_loops.size() == 1 ? "" : "s");
+  }
+  std::fflush(stdout);
+  const igm::PipelineOptions options = with_progress(base);
+  const auto t0 = std::chrono::steady_clock::now();
+  const igm::SurfacesResult r = igm::compute_igms(set, options);
+  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  create_folder(dir);
+  const auto out = [&](const char* suffix) { return dir / (name + suffix); };
+  write_file(out(".igm.obj"), [&](std::ostream& s) { igm::write_igm_obj(s, r.igm, false); });
+  write_file(out(".igm.exact"), [&](std::ostream& s) { igm::write_igm_obj(s, r.igm, true); });
+  write_file(out(".quad.obj"), [&](std::ostream& s) { igm::write_quad_obj(s, r.quads); });
+  write_file(out(".quad.svg"), [&](std::ostream& s) { igm::write_quad_svg(s, r.quads); });
+  write_file(out(".cert.json"), [&](std::ostream& s) {
+    s << "{\n\"input\": {\"name\": \"" << json_escape(name) << "\", \"surfaces\": " << set.components.size() << "},\n"
+      << "\"certified\": " << (r.certified() ? "true" : "false") << ",\n\"surfaces\": [";
+    for (std::size_t c = 0; c < r.components.size(); ++c) {
+      const igm::PipelineResult& rc = r.components[c];
+      s << (c ? ",\n  " : "\n  ") << "{\"vertices\": " << set.components[c].positions.size()
+        << ", \"faces\": " << set.components[c].triangles.size() << ", \"genus\": " << set.components[c].genus
+        << ", \"boundary_loops\": " << set.components[c].boundary_loops.size()
+        << ", \"certified\": " << (rc.certified() ? "true" : "false") << ", \"quads\": " << rc.stats.quads
+        << ", \"layout_quads\": " << rc.stats.layout_quads << "}";
+    }
+    s << "],\n\"stats\": {\"quads\": " << r.quads.quads.size() << ", \"seconds\": " << total << "},\n"
+      << "\"quality\": {\"igm\": " << igm::to_json(r.igm_quality) << ", \"quads\": " << igm::to_json(r.quad_quality)
+      << "},\n"
+      << "\"igm\": " << igm::certify::to_json(r.igm_report) << ",\n"
+      << "\"quad\": " << igm::certify::to_json(r.quad_report) << "}\n";
+  });
+  if (base.quality) std::printf("[quality ] all surfaces: %s\n", igm::summary_line(r.igm_quality, r.quad_quality).c_str());
+  std::printf("[total]    %8.3f s  peak memory %.0f MB\n", total, peak_rss_mb());
+  std::printf("wrote %s/%s.{igm.obj,igm.exact,quad.obj,cert.json,quad.svg}\n", dir.string().c_str(), name.c_str());
+  if (!r.certified()) {
+    std::printf("NOT CERTIFIED: %s | %s\n", igm::certify::summary(r.igm_report).c_str(),
+                igm::certify::summary(r.quad_report).c_str());
+    return kExitRejected;
+  }
+  std::printf("certified: %s\n", igm::certify::summary(r.igm_report).c_str());
+  return kExitCertified;
+}
+
 int run_pipeline(const igm::ValidMesh& mesh, const std::string& name, const std::filesystem::path& dir,
                  const igm::PipelineOptions& base) {
   for (const std::string& w : mesh.warnings) std::printf("warning: %s\n", w.c_str());
   std::printf("[input]    %s: %d vertices, %d faces, genus %d\n", name.c_str(), mesh.mesh.num_vertices(),
               mesh.mesh.num_faces(), mesh.genus);
   std::fflush(stdout);
-  igm::PipelineOptions options = base;
-  options.progress = [](const igm::StageEvent& e) {
-    std::printf("[%-8s] %8.3f s  %s\n", e.stage.c_str(), e.seconds, e.detail.c_str());
-    std::fflush(stdout);
-  };
+  igm::PipelineOptions options = with_progress(base);
   const auto t0 = std::chrono::steady_clock::now();
   igm::PipelineResult r = igm::compute_igm(mesh, options);
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) throw igm::Error(igm::ErrorKind::Io, "cannot create output folder " + dir.string() + ": " + ec.message());
+  create_folder(dir);
   const auto out = [&](const char* suffix) { return dir / (name + suffix); };
   write_file(out(".igm.obj"), [&](std::ostream& s) { igm::write_igm_obj(s, r.igm, false); });
   write_file(out(".igm.exact"), [&](std::ostream& s) { igm::write_igm_obj(s, r.igm, true); });
@@ -155,6 +232,7 @@ int run_command(const std::vector<std::string_view>& args) {
   std::string mesh_path;
   std::filesystem::path dir = "out";
   igm::PipelineOptions options;
+  bool split_nonmanifold = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string_view a = args[i];
     if (a == "--cones") {
@@ -174,7 +252,7 @@ int run_command(const std::vector<std::string_view>& args) {
       }
       continue;
     }
-    if (a == "--layout" || a == "--map" || a == "--edge-length") {
+    if (a == "--layout" || a == "--map" || a == "--edge-length" || a == "--smooth-seconds") {
       if (i + 1 >= args.size()) return usage(std::string(a) + " needs a value");
       const std::string_view v = args[++i];
       if (a == "--layout") {
@@ -186,6 +264,11 @@ int run_command(const std::vector<std::string_view>& args) {
         if (v == "tutte") options.patch_map = igm::PatchMapKind::Tutte;
         else if (v == "affine") options.patch_map = igm::PatchMapKind::Affine;
         else return usage("--map must be tutte or affine, got '" + std::string(v) + "'");
+      } else if (a == "--smooth-seconds") {
+        double t = 0;
+        if (!parse_double(v, t) || !(t >= 0) || !std::isfinite(t))
+          return usage("--smooth-seconds needs a number >= 0 (0: no time limit), got '" + std::string(v) + "'");
+        options.smooth_seconds = t;
       } else {
         double h = 0;
         if (!parse_double(v, h) || !(h > 0) || !std::isfinite(h))
@@ -195,7 +278,7 @@ int run_command(const std::vector<std::string_view>& args) {
       continue;
     }
     if (a == "-o" || a == "--resolution" || a == "--root" || a == "--memory-limit-mb" || a == "--restarts" ||
-        a == "--quads") {
+        a == "--quads" || a == "--smooth-iterations") {
       if (i + 1 >= args.size()) return usage(std::string(a) + " needs a value");
       const std::string_view v = args[++i];
       if (a == "-o") {
@@ -211,6 +294,9 @@ int run_command(const std::vector<std::string_view>& args) {
       if (a == "--resolution") {
         if (n < 1 || n > 1024) return usage("--resolution must be in 1..1024");
         options.resolution = static_cast<int>(n);
+      } else if (a == "--smooth-iterations") {
+        if (n < 0 || n > 100000) return usage("--smooth-iterations must be in 0..100000");
+        options.smooth_iterations = static_cast<int>(n);
       } else if (a == "--quads") {
         if (n < 1 || n > (1LL << 31)) return usage("--quads must be in 1..2^31");
         options.quads = n;
@@ -226,6 +312,10 @@ int run_command(const std::vector<std::string_view>& args) {
       }
     } else if (a == "--normal-form") {
       options.normal_form = true;
+    } else if (a == "--no-smooth") {
+      options.smooth = false;
+    } else if (a == "--split-nonmanifold") {
+      split_nonmanifold = true;
     } else if (!a.empty() && a[0] == '-') {
       return usage("unknown option '" + std::string(a) + "'");
     } else {
@@ -238,11 +328,22 @@ int run_command(const std::vector<std::string_view>& args) {
     return usage("give at most one of --quads, --edge-length and --resolution");
   if (options.restarts != 0 && !options.normal_form) return usage("--restarts needs --normal-form");
   try {
-    const igm::ValidMesh mesh = igm::load_mesh(mesh_path);
+    const std::string name = std::filesystem::path(mesh_path).stem().string();
+    igm::SurfaceOptions so;
+    so.split_nonmanifold = split_nonmanifold;
+    igm::SurfaceSet set;
+    try {
+      set = igm::validate_surfaces(igm::read_soup(std::filesystem::path(mesh_path)), so);
+    } catch (const igm::Error& e) {  // as load_mesh names them: the path first
+      throw igm::Error(e.kind(), mesh_path + ": " + e.what(), e.elements());
+    }
+    if (set.components.size() != 1 || !set.components[0].boundary_loops.empty())
+      return run_surfaces(set, name, dir, options);
+    const igm::ValidMesh mesh = igm::to_valid_mesh(set.components[0], set.warnings);
     if (mesh.genus > 0 && options.layout == igm::LayoutKind::Paper && options.resolution > 0 && options.resolution < 3)
       return usage("--resolution must be in 3..1024 for the paper layout (below 3 its quad mesh has loops and "
                    "multi-edges at the root)");
-    return run_pipeline(mesh, std::filesystem::path(mesh_path).stem().string(), dir, options);
+    return run_pipeline(mesh, name, dir, options);
   } catch (const igm::Error& e) {
     std::fprintf(stderr, "igm: %s: %s\n", mesh_path.c_str(), e.what());
     return e.kind() == igm::ErrorKind::Internal ? 3 : kExitInput;

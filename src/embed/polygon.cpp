@@ -87,6 +87,16 @@ std::vector<Point2q> canonical_polygon(int genus) {
   return corners;
 }
 
+std::vector<Point2q> schema_polygon(int n) {
+  if (n < 3 || n > 400000)
+    throw Error(ErrorKind::InvalidArgument, "schema_polygon: a polygon needs 3 to 400000 corners, got " + std::to_string(n));
+  if (n % 4 == 0) return canonical_polygon(n / 4);
+  // Rational points of the unit circle; 2 bits per doubling of n past 64 keep them apart.
+  int bits = 24;
+  for (int m = 64; m < n && bits < 60; m *= 2) bits += 2;
+  return rational_circle_polygon(n, bits);
+}
+
 Point2q polygon_centre(const std::vector<Point2q>& corners) {
   if (corners.empty()) throw Error(ErrorKind::InvalidArgument, "polygon_centre: no corners");
   Rational sx = 0, sy = 0;

@@ -38,14 +38,16 @@ Rational dyadic(double x, int bits) {
 // g: in the thin-wedge limit it needs 2/3 < lambda < 1.) Genus 1: the square itself.
 void build_paper(QuadLayout& L, const Point2q& centre) {
   const int n = L.num_corners();
+  if (n % 4 != 0)
+    throw Error(ErrorKind::InvalidArgument, "paper layout: needs a multiple of 4 corners, got " + std::to_string(n));
   for (int s = 0; s < n; ++s) L.side_points.push_back({s, (s + 1) % n});
-  if (L.genus == 1) {
+  if (n == 4) {
     L.quads.push_back({0, 1, 2, 3});
     return;
   }
   const int C = add_point(L, centre);
   const Rational third(1, 3);
-  for (int i = 0; i < L.genus; ++i) {
+  for (int i = 0; i < n / 4; ++i) {
     const int p0 = 4 * i, p1 = p0 + 1, p2 = p0 + 2, p3 = p0 + 3, p4 = (p0 + 4) % n;
     const Point2q &P1 = L.points[p1], &P2 = L.points[p2], &P3 = L.points[p3];
     const int a0 = add_point(L, {Rational((P1.x + P2.x + centre.x) * third), Rational((P1.y + P2.y + centre.y) * third)});
@@ -77,21 +79,25 @@ void build_kite(QuadLayout& L, const Point2q& centre) {
 // G(i,0) = Y_i, G(n,j) = Y_(n+j), G(i,m) = Y_(2n+m-i), G(0,j) = Y_(-j mod 4g), and its inner
 // points lie on the straight chords from Y_i to Y_(2n+m-i) at the fractions j/m (the chords are
 // parallel on a regular polygon, so the inner quads are trapezoids).
-// The spread layout's automatic rows: min(g, max(1, round(sqrt(2g)))).
-int automatic_rows(int g) { return std::min(g, std::max(1, static_cast<int>(std::lround(std::sqrt(2.0 * g))))); }
+// The spread layout's automatic rows for N corners: clamp(round(sqrt(N/2)), 1, N/4).
+int automatic_rows(int N) {
+  return std::min(N / 4, std::max(1, static_cast<int>(std::lround(std::sqrt(0.5 * N)))));
+}
 
 void build_spread(QuadLayout& L, const Point2q& centre, int rows, double ring_depth) {
-  const int g = L.genus, N = L.num_corners();
-  if (g == 1) {  // no index to spread: the square itself (as the paper's template for a torus)
-    if (rows > 1) throw Error(ErrorKind::InvalidArgument, "spread layout: a torus has one row, got " + std::to_string(rows));
+  const int N = L.num_corners();
+  if (N % 2 != 0)
+    throw Error(ErrorKind::InvalidArgument, "spread layout: needs an even number of corners, got " + std::to_string(N));
+  if (N == 4) {  // no index to spread: the square itself (as the paper's template for a torus)
+    if (rows > 1) throw Error(ErrorKind::InvalidArgument, "spread layout: a square has one row, got " + std::to_string(rows));
     build_paper(L, centre);
     return;
   }
-  const int m = rows > 0 ? rows : automatic_rows(g);
-  if (m < 1 || m > g)
-    throw Error(ErrorKind::InvalidArgument, "spread layout: rows must be in 1.." + std::to_string(g) + ", got " +
+  const int m = rows > 0 ? rows : automatic_rows(N);
+  if (m < 1 || m > N / 4)
+    throw Error(ErrorKind::InvalidArgument, "spread layout: rows must be in 1.." + std::to_string(N / 4) + ", got " +
                                                 std::to_string(m));
-  const int n = 2 * g - m;
+  const int n = N / 2 - m;
   std::vector<int> s1(N), s2(N), y(N);
   for (int k = 0; k < N; ++k) {
     s1[k] = add_point(L, lerp_point(L.points[k], L.points[(k + 1) % N], Rational(1, 3)));
@@ -170,20 +176,28 @@ std::vector<int> canonical_side_mates(int g) {
   return m;
 }
 
-int layout_quad_count(LayoutKind kind, int g, int rows) {
-  if (g < 1) throw Error(ErrorKind::InvalidArgument, "layout_quad_count: genus must be >= 1");
+int layout_quad_count(LayoutKind kind, int n, int rows) {
+  if (n < 3) throw Error(ErrorKind::InvalidArgument, "layout_quad_count: a polygon needs at least 3 corners");
   switch (kind) {
     case LayoutKind::Paper:
-      return g == 1 ? 1 : 5 * g;
+      return n == 4 ? 1 : 5 * n / 4;
     case LayoutKind::Kite:
-      return 4 * g;
+      return n;
     case LayoutKind::Spread: {
-      if (g == 1) return 1;
-      const int m = rows > 0 ? rows : automatic_rows(g);
-      return 8 * g + m * (2 * g - m);
+      if (n == 4) return 1;
+      const int m = rows > 0 ? rows : automatic_rows(n);
+      return 2 * n + m * (n / 2 - m);
     }
   }
   return 0;
+}
+
+std::vector<char> QuadLayout::on_boundary() const {
+  std::vector<char> b(num_layout_vertices, 0);
+  for (std::size_t s = 0; s < side_points.size(); ++s)
+    if (side_mate[s] < 0)
+      for (int p : side_points[s]) b[layout_vertex[p]] = 1;
+  return b;
 }
 
 std::vector<int> QuadLayout::valences() const {
@@ -248,9 +262,20 @@ void finish_layout(QuadLayout& L) {
                   {e.a, e.b});
   // Gluing: points and surface edges.
   UnionFind points(np), surface(L.edges.size());
-  for (int k = 1; k < ns; ++k) points.unite(0, k);
+  if (!L.corner_label.empty() && static_cast<int>(L.corner_label.size()) != ns)
+    throw Error(ErrorKind::InvalidArgument, "layout: one label per corner is needed");
+  if (L.corner_label.empty()) {
+    for (int k = 1; k < ns; ++k) points.unite(0, k);  // the closed schema: every corner the root
+  } else {
+    std::map<int, int> first;  // label -> its first corner
+    for (int k = 0; k < ns; ++k) {
+      auto [it, fresh] = first.emplace(L.corner_label[k], k);
+      if (!fresh) points.unite(it->second, k);
+    }
+  }
   for (int s = 0; s < ns; ++s) {
     const int m = L.side_mate[s];
+    if (m == -1) continue;  // a free side
     if (m < 0 || m >= ns || m == s || L.side_mate[m] != s)
       throw Error(ErrorKind::InvalidArgument, "layout: the side pairing is not a fixed-point-free involution at side " +
                                                   str(s),
@@ -272,7 +297,6 @@ void finish_layout(QuadLayout& L) {
     if (id[r] < 0) id[r] = L.num_layout_vertices++;
     L.layout_vertex[p] = id[r];
   }
-  if (L.layout_vertex[0] != 0) throw Error(ErrorKind::Internal, "layout: the root is not vertex 0");
   const int ne = static_cast<int>(L.edges.size());
   L.surface_edge.assign(ne, -1);
   L.surface_edge_forward.assign(ne, 1);
@@ -305,7 +329,7 @@ void finish_layout(QuadLayout& L) {
 
 std::string check_layout(const QuadLayout& L) {
   const int n = L.num_corners();
-  if (L.genus < 1 || static_cast<int>(L.points.size()) < n) return "fewer points than polygon corners";
+  if (n < 3 || static_cast<int>(L.points.size()) < n) return "fewer points than polygon corners";
   std::vector<Point2q> corners(L.points.begin(), L.points.begin() + n);
   if (!is_strictly_convex_ccw(corners)) return "the polygon is not strictly convex and counter-clockwise";
   for (std::size_t q = 0; q < L.quads.size(); ++q) {
@@ -367,6 +391,7 @@ std::string check_layout(const QuadLayout& L) {
     }
     for (std::size_t j = 0; j + 1 < t.size(); ++j)
       if (t[j] >= t[j + 1]) return "the points of side " + str(s) + " are not in increasing order";
+    if (L.side_mate[s] < 0) continue;  // a free side: nothing to mirror
     const auto& mp = L.side_points[L.side_mate[s]];
     if (mp.size() != sp.size()) return "sides " + str(s) + " and its mate are split differently";
     const Point2q &MA = corners[L.side_mate[s]], &MB = corners[(L.side_mate[s] + 1) % n];
@@ -380,18 +405,30 @@ std::string check_layout(const QuadLayout& L) {
   const long long V = static_cast<long long>(L.points.size()), E = static_cast<long long>(L.edges.size()),
                   F = static_cast<long long>(L.quads.size());
   if (V - E + F != 1) return "the planar subdivision has Euler characteristic " + std::to_string(V - E + F) + ", not 1";
+  // The glued surface: every surface edge in two quads, or in one on a free side; then the index
+  // formula with boundary terms.
+  std::vector<int> edge_quads(L.num_surface_edges, 0);
+  std::vector<char> free_edge(L.num_surface_edges, 0);
+  for (std::size_t e = 0; e < L.edges.size(); ++e) {
+    edge_quads[L.surface_edge[e]] += L.edges[e].quad[1] >= 0 ? 2 : 1;
+    if (L.edges[e].side >= 0 && L.side_mate[L.edges[e].side] < 0) free_edge[L.surface_edge[e]] = 1;
+  }
+  for (int e = 0; e < L.num_surface_edges; ++e)
+    if (edge_quads[e] != (free_edge[e] ? 1 : 2)) return "surface edge " + str(e) + " is not in two quads (or one, free)";
+  const std::vector<char> on_free_side = L.on_boundary();
   long long index = 0;
-  for (int v : L.valences()) index += 4 - v;
-  if (index != 8 - 8LL * L.genus) return "the index sum is " + std::to_string(index) + ", not 4 chi = " +
-                                         std::to_string(8 - 8LL * L.genus);
+  const std::vector<int> valence = L.valences();
+  for (int v = 0; v < L.num_layout_vertices; ++v) index += (on_free_side[v] ? 2 : 4) - valence[v];
+  const long long chi = static_cast<long long>(L.num_layout_vertices) - L.num_surface_edges + F;
+  if (index != 4 * chi)
+    return "the index sum is " + std::to_string(index) + ", not 4 chi = " + std::to_string(4 * chi);
   return "";
 }
 
 QuadLayout make_layout(const std::vector<Point2q>& corners, const Point2q& centre, const std::vector<int>& side_mate,
-                       const LayoutOptions& options) {
+                       const LayoutOptions& options, const std::vector<int>& corner_label) {
   const int n = static_cast<int>(corners.size());
-  if (n < 4 || n % 4 != 0)
-    throw Error(ErrorKind::InvalidArgument, "layout: the polygon needs 4g corners (g >= 1), got " + str(n));
+  if (n < 3) throw Error(ErrorKind::InvalidArgument, "layout: the polygon needs at least 3 corners, got " + str(n));
   if (!is_strictly_convex_ccw(corners))
     throw Error(ErrorKind::InvalidArgument, "layout: the polygon is not strictly convex and counter-clockwise");
   for (int k = 0; k < n; ++k)
@@ -402,10 +439,11 @@ QuadLayout make_layout(const std::vector<Point2q>& corners, const Point2q& centr
     throw Error(ErrorKind::InvalidArgument, "layout: " + str(n) + " sides but " +
                                                 str(static_cast<int>(side_mate.size())) + " side mates");
   QuadLayout L;
-  L.genus = n / 4;
+  L.corners = n;
   L.kind = options.kind;
   L.points = corners;
   L.side_mate = side_mate;
+  L.corner_label = corner_label;
   switch (options.kind) {
     case LayoutKind::Paper:
       build_paper(L, centre);
@@ -420,8 +458,8 @@ QuadLayout make_layout(const std::vector<Point2q>& corners, const Point2q& centr
   finish_layout(L);
   const std::string problem = check_layout(L);
   if (!problem.empty())
-    throw Error(ErrorKind::Internal, std::string("layout ") + to_string(options.kind) + " for genus " + str(L.genus) +
-                                         ": " + problem);
+    throw Error(ErrorKind::Internal, std::string("layout ") + to_string(options.kind) + " on " + str(n) +
+                                         " corners: " + problem);
   return L;
 }
 

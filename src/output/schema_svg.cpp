@@ -48,6 +48,8 @@ void write_schema_svg(std::ostream& out, const SchemaDrawing& d, std::size_t max
     char style[64];
     std::snprintf(style, sizeof style, "stroke=\"hsl(%.0f,75%%,45%%)\" stroke-width=\"5\"",
                   hue - 360.0 * static_cast<long>(hue / 360.0));
+    if (s < d.side_pair.size() && d.side_pair[s] < 0)  // a free side: the surface's boundary
+      std::snprintf(style, sizeof style, "stroke=\"#707070\" stroke-width=\"5\" stroke-dasharray=\"2,3\"");
     if (s < d.side_paths.size() && d.side_paths[s].size() >= 2) {
       for (std::size_t i = 0; i + 1 < d.side_paths[s].size(); ++i) line(d.side_paths[s][i], d.side_paths[s][i + 1], style);
     } else {

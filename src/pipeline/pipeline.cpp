@@ -93,21 +93,33 @@ void StageReporter::done(const char* name, Clock::time_point t0, std::string det
   if (options.progress) options.progress(e);
 }
 
-void certify_outputs(PipelineResult& result, int genus, const PipelineOptions& options, bool igm_report_done) {
+void certify_outputs(PipelineResult& result, const PipelineOptions& options, bool igm_report_done) {
   const IgmMesh& igm = result.igm;
   const QuadMesh& quads = result.quads;
+  const int genus = result.stats.genus;
   certify::Options copt;
   copt.max_witnesses = options.max_witnesses;
+  copt.allow_boundary = result.stats.boundary_loops > 0;
   if (!igm_report_done) result.igm_report = certify::certify_igm(certify_input(igm, igm.corner_uv), copt);
   certify::QuadInput qin;
   qin.quads = quads.quads;
   qin.num_vertices = static_cast<std::int64_t>(quads.positions.size());
   certify::Options qopt = copt;
   qopt.expected_genus = genus;
+  if (result.stats.boundary_loops > 0) qopt.expected_boundary_loops = result.stats.boundary_loops;
   result.quad_report = certify::certify_quads(qin, qopt);
 }
 
 void measure_quality(PipelineResult& result, const ValidMesh& input, const PipelineOptions& options,
+                     StageReporter& stage) {
+  if (!options.quality) return;
+  std::vector<std::array<int, 3>> input_triangles(input.mesh.num_faces());
+  for (int f = 0; f < input.mesh.num_faces(); ++f) input_triangles[f] = input.mesh.face_vertices(f);
+  measure_quality(result, input.positions, input_triangles, options, stage);
+}
+
+void measure_quality(PipelineResult& result, const std::vector<Vec3d>& input_positions,
+                     const std::vector<std::array<int, 3>>& input_triangles, const PipelineOptions& options,
                      StageReporter& stage) {
   if (!options.quality) return;
   const auto t0 = Clock::now();
@@ -115,15 +127,13 @@ void measure_quality(PipelineResult& result, const ValidMesh& input, const Pipel
   for (std::size_t t = 0; t < uv.size(); ++t)
     for (int i = 0; i < 3; ++i) uv[t][i] = {approximate(result.igm.corner_uv[t][i].x), approximate(result.igm.corner_uv[t][i].y)};
   result.igm_quality = measure_igm(result.igm.positions, result.igm.triangles, uv);
-  std::vector<std::array<int, 3>> input_triangles(input.mesh.num_faces());
-  for (int f = 0; f < input.mesh.num_faces(); ++f) input_triangles[f] = input.mesh.face_vertices(f);
   QuadQualityOptions qo;
   qo.distance = options.quality_distance;
-  result.quad_quality = measure_quads(result.quads.positions, result.quads.quads, input.positions, input_triangles, qo);
+  result.quad_quality = measure_quads(result.quads.positions, result.quads.quads, input_positions, input_triangles, qo);
   stage.done("quality", t0, summary_line(result.igm_quality, result.quad_quality));
 }
 
-void smooth_extract_certify(PipelineResult& result, int genus, const PipelineOptions& options, StageReporter& stage,
+void smooth_extract_certify(PipelineResult& result, const PipelineOptions& options, StageReporter& stage,
                             const std::vector<Vec3d>& input_positions, const std::function<std::string()>& structured) {
   IgmMesh& igm = result.igm;
   PipelineStats& stats = result.stats;
@@ -132,7 +142,9 @@ void smooth_extract_certify(PipelineResult& result, int genus, const PipelineOpt
   if (options.smooth) {
     SmoothOptions so;
     so.max_iterations = options.smooth_iterations;
-    so.time_budget_seconds = options.smooth_seconds;
+    so.time_budget_seconds = options.smooth_seconds >= 0
+                                 ? options.smooth_seconds
+                                 : std::clamp(1e-4 * static_cast<double>(igm.triangles.size()), 5.0, 60.0);
     so.certify = false;  // the isolines' extraction runs the certifier on the result below
     so.progress = options.smooth_progress;
     SmoothResult smoothed = smooth_igm(igm, so);
@@ -145,6 +157,14 @@ void smooth_extract_certify(PipelineResult& result, int genus, const PipelineOpt
                       ss.energy.empty() ? 0.0 : ss.energy.back()) +
                    to_string(ss.stop) + (stats.uv_doubles ? ", UVs in doubles" : ", UVs exact rationals"));
     t0 = Clock::now();
+  } else {
+    DyadicResult rounded = round_to_dyadic(igm);
+    if (rounded.stats.on_grid) igm.corner_uv = std::move(rounded.corner_uv);
+    stats.dyadic = std::move(rounded.stats);
+    stats.uv_doubles = stats.dyadic.on_grid;
+  }
+  const bool isolines = options.smooth || !options.structured_extraction;
+  if (isolines) {
     IsolineInput in;
     in.triangles = igm.triangles;
     in.corner_uv = igm.corner_uv;
@@ -161,10 +181,6 @@ void smooth_extract_certify(PipelineResult& result, int genus, const PipelineOpt
     }
     how = "the integer isolines";
   } else {
-    DyadicResult rounded = round_to_dyadic(igm);
-    if (rounded.stats.on_grid) igm.corner_uv = std::move(rounded.corner_uv);
-    stats.dyadic = std::move(rounded.stats);
-    stats.uv_doubles = stats.dyadic.on_grid;
     how = structured();
   }
   stats.max_uv_bits = max_uv_bits(igm.corner_uv);
@@ -172,7 +188,7 @@ void smooth_extract_certify(PipelineResult& result, int genus, const PipelineOpt
   stage.done("extract", t0,
              format("%.0f quads, %.0f vertices from ", stats.quads, double(result.quads.positions.size())) + how);
   t0 = Clock::now();
-  certify_outputs(result, genus, options, /*igm_report_done=*/options.smooth);
+  certify_outputs(result, options, /*igm_report_done=*/isolines);
   stage.done("certify", t0, "IGM: " + certify::summary(result.igm_report) + "; quads: " + certify::summary(result.quad_report));
 }
 
@@ -192,49 +208,19 @@ void add_quad_vertex(QuadMesh& quads, const IgmMesh& igm, int triangle, const st
   quads.positions.push_back(evaluate(quads.locations.back(), input_positions));
 }
 
-PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& options) {
-  check_sizes(options);
-  if (input.genus == 0) return compute_igm_sphere(input, options);  // sphere_pipeline.cpp
-  if (!options.cones.empty())
-    throw Error(ErrorKind::InvalidArgument, "cones: only a genus-0 mesh takes a cone list (this one has genus " +
-                                                std::to_string(input.genus) + ")");
-  PipelineResult result;
+void map_disk(PipelineResult& result, CutDisk& cut, const PipelineOptions& options, StageReporter& stage,
+              const std::vector<Vec3d>& input_positions) {
   PipelineStats& stats = result.stats;
-  StageReporter stage{stats, options};
-  stats.genus = input.genus;
-  stats.input_vertices = input.mesh.num_vertices();
-  stats.input_faces = input.mesh.num_faces();
-
-  // --- topology: 2g loops through the root in normal form, the cut disk ---
-  auto t0 = Clock::now();
-  CutOptions cut_options;
-  cut_options.root = options.root;
-  cut_options.normal_form = options.normal_form;
-  cut_options.restarts = options.restarts;
-  CutResult cut = cut_to_canonical_disk(input.mesh, input.positions, cut_options);
-  const int g = cut.genus;
-  stats.cut = cut.stats;
-  stats.refined_vertices = cut.surface.mesh.num_vertices();
-  stats.refined_faces = cut.surface.mesh.num_faces();
-  stage.done("topology", t0,
-             format("genus %.0f, root %.0f, %.0f -> %.0f vertices", g, cut.root, stats.input_vertices,
-                    stats.refined_vertices) +
-                 (options.normal_form ? ", normal form in " + std::to_string(cut.stats.normal_form_rounds) + " rounds"
-                                      : std::string()) +
-                 (cut.stats.restarts > 0 ? ", run " + std::to_string(cut.stats.restart_kept) + " of " +
-                                               std::to_string(cut.stats.restarts) + " restarts kept"
-                                         : std::string()));
-
   // --- embed: rational convex 4g-gon, boundary at matched parameters, certified Tutte ---
-  t0 = Clock::now();
-  const std::vector<Point2q> corners = canonical_polygon(g);
-  const Point2q centre = polygon_centre(corners);
-  if (static_cast<int>(cut.sides.size()) != 4 * g || cut.sides.empty() || cut.boundary.empty() ||
-      cut.sides[0].disk_vertices.front() != cut.boundary.front())
+  auto t0 = Clock::now();
+  const int num_sides = static_cast<int>(cut.sides.size());
+  if (num_sides < 3 || cut.boundary.empty() || cut.sides[0].disk_vertices.front() != cut.boundary.front())
     throw Error(ErrorKind::Internal, "topology returned a boundary that does not start at side 0");
+  const std::vector<Point2q> corners = schema_polygon(num_sides);
+  const Point2q centre = polygon_centre(corners);
   RefinedSurface& surface = cut.surface;
   const int num_disk_vertices = static_cast<int>(cut.disk_to_surface.size());
-  const double scale = unit_scale(input.positions);  // lengths and weights of hostile coordinates stay in range
+  const double scale = unit_scale(input_positions);  // lengths and weights of hostile coordinates stay in range
   std::vector<Vec3d> disk_positions(num_disk_vertices);
   for (int v = 0; v < num_disk_vertices; ++v) {
     const Vec3d p = surface.position(cut.disk_to_surface[v]);
@@ -246,9 +232,9 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
     // are computed once and mirrored onto its mate, so both copies of a vertex sit at t and 1 - t.
     std::vector<std::vector<Rational>> params(cut.sides.size());
     for (std::size_t s = 0; s < cut.sides.size(); ++s) {
-      const BoundarySide& side = cut.sides[s];
+      const DiskSide& side = cut.sides[s];
       const std::size_t n = side.disk_vertices.size() - 1;
-      if (side.mate < static_cast<int>(s)) {
+      if (side.mate >= 0 && side.mate < static_cast<int>(s)) {
         const auto& mp = params[side.mate];
         if (mp.size() != n) throw Error(ErrorKind::Internal, "paired sides have different lengths", {static_cast<std::int64_t>(s)});
         params[s].resize(n);
@@ -285,7 +271,7 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
   layout_options.kind = options.layout;
   layout_options.rows = options.layout_rows;
   layout_options.ring_depth = options.layout_ring_depth;
-  const QuadLayout layout = make_layout(corners, centre, mates, layout_options);
+  const QuadLayout layout = make_layout(corners, centre, mates, layout_options, cut.corner_label);
   std::vector<Segment2> segments;
   segments.reserve(layout.edges.size() + layout.quads.size());
   for (const LayoutEdge& e : layout.edges) segments.push_back({layout.points[e.a], layout.points[e.b]});
@@ -358,11 +344,33 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
   igm.positions = std::move(patches.positions);
   igm.locations = std::move(patches.locations);
   igm.corner_uv = std::move(maps.corner_uv);
+  {
+    // Vertices no triangle uses (an open surface's filling: its hole vertices and the points inside
+    // its fans, topology/open_cut.h) are dropped; the others keep their order (the input vertices
+    // first). A closed surface uses every vertex.
+    std::vector<int> id(igm.positions.size(), -1);
+    for (const auto& t : igm.triangles)
+      for (int v : t) id[v] = 0;
+    int next = 0;
+    for (int& x : id)
+      if (x == 0) x = next++;
+    if (next != static_cast<int>(id.size())) {
+      for (auto& t : igm.triangles)
+        for (int& v : t) v = id[v];
+      std::vector<Vec3d> positions(next);
+      std::vector<SurfacePoint> locations(next);
+      for (std::size_t v = 0; v < id.size(); ++v)
+        if (id[v] >= 0) positions[id[v]] = igm.positions[v], locations[id[v]] = std::move(igm.locations[v]);
+      igm.positions = std::move(positions);
+      igm.locations = std::move(locations);
+      stats.output_vertices = next;
+    }
+  }
 
   // --- the picture ---
   SchemaDrawing& d = result.schema;
   for (const Point2q& c : corners) d.polygon.push_back(to_vec2d(c));
-  for (const BoundarySide& s : cut.sides) d.side_pair.push_back(s.mate);
+  for (const DiskSide& s : cut.sides) d.side_pair.push_back(s.mate);
   for (const LayoutEdge& e : layout.edges) d.template_edges.push_back({to_vec2d(layout.points[e.a]), to_vec2d(layout.points[e.b])});
   for (std::size_t q = 0; q < diagonals.size(); ++q)
     if (diagonals[q] >= 0)
@@ -383,15 +391,59 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
 
   // --- smooth, extract (the a x b grid of every layout quad, or the smoothed map's isolines),
   // certify ---
-  smooth_extract_certify(result, g, options, stage, surface.input_positions, [&] {
-    const PatchGrid grid = extract_patch_grids(layout, patches, sizing, igm.corner_uv);
+  IgmMesh& igm_out = result.igm;
+  smooth_extract_certify(result, options, stage, surface.input_positions, [&] {
+    const PatchGrid grid = extract_patch_grids(layout, patches, sizing, igm_out.corner_uv);
     QuadMesh& quads = result.quads;
     quads.quads = grid.quads;
     quads.positions.reserve(grid.vertices.size());
     quads.locations.reserve(grid.vertices.size());
-    for (const GridVertex& v : grid.vertices) add_quad_vertex(quads, igm, v.triangle, v.barycentric, surface.input_positions);
+    for (const GridVertex& v : grid.vertices) add_quad_vertex(quads, igm_out, v.triangle, v.barycentric, surface.input_positions);
     return std::string("the layout's rectangles");
   });
+}
+
+PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& options) {
+  check_sizes(options);
+  if (input.genus == 0) return compute_igm_sphere(input, options);  // sphere_pipeline.cpp
+  if (!options.cones.empty())
+    throw Error(ErrorKind::InvalidArgument, "cones: only a genus-0 mesh takes a cone list (this one has genus " +
+                                                std::to_string(input.genus) + ")");
+  PipelineResult result;
+  PipelineStats& stats = result.stats;
+  StageReporter stage{stats, options};
+  stats.genus = input.genus;
+  stats.input_vertices = input.mesh.num_vertices();
+  stats.input_faces = input.mesh.num_faces();
+
+  // --- topology: 2g loops through the root in normal form, the cut disk ---
+  auto t0 = Clock::now();
+  CutOptions cut_options;
+  cut_options.root = options.root;
+  cut_options.normal_form = options.normal_form;
+  cut_options.restarts = options.restarts;
+  CutResult cut = cut_to_canonical_disk(input.mesh, input.positions, cut_options);
+  const int g = cut.genus;
+  stats.cut = cut.stats;
+  stats.refined_vertices = cut.surface.mesh.num_vertices();
+  stats.refined_faces = cut.surface.mesh.num_faces();
+  stage.done("topology", t0,
+             format("genus %.0f, root %.0f, %.0f -> %.0f vertices", g, cut.root, stats.input_vertices,
+                    stats.refined_vertices) +
+                 (options.normal_form ? ", normal form in " + std::to_string(cut.stats.normal_form_rounds) + " rounds"
+                                      : std::string()) +
+                 (cut.stats.restarts > 0 ? ", run " + std::to_string(cut.stats.restart_kept) + " of " +
+                                               std::to_string(cut.stats.restarts) + " restarts kept"
+                                         : std::string()));
+
+  // --- the disk's map, its quads, their certificates ---
+  CutDisk disk;
+  disk.surface = std::move(cut.surface);
+  disk.disk_triangles = std::move(cut.disk_triangles);
+  disk.disk_to_surface = std::move(cut.disk_to_surface);
+  disk.boundary = std::move(cut.boundary);
+  for (BoundarySide& side : cut.sides) disk.sides.push_back({std::move(side.disk_vertices), side.mate});
+  map_disk(result, disk, options, stage, input.positions);
   measure_quality(result, input, options, stage);
   return result;
 }

@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "igm/mesh/surface_point.h"
+#include "igm/mesh/validate_surfaces.h"
+#include "igm/topology/cut_to_canonical_disk.h"
 #include "igm/pipeline/pipeline.h"
 
 namespace igm {
@@ -30,6 +32,32 @@ void check_sizes(const PipelineOptions& options);
 /// count, else kDefaultQuads), for lengths measured on positions multiplied by `scale`.
 SizingOptions sizing_options(const PipelineOptions& options, double scale);
 
+/// A side of the topology stage's disk: its vertices from the corner where it starts to the next
+/// one (counter-clockwise), and the side it is glued to (reversed), or -1 for a free side (a piece
+/// of the surface's boundary).
+struct DiskSide {
+  std::vector<int> disk_vertices;
+  int mate = -1;
+};
+
+/// The topology stage's disk, of a closed surface (topology/cut_to_canonical_disk.h) or an open one:
+/// disk triangle f is surface face f; the sides cover `boundary` in order from its first vertex.
+struct CutDisk {
+  RefinedSurface surface;
+  std::vector<std::array<int, 3>> disk_triangles;
+  std::vector<int> disk_to_surface;
+  std::vector<int> boundary;
+  std::vector<DiskSide> sides;
+  std::vector<int> corner_label;  // per corner: equal labels are one vertex (empty: all the root)
+};
+
+/// The stages after the cut, shared by closed surfaces of genus >= 1 and open ones: embed (the
+/// disk on a convex polygon with one corner per side), arrange (the layout overlaid), igm (patches,
+/// sizing, per-patch maps), then smooth_extract_certify. Fills result.igm, quads, reports, schema
+/// and stats (layout, sizing, maps). Moves the surface's data out of `cut`.
+void map_disk(PipelineResult& result, CutDisk& cut, const PipelineOptions& options, StageReporter& stage,
+              const std::vector<Vec3d>& input_positions);
+
 /// compute_igm for input.genus == 0 (options already range-checked by compute_igm).
 PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions& options);
 
@@ -37,6 +65,13 @@ PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions&
 /// reports a "quality" stage.
 void measure_quality(PipelineResult& result, const ValidMesh& input, const PipelineOptions& options,
                      StageReporter& stage);
+/// The same against an input given by its positions and triangles.
+void measure_quality(PipelineResult& result, const std::vector<Vec3d>& input_positions,
+                     const std::vector<std::array<int, 3>>& input_triangles, const PipelineOptions& options,
+                     StageReporter& stage);
+
+/// compute_igm for an open surface (boundary loops; open_pipeline.cpp). Options range-checked.
+PipelineResult compute_igm_open(const SurfaceComponent& input, const PipelineOptions& options);
 
 /// The stages after the map, shared by both branches: with options.smooth, "smooth" (smooth_igm on
 /// result.igm, its UVs replaced by the smoothed ones) then "extract" by the integer isolines
@@ -44,13 +79,13 @@ void measure_quality(PipelineResult& result, const ValidMesh& input, const Pipel
 /// on a double grid where that keeps it valid (round_to_dyadic), then "extract" by `structured`,
 /// which fills result.quads from the map's own structure (the layout's rectangles, the
 /// pillowcase's cells), and the certifier on the IGM. Then the certifier on the quads ("certify").
-void smooth_extract_certify(PipelineResult& result, int genus, const PipelineOptions& options, StageReporter& stage,
+void smooth_extract_certify(PipelineResult& result, const PipelineOptions& options, StageReporter& stage,
                             const std::vector<Vec3d>& input_positions, const std::function<std::string()>& structured);
 
 /// Runs the independent certifier on result.igm (checks 1-4; not when `igm_report_done`: the
-/// extraction by isolines ran it) and result.quads (check 5, expected genus `genus`) and stores
-/// the reports in `result`.
-void certify_outputs(PipelineResult& result, int genus, const PipelineOptions& options, bool igm_report_done = false);
+/// extraction by isolines ran it) and result.quads (check 5, expected genus result.stats.genus and,
+/// for an open surface, its boundary loops) and stores the reports in `result`.
+void certify_outputs(PipelineResult& result, const PipelineOptions& options, bool igm_report_done = false);
 
 /// The first output locations (IgmMesh::locations): the input vertices as weight-1 points, then the
 /// surface's constructed points, moved out of `surface` (surface.constructed is left empty), with

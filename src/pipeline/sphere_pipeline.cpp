@@ -169,7 +169,7 @@ PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions&
   embedding = OrbifoldTutteResult{};
 
   // --- smooth, extract (the 2 a b cells of the domain, or the smoothed map's isolines), certify ---
-  smooth_extract_certify(result, 0, options, stage, surface.input_positions, [&] {
+  smooth_extract_certify(result, options, stage, surface.input_positions, [&] {
     // The cells of the domain, located in the disk's map: its vertices' UVs back from the IGM's
     // corners (put on a double grid, they may differ from the embedding's), unscaled.
     std::vector<Point2q> disk_uv(cut.disk_to_surface.size());

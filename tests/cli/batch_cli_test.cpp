@@ -134,7 +134,7 @@ TEST_CASE("igm batch over a folder: a verdict per mesh, the summary's counts, --
   generate(cwd, "2", "400", "2", "in/sub/g2.off");  // found in a subfolder
   const fs::path meshes = data / "meshes";
   for (const char* m : {"clean/tetrahedron.off", "clean/pipe.off", "polygonal/hole.off", "repairable/cube-shuffled.off",
-                        "invalid/b9.ply", "invalid/knot2.off"})
+                        "invalid/b9.ply", "invalid/knot2.off", "invalid/polygon_mesh.off"})
     fs::copy_file(meshes / m, in / fs::path(m).filename());
   std::ofstream(in / "notes.txt") << "not a mesh\n";
 
@@ -144,7 +144,7 @@ TEST_CASE("igm batch over a folder: a verdict per mesh, the summary's counts, --
   const std::map<std::string, std::string> expected = {
       {"g1.obj", "certified"},        {"g2.off", "certified"},          {"tetrahedron.off", "certified"},
       {"pipe.off", "certified"},      {"hole.off", "certified"},        {"cube-shuffled.off", "certified"},
-      {"b9.ply", "invalid_input"},    {"knot2.off", "invalid_input"}};
+      {"b9.ply", "invalid_input"},    {"knot2.off", "certified"},       {"polygon_mesh.off", "invalid_input"}};
   CHECK(verdicts(cwd / "out") == expected);
   for (const std::string& l : lines_of(contents(cwd / "out/results.jsonl"))) {
     CAPTURE(l);
@@ -152,26 +152,26 @@ TEST_CASE("igm batch over a folder: a verdict per mesh, the summary's counts, --
     CHECK(has(l, "\"seconds\": "));
     CHECK(has(l, "\"peak_mb\": "));
     if (has(l, "b9.ply")) CHECK(field(l, "error_kind") == "no_faces");
-    if (has(l, "knot2.off")) CHECK(field(l, "error_kind") == "several_components");
+    if (has(l, "polygon_mesh.off")) CHECK(field(l, "error_kind") == "non_manifold_vertex");  // without --split-nonmanifold
     if (field(l, "verdict") == "certified") {
       CHECK(!has(l, "error_kind"));
       const fs::path stem = fs::path(field(l, "file")).stem();
       CHECK(fs::file_size(cwd / "out/runs" / field(l, "id") / (stem.string() + ".quad.obj")) > 0);
     }
   }
-  CHECK(summary_count(r.out, "certified") == 6);
+  CHECK(summary_count(r.out, "certified") == 7);
   CHECK(summary_count(r.out, "invalid_input") == 2);
   CHECK(summary_count(r.out, "timeout") == 0);
-  CHECK(has(r.out, "(8 meshes)"));  // the time quantiles
+  CHECK(has(r.out, "(9 meshes)"));  // the time quantiles
   const Proc s = igm(cwd, {"batch", "--summary", "-o", "out"});
   CHECK(s.code == 0);
-  CHECK(summary_count(s.out, "certified") == 6);
+  CHECK(summary_count(s.out, "certified") == 7);
   CHECK(summary_count(s.out, "invalid_input") == 2);
   // OUT inside DIR: the runs' own .obj outputs are not taken for meshes of the job.
   fs::rename(cwd / "out", in / "out");  // its lines name the meshes by their absolute paths still
   const Proc inner = igm(cwd, {"batch", "in", "-o", "in/out"});
   CHECK(inner.code == 0);
-  CHECK(has(inner.err, "[batch] 8 meshes, 8 done already, 0 to run"));
+  CHECK(has(inner.err, "[batch] 9 meshes, 9 done already, 0 to run"));
   fs::remove_all(cwd);
 }
 
@@ -250,10 +250,10 @@ TEST_CASE("GNU parallel running igm batch per mesh appends the lines of the sequ
   generate(cwd, "1", "200", "1", "g1.obj");
   generate(cwd, "2", "300", "2", "g2.obj");
   generate(cwd, "0", "200", "3", "g0.off");
-  std::ofstream(cwd / "open.off") << "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";  // a boundary
-  const std::vector<std::string> files = {"g1.obj", "g2.obj", "g0.off", "open.off"};
+  std::ofstream(cwd / "points.off") << "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n";  // no faces
+  const std::vector<std::string> files = {"g1.obj", "g2.obj", "g0.off", "points.off"};
   // The sequential run, from a LIST (a comment, a blank line, one absolute path).
-  std::ofstream(cwd / "list.txt") << "# meshes\ng1.obj\n\n" << (cwd / "g2.obj").string() << "\n g0.off \nopen.off\n";
+  std::ofstream(cwd / "list.txt") << "# meshes\ng1.obj\n\n" << (cwd / "g2.obj").string() << "\n g0.off \npoints.off\n";
   const Proc seq = igm(cwd, {"batch", "list.txt", "-o", "seq"});
   INFO(seq.err);
   REQUIRE(seq.code == 0);
@@ -275,8 +275,8 @@ TEST_CASE("GNU parallel running igm batch per mesh appends the lines of the sequ
   const auto a = normalized(contents(cwd / "seq/results.jsonl")), b = normalized(contents(cwd / "par/results.jsonl"));
   CHECK(a.size() == 4);
   CHECK(a == b);
-  CHECK(field(a.back(), "verdict") == "invalid_input");  // open.off sorts last
-  CHECK(field(a.back(), "error_kind") == "boundary");
+  CHECK(field(a.back(), "verdict") == "invalid_input");  // points.off sorts last
+  CHECK(field(a.back(), "error_kind") == "no_faces");
   fs::remove_all(cwd);
 }
 

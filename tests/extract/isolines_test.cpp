@@ -395,8 +395,9 @@ TEST_CASE("isolines: a trace may cross more than F triangles (slivers), within t
 
 namespace {
 
-// The pipeline as an oracle: its IGM is on its quad mesh's grid (one UV unit per quad), so the
-// extractor must give the pipeline's quads, at the same exact points of the input surface
+// The pipeline as an oracle: its unsmoothed IGM is on its quad mesh's grid (one UV unit per quad)
+// and with structured_extraction its quads are the layout's rectangles (or the pillowcase's cells),
+// so the extractor must give the pipeline's quads, at the same exact points of the input surface
 // (QuadMesh::locations), under a matching of the vertices by their exact location. The test's own
 // grid search (brute_force_points) gives the set G of exact surface points of the IGM's integer
 // points; the extractor's vertices must be G, once each.
@@ -404,6 +405,8 @@ void check_against_pipeline(const ValidMesh& mesh, int N) {
   PipelineOptions o;
   o.resolution = N;
   o.quality = false;
+  o.smooth = false;
+  o.structured_extraction = true;  // the oracle: the quads from the layout's rectangles
   const PipelineResult r = compute_igm(mesh, o);
   INFO("genus " << mesh.genus << ", resolution " << N);
   REQUIRE(r.certified());

@@ -162,3 +162,43 @@ TEST_CASE("layout: a broken layout is refused by the check") {
   mates[0] = 0;
   CHECK_THROWS_AS(build(2, LayoutKind::Kite, mates), Error);
 }
+
+TEST_CASE("layouts of open surfaces' disks: free sides, corners identified by labels, boundary index terms") {
+  const auto square = canonical_polygon(1);
+  const Point2q c = polygon_centre(square);
+  // A disk: four free sides, four distinct boundary corners (each of boundary valence 1).
+  for (LayoutKind kind : {LayoutKind::Spread, LayoutKind::Kite, LayoutKind::Paper}) {
+    LayoutOptions o;
+    o.kind = kind;
+    const QuadLayout L = make_layout(square, c, {-1, -1, -1, -1}, o, {0, 1, 2, 3});
+    CHECK(check_layout(L).empty());
+    const auto boundary = L.on_boundary();
+    const auto valence = L.valences();
+    int corners = 0;
+    for (int v = 0; v < L.num_layout_vertices; ++v) corners += boundary[v] && valence[v] == 1;
+    CHECK(corners == 4);
+    CHECK(L.num_surface_edges == static_cast<int>(L.edges.size()));  // nothing glued
+  }
+  // An annulus [loop 1, arc, loop 2, arc^-1]: corners 0, 1 on loop 1, 2, 3 on loop 2, the arc's
+  // ends; every boundary vertex straight (2 quads), no interior cone (chi = 0).
+  const QuadLayout A = make_layout(square, c, {-1, 3, -1, 1}, LayoutOptions{}, {0, 0, 1, 1});
+  CHECK(check_layout(A).empty());
+  CHECK(A.num_layout_vertices == 2);
+  for (int v : A.valences()) CHECK(v == 2);
+  // Eight sides (genus 0, three loops): two glued pairs of arcs, four free sides.
+  const auto octagon = canonical_polygon(2);
+  for (LayoutKind kind : {LayoutKind::Spread, LayoutKind::Kite, LayoutKind::Paper}) {
+    LayoutOptions o;
+    o.kind = kind;
+    const QuadLayout L = make_layout(octagon, polygon_centre(octagon), {-1, 7, -1, 5, -1, 3, -1, 1}, o,
+                                     {0, 0, 1, 2, 3, 3, 2, 1});
+    CHECK(check_layout(L).empty());
+  }
+  // Errors: an odd polygon for the spread layout, a mate that is not an involution.
+  const auto pentagon = rational_circle_polygon(5);
+  CHECK_THROWS_AS(make_layout(pentagon, polygon_centre(pentagon), {-1, -1, -1, -1, -1}), Error);
+  LayoutOptions kite;
+  kite.kind = LayoutKind::Kite;
+  CHECK(check_layout(make_layout(pentagon, polygon_centre(pentagon), {-1, -1, -1, -1, -1}, kite, {0, 1, 2, 3, 4})).empty());
+  CHECK_THROWS_AS(make_layout(square, c, {-1, 3, -1, 2}, LayoutOptions{}, {0, 0, 1, 1}), Error);
+}

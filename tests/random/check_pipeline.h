@@ -69,7 +69,7 @@ inline Outcome run_pipeline(const igm::PolygonSoup& soup, int expected_genus, in
   CHECK(*r.igm_report.genus == expected_genus);
   CHECK(*r.quad_report.genus == expected_genus);
   // Layout quads: the 2 cells of [0,2] x [0,1] for a sphere, else the default layout's.
-  const int layout = expected_genus == 0 ? 2 : igm::layout_quad_count(o.layout, expected_genus);
+  const int layout = expected_genus == 0 ? 2 : igm::layout_quad_count(o.layout, 4 * expected_genus);
   CHECK(static_cast<int>(r.quads.quads.size()) == layout * resolution * resolution);
   // The IGM is on the quads' grid: its exact UV area is their number.
   igm::Rational area2 = 0;

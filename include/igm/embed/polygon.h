@@ -19,6 +19,12 @@ namespace igm {
 /// corner bit sizes grow like 4 log2(64 g).
 std::vector<Point2q> canonical_polygon(int genus);
 
+/// The convex polygon of a disk with n >= 3 sides: the unit square for n = 4, canonical_polygon(n / 4)
+/// for other multiples of 4, else rational_circle_polygon(n) (near-regular, corners on the unit
+/// circle). Strictly convex and counter-clockwise. Throws igm::Error(InvalidArgument) for n < 3 or
+/// n > 400000. Cost O(n).
+std::vector<Point2q> schema_polygon(int n);
+
 /// The exact centroid (mean) of the corners: a strictly interior point of a strictly convex
 /// polygon. (1/2, 1/2) for the unit square, exactly (0, 0) for canonical_polygon(g >= 2).
 /// Throws igm::Error(InvalidArgument) if corners is empty.

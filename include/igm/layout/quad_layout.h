@@ -27,8 +27,9 @@ const char* to_string(LayoutKind kind);
 
 struct LayoutOptions {
   LayoutKind kind = LayoutKind::Spread;
-  /// Spread only: rows of the inner grid (1 <= rows <= g; the grid has rows x (2g - rows) quads).
-  /// 0: automatic, min(g, max(1, round(sqrt(2g)))) (documented in docs/layouts.md).
+  /// Spread only: rows of the inner grid (1 <= rows <= n/4 for n corners, 4g for a closed surface
+  /// of genus g; the grid has rows x (n/2 - rows) quads). 0: automatic, clamp(round(sqrt(n/2)), 1,
+  /// n/4) (for n = 4g: min(g, max(1, round(sqrt(2g)))); docs/layouts.md).
   int rows = 0;
   /// Spread only: the ring's depth, in units of the depth that would make its quads square on the
   /// regular polygon ((2/3) tan(pi/4g) R); at least twice the depth of the corners' chords, and
@@ -47,9 +48,11 @@ struct LayoutEdge {
   int side = -1, piece = -1;
 };
 
-/// A quad layout of the polygon with 4g corners (g >= 1).
+/// A quad layout of a convex polygon: 4g corners for a closed surface of genus g (every corner the
+/// root), any even number >= 4 for the disks of open surfaces (topology/open_cut.h), whose sides are
+/// glued in pairs or free (on the surface's boundary).
 struct QuadLayout {
-  int genus = 0;
+  int corners = 0;
   LayoutKind kind = LayoutKind::Spread;
   /// Exact points: 0 .. 4g-1 are the polygon corners (corner k = P_k), then the others.
   std::vector<Point2q> points;
@@ -59,8 +62,11 @@ struct QuadLayout {
   /// Per polygon side s: the layout points along it, from corner s to corner s+1 inclusive, in order.
   std::vector<std::vector<int>> side_points;
   /// How the sides are glued: side s to side_mate[s], in opposite directions (the point at
-  /// parameter t of side s is the point at 1 - t of its mate).
+  /// parameter t of side s is the point at 1 - t of its mate); -1: a free side.
   std::vector<int> side_mate;
+  /// Per corner: a label; corners with equal labels are one vertex of the glued surface (all 0 for
+  /// a closed surface's schema: every corner is the root). Glued sides identify their ends too.
+  std::vector<int> corner_label;
 
   // --- derived by finish_layout ---
   std::vector<LayoutEdge> edges;
@@ -68,8 +74,8 @@ struct QuadLayout {
   /// or b -> a (0).
   std::vector<std::array<int, 4>> quad_edge;
   std::vector<std::array<char, 4>> quad_edge_forward;
-  /// Per point: its vertex on the glued surface (every corner is vertex 0, the root; points glued
-  /// across paired sides share one). num_layout_vertices = max + 1.
+  /// Per point: its vertex on the glued surface (corners by their labels, corner 0's vertex is 0;
+  /// points glued across paired sides share one). num_layout_vertices = max + 1.
   std::vector<int> layout_vertex;
   int num_layout_vertices = 0;
   /// Per edge: its edge on the glued surface (a boundary piece and its mate's share one).
@@ -83,28 +89,33 @@ struct QuadLayout {
   std::vector<int> chord;
   int num_chords = 0;
 
-  int num_corners() const { return 4 * genus; }
+  int num_corners() const { return corners; }
+  /// Per layout vertex: whether it lies on a free side (a boundary vertex of the surface).
+  std::vector<char> on_boundary() const;
   /// Number of layout quads at each surface vertex (its valence in the quad layout).
   std::vector<int> valences() const;
 };
 
-/// Builds the layout `options.kind` on `corners` (a strictly convex counter-clockwise 4g-gon,
-/// canonical_polygon in embed/polygon.h) with interior reference point `centre` (strictly inside),
-/// glued by `side_mate` (a fixed-point-free involution of the 4g sides; any such pairing: every
-/// layout here splits all sides alike and symmetrically). Every quad is checked strictly convex,
-/// and the whole layout by check_layout, with exact predicates. Throws igm::Error(InvalidArgument)
-/// for a bad polygon, centre, pairing or rows; Internal if a check fails (never returns a bad
-/// layout). Cost O(layout quads + g) exact operations (O(g) rational points of O(log g) bits).
+/// Builds the layout `options.kind` on `corners` (a strictly convex counter-clockwise n-gon,
+/// embed/polygon.h) with interior reference point `centre` (strictly inside), glued by `side_mate`
+/// (an involution of the n sides without fixed points, -1 for a free side; any such pairing: every
+/// layout here splits all sides alike and symmetrically), its corners identified by
+/// `corner_label` (empty: all one vertex, the closed schema's root). paper needs n % 4 == 0, spread
+/// an even n; for n = 4 both are the polygon itself. Every quad is checked strictly convex, and the
+/// whole layout by check_layout, with exact predicates. Throws igm::Error(InvalidArgument) for a bad
+/// polygon, centre, pairing, labels or rows; Internal if a check fails (never returns a bad
+/// layout). Cost O(layout quads + n) exact operations (O(n) rational points of O(log n) bits).
 QuadLayout make_layout(const std::vector<Point2q>& corners, const Point2q& centre, const std::vector<int>& side_mate,
-                       const LayoutOptions& options = {});
+                       const LayoutOptions& options = {}, const std::vector<int>& corner_label = {});
 
 /// The side pairing of the canonical word a1 b1 a1^-1 b1^-1 ... ag bg ag^-1 bg^-1: side 4i with
 /// 4i + 2, 4i + 1 with 4i + 3 (genus >= 1). O(g).
 std::vector<int> canonical_side_mates(int genus);
 
-/// The number of quads make_layout gives for this kind, genus (>= 1) and rows (0: automatic):
-/// paper 5g (1 for a torus), kite 4g, spread 8g + rows (2g - rows) (1 for a torus). O(1).
-int layout_quad_count(LayoutKind kind, int genus, int rows = 0);
+/// The number of quads make_layout gives for this kind, number of corners n (4g for a closed
+/// surface of genus g) and rows (0: automatic): paper 5n/4 (1 for n = 4), kite n, spread 2n + r(n/2
+/// - r) (1 for n = 4). O(1).
+int layout_quad_count(LayoutKind kind, int corners, int rows = 0);
 
 /// Fills the derived members of `layout` from points, quads, side_points and side_mate: edges and
 /// their quads, the glued layout vertices and surface edges, the chords (union-find). Throws
@@ -115,9 +126,11 @@ void finish_layout(QuadLayout& layout);
 /// Independent check of a finished layout, exactly: every quad strictly convex and
 /// counter-clockwise; every interior edge in one quad on each side and every boundary edge a side
 /// piece; side points on their side in strictly increasing order; paired sides split at mirrored
-/// parameters (t on side s, 1 - t on its mate); the quads' areas sum to the polygon's; Euler
-/// characteristic 1 of the planar subdivision; on the glued surface the index formula
-/// sum over vertices (4 - valence) = 4 chi = 8 - 8g. Returns "" or the first violation. Cost O(E).
+/// parameters (t on side s, 1 - t on its mate); the quads wind once around every inner point (a
+/// tiling of the polygon); Euler characteristic 1 of the planar subdivision; on the glued surface
+/// every edge in two quads, or one on a free side, so that the index formula
+/// sum_interior (4 - valence) + sum_boundary (2 - valence) = 4 chi holds (chi = V - E + F of the
+/// glued quads; 8 - 8g for a closed surface of genus g). Returns "" or the first violation. Cost O(E).
 std::string check_layout(const QuadLayout& layout);
 
 }  // namespace igm

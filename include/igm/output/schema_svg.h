@@ -12,7 +12,7 @@ namespace igm {
 
 struct SchemaDrawing {
   std::vector<Vec2d> polygon;                          // corners, counter-clockwise
-  std::vector<int> side_pair;                          // side s (corner s -> s+1) glues to side_pair[s]
+  std::vector<int> side_pair;                          // side s (corner s -> s+1) glues to side_pair[s] (-1: free, dashed grey)
   /// Optional: side s drawn as this polyline (from corner s to corner s+1) instead of a segment
   /// (genus 0: the sides of the orbifold disk are mesh paths, not straight).
   std::vector<std::vector<Vec2d>> side_paths;

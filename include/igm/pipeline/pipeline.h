@@ -15,6 +15,7 @@
 #include "igm/layout/quad_layout.h"
 #include "igm/layout/sizing.h"
 #include "igm/mesh/validate.h"
+#include "igm/mesh/validate_surfaces.h"
 #include "igm/output/igm_mesh.h"
 #include "igm/output/schema_svg.h"
 #include "igm/quality/quality.h"
@@ -96,9 +97,14 @@ struct PipelineOptions {
   /// the quads from its integer isolines (extract/isolines.h). Off: the layout's map, put on a
   /// double grid where that keeps it valid (smooth/dyadic.h), and its rectangles' grids.
   bool smooth = true;
-  /// The smoothing's budgets: Newton iterations, and wall seconds since it began (0: none).
+  /// The smoothing's budgets: Newton iterations, and wall seconds since it began (0: none; < 0:
+  /// automatic, 10 s per 100k IGM triangles, at least 5 s and at most 60 s).
   int smooth_iterations = 100;
-  double smooth_seconds = 60;
+  double smooth_seconds = -1;
+  /// Without smoothing: take the quads from the map's own structure (the layout's rectangles,
+  /// extract/patch_grid.h; genus 0: the pillowcase's cells, extract/orbifold_quads.h) instead of
+  /// its integer isolines. The same quads (the tests compare them): kept as the isolines' oracle.
+  bool structured_extraction = false;
   /// Called after every smoothing iteration (the library never prints).
   std::function<void(const SmoothProgress&)> smooth_progress;
   /// Measure the outputs' quality (quality/quality.h; never decides validity): the IGM's
@@ -111,6 +117,7 @@ struct PipelineOptions {
 
 struct PipelineStats {
   int genus = 0;
+  int boundary_loops = 0;  // of an open surface (0: closed)
   int input_vertices = 0, input_faces = 0;
   int refined_vertices = 0, refined_faces = 0;  // after the topology stage's splits
   int output_vertices = 0, output_triangles = 0;  // the IGM triangle mesh
@@ -156,5 +163,33 @@ struct PipelineResult {
 /// both outputs. Throws igm::Error(InvalidArgument) for bad sizes, a bad root or a bad cone list.
 /// Cost: dominated by the embedding and the overlay, about O(n log n) plus the exact arithmetic.
 PipelineResult compute_igm(const ValidMesh& mesh, const PipelineOptions& options = {});
+
+/// compute_igm on one surface of validate_surfaces (mesh/validate_surfaces.h): a closed one as
+/// above; an open one (boundary loops) cut into a disk with free sides along its boundary
+/// (topology/open_cut.h), every boundary edge then on an integer isoline and every boundary
+/// corner at an integer point, certified in the certifier's boundary mode (certify/README.md).
+/// Vertex ids in the result are the component's local ids. Errors as compute_igm.
+PipelineResult compute_igm(const SurfaceComponent& surface, const PipelineOptions& options = {});
+
+/// Every surface's IGM and quads, and all of them as one output: ids of component c offset by the
+/// vertices of the components before it (IGM: their refined vertices; quads: their quad vertices;
+/// locations: their input vertices, in component order), certified together with the certifier's
+/// components mode (and boundary mode for open surfaces; per component its genus and loops).
+struct SurfacesResult {
+  std::vector<PipelineResult> components;  // one per SurfaceSet component, in its order
+  IgmMesh igm;
+  QuadMesh quads;
+  certify::Report igm_report, quad_report;  // the certifier on the merged outputs
+  IgmQuality igm_quality;                   // with PipelineOptions::quality, over all of it
+  QuadQuality quad_quality;
+  std::vector<Vec3d> input_positions;       // the components' input vertices, merged
+  bool certified() const { return igm_report.valid() && quad_report.valid(); }
+};
+
+/// Runs compute_igm on every component of `surfaces` and merges them (above). A quad count (given,
+/// or the default) is shared among several surfaces in proportion to their 3D areas; an edge
+/// length or a resolution applies to each. The progress events of component c carry its index in
+/// their detail ("surface c: ..."). Cost: the sum.
+SurfacesResult compute_igms(const SurfaceSet& surfaces, const PipelineOptions& options = {});
 
 }  // namespace igm
