@@ -173,8 +173,9 @@ TEST_CASE("open IGMs on the grid: integers kept exactly, every boundary edge on 
     int integers_changed = 0, thirds = 0;
     for (std::size_t f = 0; f < igm.corner_uv.size(); ++f)
       for (int i = 0; i < 3; ++i)
-        for (const auto& [before, after] : {std::pair{&igm.corner_uv[f][i].x, &r.corner_uv[f][i].x},
-                                            std::pair{&igm.corner_uv[f][i].y, &r.corner_uv[f][i].y}}) {
+        for (const auto& [before, after] :
+             {std::pair{&igm.corner_uv[f][i].x, &r.corner_uv[f][i].x},
+              std::pair{&igm.corner_uv[f][i].y, &r.corner_uv[f][i].y}}) {
           if (before->get_den() == 1) integers_changed += *before != *after;
           thirds += before->get_den() % 3 == 0 && *before != *after;
         }

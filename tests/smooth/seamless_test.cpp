@@ -164,7 +164,8 @@ void check_against_certifier(const IgmMesh& igm, const SeamlessStructure& s) {
       certify::certify_igm(certify_input(igm, igm.corner_uv), igm_test::open_options());
   REQUIRE(r.valid());
   std::map<std::int64_t, std::int64_t> interior, boundary;
-  for (int v = 0; v < s.num_vertices(); ++v) ++(s.boundary[v] ? boundary : interior)[s.angle_index[v]];
+  for (int v = 0; v < s.num_vertices(); ++v)
+    ++(s.boundary[v] ? boundary : interior)[s.angle_index[v]];
   CHECK(interior == r.check(4)->histogram);
   CHECK(boundary == r.check(4)->boundary_histogram);
   CHECK(s.boundary_loops == *r.boundary_loops);
@@ -175,7 +176,8 @@ void check_against_certifier(const IgmMesh& igm, const SeamlessStructure& s) {
 
 }  // namespace
 
-TEST_CASE("the square disk: four corners fixed, the sides' vertices slide along u = 0, n or v = 0, n") {
+TEST_CASE(
+    "the square disk: four corners fixed, the sides' vertices slide along u = 0, n or v = 0, n") {
   const int n = 4;
   const certify_test::GridPatch g = certify_test::square_disk(n);
   const IgmMesh igm = igm_test::lifted(g.igm, igm_test::bumped);
@@ -223,8 +225,9 @@ TEST_CASE("cylinder, L-shape, slit, pillow with a hole, two components: angles, 
       {"cylinder 5 x 3", igm_test::tube(5, 3), 2, 1, 0, {{2, 10}}, {}},
       {"L-shape 2", igm_test::lifted(certify_test::l_shape(2).igm, igm_test::bumped), 1, 1, 0,
        {{1, 5}, {2, 10}, {3, 1}}, {}},
-      {"slit 4, cut 2 long", igm_test::lifted(certify_test::slit_square(4, 2, 2).igm, igm_test::bumped), 1,
-       1, 0, {{1, 6}, {2, 13}, {4, 1}}, {}},
+      {"slit 4, cut 2 long",
+       igm_test::lifted(certify_test::slit_square(4, 2, 2).igm, igm_test::bumped), 1, 1, 0,
+       {{1, 6}, {2, 13}, {4, 1}}, {}},
       {"pillow 3 with a hole", igm_test::inflated_pillow_with_hole(3, 1, 1), 1, 1, 0,
        {{3, 4}}, {{2, 4}}},
       {"disk 2 and torus 3", igm_test::disk_and_torus(2, 3), 1, 2, 1, {{1, 4}, {2, 4}}, {}},
@@ -255,7 +258,9 @@ TEST_CASE("cylinder, L-shape, slit, pillow with a hole, two components: angles, 
   }
 }
 
-TEST_CASE("open IGMs refused with the element: a boundary edge off its isoline, a slit tip off the grid") {
+TEST_CASE(
+    "open IGMs refused with the element: a boundary edge off its isoline, a slit tip off the "
+    "grid") {
   SUBCASE("a straight boundary vertex moved off its side: its two boundary edges") {
     certify_test::GridPatch g = certify_test::square_disk(3);
     const int v = g.id(1, 0);

@@ -49,8 +49,8 @@ void watch_boundary(const SeamlessStructure& s, const std::vector<std::array<Vec
     }
     if (s.slides(v) && c == s.reference_corner[v]) {
       const int a = s.isoline_axis[v];
-      slid_off = slid_off ||
-                 !same(a == 0 ? corner(c).x : corner(c).y, a == 0 ? s.vertex_uv[v].x : s.vertex_uv[v].y);
+      const Rational& fixed = a == 0 ? s.vertex_uv[v].x : s.vertex_uv[v].y;
+      slid_off = slid_off || !same(a == 0 ? corner(c).x : corner(c).y, fixed);
     }
   }
   seen.with_off_isoline += off;

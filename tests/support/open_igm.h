@@ -43,7 +43,8 @@ igm::IgmMesh lifted(const igm::certify::IgmInput& in, Lift lift) {
   std::vector<int> first(nv, -1);
   for (std::size_t c = 0; c < 3 * in.faces.size(); ++c)
     if (first[in.faces[c / 3][c % 3]] < 0) first[in.faces[c / 3][c % 3]] = static_cast<int>(c);
-  for (int v = 0; v < nv; ++v) m.positions.push_back(lift(v, m.corner_uv[first[v] / 3][first[v] % 3]));
+  for (int v = 0; v < nv; ++v)
+    m.positions.push_back(lift(v, m.corner_uv[first[v] / 3][first[v] % 3]));
   return m;
 }
 
@@ -56,7 +57,8 @@ inline igm::Vec3d bumped(int, const igm::Point2q& uv) {
 /// certify_test::cylinder(n, m) on a bulging tube: u once around (period n), v along the axis.
 inline igm::IgmMesh tube(int n, int m) {
   return lifted(certify_test::cylinder(n, m).igm, [n](int, const igm::Point2q& uv) {
-    const double a = 2 * std::numbers::pi * igm::to_double(uv.x) / n, h = igm::to_double(uv.y);
+    const double a = 2 * std::numbers::pi * igm::to_double(uv.x) / n;
+    const double h = igm::to_double(uv.y);
     const double r = 0.8 * n / (2 * std::numbers::pi) * (1 + 0.3 * std::sin(1.7 * h));
     return igm::Vec3d{r * std::cos(a), r * std::sin(a), 1.2 * h};
   });
@@ -67,14 +69,16 @@ inline igm::IgmMesh tube(int n, int m) {
 inline igm::IgmMesh inflated_pillow_with_hole(int m, int ci, int cj) {
   return lifted(certify_test::pillow_with_hole(m, ci, cj), [m](int, const igm::Point2q& uv) {
     const double u = igm::to_double(uv.x), v = igm::to_double(uv.y);
-    const double b = m / 3.0 * std::sin(std::numbers::pi * std::abs(u) / m) * std::sin(std::numbers::pi * v / m);
+    const double pi = std::numbers::pi;
+    const double b = m / 3.0 * std::sin(pi * std::abs(u) / m) * std::sin(pi * v / m);
     return igm::Vec3d{std::abs(u), v, u >= 0 ? b : -b};
   });
 }
 
 /// certify_test::torus(n) on a ring torus, translated by `dx` along x.
 inline igm::Vec3d ring(int n, double dx, const igm::Point2q& uv) {
-  const double a = 2 * std::numbers::pi * igm::to_double(uv.x) / n, b = 2 * std::numbers::pi * igm::to_double(uv.y) / n;
+  const double turn = 2 * std::numbers::pi / n;
+  const double a = turn * igm::to_double(uv.x), b = turn * igm::to_double(uv.y);
   const double R = n / 2.0, r = n / 5.0;
   return {dx + (R + r * std::cos(b)) * std::cos(a), (R + r * std::cos(b)) * std::sin(a),
           r * std::sin(b)};

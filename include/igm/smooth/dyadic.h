@@ -2,13 +2,14 @@
 // Certification in plain doubles: a map given by one UV per vertex (seamless.h) is placed on a
 // dyadic grid fine enough that every vertex UV x_v and every copy T_c(x_v) = R^k x_v + t of it
 // is exactly a double. Integers are on every grid: cones, boundary corners and the isoline
-// coordinate of sliding boundary vertices (seamless.h) keep their exact values. Rounding the vertex UVs to the grid and rebuilding every corner from its
-// vertex keeps every transition exact: the two UVs of an edge end in its two faces are T_c(x_v)
-// and T_c'(x_v) = M(T_c(x_v)) for the edge's transition M, whatever x_v is (at a regular vertex
-// the fan closes up with the identity; a cone keeps its integer point). Cones stay at their
-// integer points; so the rounded map is a valid IGM iff every UV triangle is still strictly
-// positive and every vertex keeps its angle (regular vertices stay regular, cones keep their
-// index), which is checked exactly (check_map). Used for smoothed maps (smooth.h) and for exact
+// coordinate of sliding boundary vertices (seamless.h) keep their exact values. Rounding the
+// vertex UVs to the grid and rebuilding every corner from its vertex keeps every transition
+// exact: the two UVs of an edge end in its two faces are T_c(x_v) and T_c'(x_v) = M(T_c(x_v))
+// for the edge's transition M, whatever x_v is (at a regular vertex the fan closes up with the
+// identity; a cone keeps its integer point). Cones stay at their integer points; so the rounded
+// map is a valid IGM iff every UV triangle is still strictly positive, every boundary edge still
+// on its isoline and every vertex keeps its angle (regular vertices stay regular, cones keep
+// their index), which is checked exactly (check_map). Used for smoothed maps (smooth.h) and for exact
 // maps, so that a doubles file (write_igm_obj) certifies too.
 #include <array>
 #include <cstddef>

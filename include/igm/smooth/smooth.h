@@ -113,9 +113,9 @@ struct SmoothResult {
 /// where degenerate: src/smooth/symmetric_dirichlet.h) to its UV triangle, area weighted and
 /// normalized (4 at best). The total UV area does not change when non-cone vertices move (nor
 /// when a straight boundary vertex slides: the area's gradient there is normal to its isoline),
-/// so the scale is fixed. Projected Newton: per-triangle Hessians made positive semi-definite through
-/// the analytic eigensystem (the one eigenvalue that can be negative replaced by its absolute
-/// value), a sparse Cholesky solve of the system with its diagonal raised by 1e-9 of itself
+/// so the scale is fixed. Projected Newton: per-triangle Hessians made positive semi-definite
+/// through the analytic eigensystem (the one eigenvalue that can be negative replaced by its
+/// absolute value), a sparse Cholesky solve of the system with its diagonal raised by 1e-9 of itself
 /// (more where the factorization fails; embed/sparse_cholesky.h up to genus 8, above it Eigen's
 /// SimplicialLDLT with AMD ordering, whose cost does not grow with the handles; genus: the sum
 /// over the components), a line search
