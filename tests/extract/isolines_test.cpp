@@ -593,6 +593,10 @@ TEST_CASE("isolines with boundary: grid points inside boundary edges, inside edg
     inside_boundary_edges += v.boundary && v.kind == GridPointKind::Edge;
   CHECK(inside_boundary_edges == 8);
   CHECK(boundary_valences(q) == std::map<int, int>{{2, 4}, {3, 8}});
+  // The unit segments along the boundary pass through its vertices at 3/4, 3/2 and 9/4 of each
+  // side (one each), traced from both ends: forwards and backwards through 12 fans. No interior
+  // vertex (3i/4, 3j/4), 0 < i, j < 4, is on an integer line.
+  CHECK(q.stats.vertex_crossings == 24);
 }
 
 TEST_CASE("isolines with boundary: cylinders, two loops of straight boundary") {
