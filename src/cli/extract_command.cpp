@@ -26,8 +26,11 @@ int usage(const std::string& message) {
   std::fprintf(
       stderr,
       "igm extract: %s\nusage: igm extract IGM.obj|IGM.exact [-o QUAD.obj] [--json REPORT.json]\n"
+      "                   [--boundary] [--components]\n"
       "  the quad mesh of the IGM's integer isolines, located exactly; the IGM is read with\n"
       "  exact UVs (decimals or p/q) and certified first. Default output: NAME.quad.obj here.\n"
+      "  --boundary accepts IGMs of surfaces with boundary (every boundary edge on an integer\n"
+      "  isoline), --components several connected components (as igm-certify's flags)\n"
       "  exit 0 quads certified, 1 the IGM (or the quads) rejected by the certifier, 2 unreadable\n"
       "  input or usage, 3 internal error\n",
       message.c_str());
@@ -57,9 +60,12 @@ std::string stats_json(const igm::IsolineQuads& q) {
   std::ostringstream o;
   o << "{\"quads\": " << q.quads.size() << ", \"vertices\": " << q.vertices.size()
     << ", \"edges\": " << q.num_edges << ", \"genus\": " << q.genus
+    << ", \"boundary_loops\": " << q.boundary_loops
     << ", \"grid_points_on_vertices\": " << s.grid_points_on_vertices
     << ", \"grid_points_on_edges\": " << s.grid_points_on_edges
     << ", \"grid_points_in_faces\": " << s.grid_points_in_faces << ", \"cones\": " << s.cones
+    << ", \"grid_points_on_boundary\": " << s.grid_points_on_boundary
+    << ", \"boundary_corners\": " << s.boundary_corners
     << ", \"traces\": " << s.traces << ", \"trace_steps\": " << s.trace_steps
     << ", \"max_trace_steps\": " << s.max_trace_steps
     << ", \"vertex_crossings\": " << s.vertex_crossings << ", \"seconds\": " << s.seconds_total
@@ -91,9 +97,14 @@ std::string base_name(const std::string& path) {
 
 int extract_command(const std::vector<std::string_view>& args) {
   std::string in_path, out_path, json_path;
+  igm::IsolineOptions options;
   for (std::size_t i = 0; i < args.size(); ++i) {  // bound: the arguments
     const std::string_view a = args[i];
-    if (a == "-o" || a == "--json") {
+    if (a == "--boundary") {
+      options.allow_boundary = true;
+    } else if (a == "--components") {
+      options.allow_components = true;
+    } else if (a == "-o" || a == "--json") {
       if (i + 1 >= args.size()) return usage(std::string(a) + " needs a file name");
       (a == "-o" ? out_path : json_path) = std::string(args[++i]);
     } else if (!a.empty() && a[0] == '-') {
@@ -141,7 +152,7 @@ int extract_command(const std::vector<std::string_view>& args) {
       throw igm::Error(igm::ErrorKind::Parse, "the OBJ readers disagree on the number of vertices");
 
     const auto t0 = std::chrono::steady_clock::now();
-    igm::IsolineResult x = igm::extract_isolines(in);
+    igm::IsolineResult x = igm::extract_isolines(in, options);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     x.report.source = in_path;
@@ -149,16 +160,20 @@ int extract_command(const std::vector<std::string_view>& args) {
       const int code = igm::certify::exit_code(x.report);
       std::printf("NOT AN IGM: %s\n", igm::certify::summary(x.report).c_str());
       print_witnesses(x.report);
+      const std::int64_t components = static_cast<std::int64_t>(x.report.components.size());
+      if (x.report.num_boundary_edges > 0 && !options.allow_boundary)
+        std::printf("  (the IGM has %lld boundary edges: --boundary accepts them)\n",
+                    static_cast<long long>(x.report.num_boundary_edges));
+      if (components > 1 && !options.allow_components)
+        std::printf("  (the IGM has %lld components: --components accepts them)\n",
+                    static_cast<long long>(components));
       if (!json_path.empty()) write_json(json_path, code, x.report, nullptr, nullptr);
       return code;
     }
     const igm::IsolineQuads& q = *x.quads;
-    igm::certify::QuadInput qin;
-    qin.quads = q.quads;
-    qin.num_vertices = static_cast<std::int64_t>(q.vertices.size());
-    igm::certify::Options qopt;
-    qopt.expected_genus = q.genus;
-    igm::certify::Report quad_report = igm::certify::certify_quads(qin, qopt);
+    // Pure quads of the IGM's genus; with --boundary / --components also its boundary loops and
+    // each component's (genus, loops).
+    igm::certify::Report quad_report = igm::certify_isoline_quads(x, options);
     quad_report.source = out_path;
     std::ostringstream obj_text;
     igm::QuadMesh mesh;
@@ -172,11 +187,11 @@ int extract_command(const std::vector<std::string_view>& args) {
     std::printf(
         "%zu quads, %zu vertices (%lld on mesh vertices, %lld on edges, %lld in triangles; %lld "
         "cones), "
-        "genus %d, from %zu triangles in %.3f s; wrote %s: %s\n",
+        "genus %d, %d boundary loops, from %zu triangles in %.3f s; wrote %s: %s\n",
         q.quads.size(), q.vertices.size(), static_cast<long long>(s.grid_points_on_vertices),
         static_cast<long long>(s.grid_points_on_edges),
         static_cast<long long>(s.grid_points_in_faces), static_cast<long long>(s.cones), q.genus,
-        in.triangles.size(), seconds, out_path.c_str(),
+        q.boundary_loops, in.triangles.size(), seconds, out_path.c_str(),
         quad_report.valid() ? "certified" : "NOT CERTIFIED");
     if (!quad_report.valid()) {
       std::printf(

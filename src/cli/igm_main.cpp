@@ -54,9 +54,10 @@ const Command kCommands[] = {
             "                                (writes DIR/NAME.igm.obj .igm.exact .quad.obj .cert.json .schema.svg\n"
             "                                .quad.svg; DIR=out)",
      cmd_run},
-    {"extract", "igm extract IGM.obj|IGM.exact [-o QUAD.obj] [--json REPORT.json]\n"
+    {"extract", "igm extract IGM.obj|IGM.exact [-o QUAD.obj] [--json REPORT.json] [--boundary] [--components]\n"
                 "                                the quad mesh of any IGM's integer isolines, exactly (the IGM certified\n"
-                "                                first; default output NAME.quad.obj)",
+                "                                first; default output NAME.quad.obj); --boundary: surfaces with boundary,\n"
+                "                                --components: several components",
      cmd_extract},
     {"batch", "igm batch DIR|LIST|MESH -o OUT [-j N] [--timeout S] [--memory-mb M] [-- RUN OPTIONS]\n"
               "                                `run` on every mesh of DIR (or of the LIST file, one path a line), each in\n"

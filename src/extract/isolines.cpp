@@ -13,6 +13,7 @@ namespace igm {
 namespace {
 
 using isolines::apply;
+using isolines::axis_of;
 using isolines::Charts;
 using isolines::find_grid_points;
 using isolines::find_point;
@@ -51,6 +52,7 @@ void build_seams(Charts& c) {
   Rational ex, ey, gx, gy, rx, ry, tx, ty;
   for (int h = 0; h < H; ++h) {  // bound: 3F half-edges
     const int tw = c.mesh.twin(h);
+    if (tw < 0) continue;  // a boundary half-edge: no seam
     // The ends a, b in h's triangle and the same ends a2, b2 in the twin's.
     const Point2q &a = c.corner(h), &b = c.corner(TriMesh::next(h));
     const Point2q &b2 = c.corner(tw), &a2 = c.corner(TriMesh::next(tw));
@@ -101,11 +103,21 @@ void build_seams(Charts& c) {
 
 // Step 2's start: per grid point its outgoing directions, counter-clockwise; slot s leaves grid
 // point point[s] in triangle face[s] along axis m[s] from the integer point start[s] of its chart.
+// A grid point on the boundary has the closed wedge from the boundary's forward direction (its
+// first slot) counter-clockwise to the boundary's backward one (its last slot).
 struct Slots {
   std::vector<int> begin;  // per grid point, size points + 1
   std::vector<int> point, face, m;
   std::vector<Grid2> start;
+  std::vector<char> boundary;  // per grid point: on the boundary
 };
+
+void add_slot(Slots& s, int point, int face, int m, const Grid2& at) {
+  s.point.push_back(point);
+  s.face.push_back(face);
+  s.m.push_back(m);
+  s.start.push_back(at);
+}
 
 // Appends the axis directions in the half-open wedge [a - o, b - o) counter-clockwise.
 void add_wedge(Slots& s, int point, int face, const Point2q& o, const Point2q& a, const Point2q& b,
@@ -115,18 +127,15 @@ void add_wedge(Slots& s, int point, int face, const Point2q& o, const Point2q& a
   int first = 0;
   while (first < 4 && !(in[first] && !in[(first + 3) % 4])) ++first;  // bound: 4
   if (first == 4) return;  // empty (a wedge of angle < 2 pi holds no full circle)
-  for (int i = 0; i < 4 && in[(first + i) % 4]; ++i) {  // bound: 4
-    s.point.push_back(point);
-    s.face.push_back(face);
-    s.m.push_back((first + i) % 4);
-    s.start.push_back(at);
-  }
+  for (int i = 0; i < 4 && in[(first + i) % 4]; ++i)  // bound: 4
+    add_slot(s, point, face, (first + i) % 4, at);
 }
 
 Slots make_slots(const Charts& c, const GridPoints& gp) {
   Slots s;
   const int n = static_cast<int>(gp.points.size());
   s.begin.reserve(n + 1);
+  s.boundary.assign(n, 0);
   Point2q o;
   for (int p = 0; p < n; ++p) {  // bound: grid points
     s.begin.push_back(static_cast<int>(s.point.size()));
@@ -140,35 +149,59 @@ Slots make_slots(const Charts& c, const GridPoints& gp) {
         s.start.push_back(q.uv);
       }
     } else if (q.kind == GridPointKind::Edge) {
-      // The side's triangle from the side's direction to its reverse, then the twin's likewise.
+      // The side's triangle from the side's direction to its reverse, then the twin's likewise;
+      // inside a boundary side the reverse itself closes the half-plane.
       const int he = 3 * q.face + q.local, tw = c.mesh.twin(he), g = tw / 3, i = tw % 3;
       set_point(o, q.uv);
       add_wedge(s, p, q.face, o, x[(q.local + 1) % 3], x[q.local], q.uv);
-      const Grid2 other = apply(c.k[he], q.uv, c.t[he]);
-      set_point(o, other);
-      add_wedge(s, p, g, o, (*c.uv)[g][(i + 1) % 3], (*c.uv)[g][i], other);
-      if (static_cast<int>(s.point.size()) - s.begin[p] != 4)
+      if (tw < 0) {
+        s.boundary[p] = 1;
+        const int back = axis_of(o, x[q.local]);
+        if (back < 0)
+          broken("the boundary side of triangle " + std::to_string(q.face) +
+                     " through grid point " + std::to_string(p) + " is on no isoline",
+                 p);
+        add_slot(s, p, q.face, back, q.uv);
+      } else {
+        const Grid2 other = apply(c.k[he], q.uv, c.t[he]);
+        set_point(o, other);
+        add_wedge(s, p, g, o, (*c.uv)[g][(i + 1) % 3], (*c.uv)[g][i], other);
+      }
+      const int expected = tw < 0 ? 3 : 4;
+      if (static_cast<int>(s.point.size()) - s.begin[p] != expected)
         broken("grid point " + std::to_string(p) + " inside an edge of triangle " +
                    std::to_string(q.face) + " has " +
                    std::to_string(static_cast<int>(s.point.size()) - s.begin[p]) +
-                   " isoline directions, not 4",
+                   " isoline directions, not " + std::to_string(expected),
                p);
     } else {
-      // Around the vertex counter-clockwise, each triangle's corner wedge in its own chart.
+      // Around the vertex counter-clockwise, each triangle's corner wedge in its own chart; at a
+      // boundary vertex from the first corner of its fan to the last, then its closing direction.
       const int v = (*c.triangles)[q.face][q.local];
-      int face = q.face, corner = q.local;
-      for (int step = 0; step < c.degree[v]; ++step) {  // bound: the degree of v
+      Heading first{q.face, q.local, 0, Grid2{}};
+      const bool open = isolines::rewind_to_fan_start(c, first);
+      s.boundary[p] = open;
+      int face = first.face, corner = first.corner, steps = 0;
+      while (steps < c.degree[v]) {  // bound: the degree of v
         const std::array<Point2q, 3>& y = (*c.uv)[face];
         if (!is_integer(y[corner].x) || !is_integer(y[corner].y))
           broken("vertex " + std::to_string(v) + " is a grid point in one triangle only", v);
         const Grid2 at{mpz_get_si(y[corner].x.get_num_mpz_t()),
                        mpz_get_si(y[corner].y.get_num_mpz_t())};
         add_wedge(s, p, face, y[corner], y[(corner + 1) % 3], y[(corner + 2) % 3], at);
+        ++steps;
         const int tw = c.mesh.twin(3 * face + (corner + 2) % 3);
+        if (tw < 0) {
+          const int back = isolines::closing_axis(c, face, corner);
+          if (back < 0)
+            broken("a boundary edge at vertex " + std::to_string(v) + " is on no isoline", v);
+          add_slot(s, p, face, back, at);
+          break;
+        }
         face = tw / 3;
         corner = tw % 3;
       }
-      if (face != q.face || corner != q.local)
+      if (open ? steps != c.degree[v] : (face != first.face || corner != first.corner))
         broken("the triangles around vertex " + std::to_string(v) + " do not close", v);
       if (static_cast<int>(s.point.size()) == s.begin[p])
         broken("grid point " + std::to_string(p) + " (vertex " + std::to_string(v) +
@@ -192,8 +225,10 @@ int arrival_slot(const Charts& c, const Slots& s, int p, const isolines::TraceEn
     const std::array<Point2q, 3>& x = (*c.uv)[at.face];
     const int i = end.side;
     set_point(scratch, at.target);
-    if (!in_wedge(scratch, x[(i + 1) % 3], x[i], at.m)) {  // the reverse points into the twin
-      const int he = 3 * at.face + i;
+    const int he = 3 * at.face + i;
+    // The reverse points into the twin; on a boundary side it runs back along the side, which
+    // this triangle holds (the closed half-plane).
+    if (!in_wedge(scratch, x[(i + 1) % 3], x[i], at.m) && c.mesh.twin(he) >= 0) {
       at.m = (at.m + c.k[he]) & 3;
       at.face = c.mesh.twin(he) / 3;
     }
@@ -224,19 +259,22 @@ IsolineResult extract_isolines(const IsolineInput& input, const IsolineOptions& 
       for (const Point2q& uv : tri) cin.corner_uv.push_back({uv.x, uv.y});
     certify::Options copt;
     copt.max_witnesses = options.max_witnesses;
+    copt.allow_boundary = options.allow_boundary;
+    copt.allow_components = options.allow_components;
     result.report = certify::certify_igm(std::move(cin), copt);
     stats.seconds_certify = seconds_since(t0);
   }
   if (!result.report.valid()) return result;
 
-  // The certified IGM: closed, manifold, oriented, connected, positive UV triangles, rigid seams.
+  // The certified IGM: manifold, oriented, positive UV triangles, rigid seams; closed and connected
+  // unless allowed, every boundary edge on an integer isoline.
   auto t0 = Clock::now();
   const int F = static_cast<int>(input.triangles.size());
   int V = static_cast<int>(result.report.num_vertices);
   Charts c;
   c.triangles = &input.triangles;
   c.uv = &input.corner_uv;
-  c.mesh = TriMesh::from_triangles(V, input.triangles);
+  c.mesh = TriMesh::from_triangles(V, input.triangles, /*allow_boundary=*/true);
   c.degree.assign(V, 0);
   for (const auto& tri : input.triangles)
     for (int v : tri) ++c.degree[v];
@@ -300,24 +338,39 @@ IsolineResult extract_isolines(const IsolineInput& input, const IsolineOptions& 
   stats.seconds_trace = seconds_since(t0);
 
   // Step 3: the faces, each side followed by the next one clockwise from its reverse at its end.
+  // Arriving at a boundary point along its first slot (going backwards along the boundary), the
+  // next side clockwise lies outside the surface: the face wraps to the point's last slot. The
+  // quads are the faces without a wrap; a face made of wraps only is a boundary loop of the grid
+  // run backwards (the outside); any other face is an error.
   t0 = Clock::now();
   IsolineQuads out;
   std::vector<int> edge_of(S, -1);
   for (int q = 0; q < S; ++q)  // bound: slots
     if (edge_of[q] < 0) edge_of[q] = edge_of[arrival[q]] = out.num_edges++;
   std::vector<char> used(S, 0);
-  for (int q0 = 0; q0 < S; ++q0) {  // bound: slots
+  for (int q0 = 0; q0 < S; ++q0) {  // bound: slots, and all faces together use each slot once
     if (used[q0]) continue;
     std::array<int, 4> quad{}, sides{};
-    int q = q0, len = 0;
-    for (; len < 4 && !used[q]; ++len) {  // bound: 4 sides (a face of another length is an error)
+    int q = q0, len = 0, wraps = 0;
+    do {
+      if (used[q])
+        broken("the isoline faces from grid point " + std::to_string(s.point[q0]) + " overlap",
+               s.point[q0]);
       used[q] = 1;
-      quad[len] = s.point[q];
-      sides[len] = edge_of[q];
+      if (len < 4) {
+        quad[len] = s.point[q];
+        sides[len] = edge_of[q];
+      }
+      ++len;
       const int a = arrival[q], p = s.point[a], val = s.begin[p + 1] - s.begin[p];
+      wraps += s.boundary[p] && a == s.begin[p];
       q = s.begin[p] + (a - s.begin[p] + val - 1) % val;
+    } while (q != q0);
+    if (wraps > 0 && wraps == len) {
+      ++out.boundary_loops;
+      continue;
     }
-    if (len != 4 || q != q0)
+    if (wraps > 0 || len != 4)
       broken("the isoline face from grid point " + std::to_string(s.point[q0]) +
                  " along its direction " + std::to_string(q0 - s.begin[s.point[q0]]) +
                  " is no quad",
@@ -325,7 +378,9 @@ IsolineResult extract_isolines(const IsolineInput& input, const IsolineOptions& 
     out.quads.push_back(quad);
     out.quad_edges.push_back(sides);
   }
-  const std::int64_t E = 3 * static_cast<std::int64_t>(F) / 2;
+  std::int64_t boundary_halfedges = 0;
+  for (int h = 0; h < c.mesh.num_halfedges(); ++h) boundary_halfedges += c.mesh.twin(h) < 0;
+  const std::int64_t E = (3 * static_cast<std::int64_t>(F) + boundary_halfedges) / 2;
   const std::int64_t chi = static_cast<std::int64_t>(V) - E + F;
   const std::int64_t chi_quads =
       n - static_cast<std::int64_t>(out.num_edges) + static_cast<std::int64_t>(out.quads.size());
@@ -333,7 +388,11 @@ IsolineResult extract_isolines(const IsolineInput& input, const IsolineOptions& 
     broken("the quads have Euler characteristic " + std::to_string(chi_quads) + ", the IGM " +
                std::to_string(chi),
            0);
-  out.genus = static_cast<int>((2 - chi) / 2);
+  if (out.boundary_loops != result.report.boundary_loops.value_or(-1))
+    broken("the quads have " + std::to_string(out.boundary_loops) + " boundary loops, the IGM " +
+               std::to_string(result.report.boundary_loops.value_or(-1)),
+           0);
+  out.genus = static_cast<int>(result.report.genus.value_or((2 - chi) / 2));
 
   // The output: exact barycentric coordinates, valences, 3D positions.
   out.vertices.resize(n);
@@ -346,6 +405,7 @@ IsolineResult extract_isolines(const IsolineInput& input, const IsolineOptions& 
     v.local = q.local;
     v.uv = {q.uv.x, q.uv.y};
     v.valence = s.begin[p + 1] - s.begin[p];
+    v.boundary = s.boundary[p] != 0;
     if (q.kind == GridPointKind::Vertex) {
       for (int i = 0; i < 3; ++i) v.barycentric[i] = i == q.local ? 1 : 0;
     } else {
@@ -355,7 +415,12 @@ IsolineResult extract_isolines(const IsolineInput& input, const IsolineOptions& 
     if (q.kind == GridPointKind::Vertex) ++stats.grid_points_on_vertices;
     if (q.kind == GridPointKind::Edge) ++stats.grid_points_on_edges;
     if (q.kind == GridPointKind::Face) ++stats.grid_points_in_faces;
-    if (v.valence != 4) ++stats.cones;
+    if (v.boundary) {
+      ++stats.grid_points_on_boundary;
+      if (v.valence != 3) ++stats.boundary_corners;
+    } else if (v.valence != 4) {
+      ++stats.cones;
+    }
   }
   if (!input.positions.empty()) {
     out.positions.reserve(n);
@@ -378,6 +443,25 @@ IsolineResult extract_isolines(const IsolineInput& input, const IsolineOptions& 
   out.stats = stats;
   result.quads = std::move(out);
   return result;
+}
+
+certify::Report certify_isoline_quads(const IsolineResult& result, const IsolineOptions& options) {
+  if (!result.quads)
+    throw Error(ErrorKind::InvalidArgument, "certify_isoline_quads: the extraction has no quads");
+  const IsolineQuads& q = *result.quads;
+  certify::QuadInput in;
+  in.quads = q.quads;
+  in.num_vertices = static_cast<std::int64_t>(q.vertices.size());
+  certify::Options o;
+  o.max_witnesses = options.max_witnesses;
+  o.allow_boundary = options.allow_boundary;
+  o.allow_components = options.allow_components;
+  o.expected_genus = result.report.genus.value_or(q.genus);
+  if (options.allow_boundary) o.expected_boundary_loops = result.report.boundary_loops;
+  if (options.allow_boundary || options.allow_components)
+    for (const certify::ComponentInfo& c : result.report.components)  // bound: components
+      o.expected_components.push_back({c.genus.value_or(-1), c.boundary_loops.value_or(-1)});
+  return certify::certify_quads(in, o);
 }
 
 }  // namespace igm

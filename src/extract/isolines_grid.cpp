@@ -70,7 +70,7 @@ int find_point(const Charts& c, const GridPoints& gp, int g, int corner, int sid
   Grid2 key = t;
   if (side >= 0) {
     const int he = 3 * g + side, tw = c.mesh.twin(he);
-    if (tw < he) {  // owned by the twin's triangle: look there, in its chart
+    if (tw >= 0 && tw < he) {  // owned by the twin's triangle: look there, in its chart
       face = tw / 3;
       key = apply(c.k[he], t, c.t[he]);
     }
@@ -202,7 +202,7 @@ GridPoints find_grid_points(const Charts& c, std::int64_t max_work) {
         }
         if (q.kind == GridPointKind::Edge) {
           const int he = 3 * f + q.local, tw = c.mesh.twin(he);
-          if (tw < he) {
+          if (tw >= 0 && tw < he) {
             foreign.push_back({tw / 3, tw % 3, apply(c.k[he], g, c.t[he])});
             continue;
           }
@@ -213,10 +213,12 @@ GridPoints find_grid_points(const Charts& c, std::int64_t max_work) {
     }
   }
   gp.face_begin[F] = static_cast<int>(gp.face_points.size());
-  // Found once: every point inside a side is found from both triangles, the second time (through
-  // the seam) at a point the first one owns; every corner at a grid point, from all its triangles.
+  // Found once: every point inside an interior side is found from both triangles, the second time
+  // (through the seam) at a point the first one owns (a boundary side has one triangle); every
+  // corner at a grid point, from all its triangles.
   std::int64_t on_edges = 0;
-  for (const GridPoint& q : gp.points) on_edges += q.kind == GridPointKind::Edge;
+  for (const GridPoint& q : gp.points)
+    on_edges += q.kind == GridPointKind::Edge && c.mesh.twin(3 * q.face + q.local) >= 0;
   if (static_cast<std::int64_t>(foreign.size()) != on_edges)
     broken(std::to_string(on_edges) + " grid points inside edges seen from one side, " +
                std::to_string(foreign.size()) + " from the other",

@@ -37,8 +37,8 @@ struct CornerFloor {
 };
 
 /// The certified IGM as the walks need it: half-edges (face f owns 3f..3f+2, half-edge 3f+i from
-/// corner i to corner i+1) and per half-edge the seam x -> R^k x + t from its face's chart to its
-/// twin's face's chart.
+/// corner i to corner i+1; a boundary half-edge has twin -1) and per half-edge the seam
+/// x -> R^k x + t from its face's chart to its twin's face's chart (the identity on the boundary).
 struct Charts {
   const std::vector<std::array<int, 3>>* triangles = nullptr;
   const std::vector<std::array<Point2q, 3>>* uv = nullptr;
@@ -76,8 +76,8 @@ struct GridPoint {
 };
 
 /// Every grid point once. face_points[face_begin[f] ..) are the points triangle f owns (inside it,
-/// or inside a side whose half-edge id is below its twin's), sorted by (y, x) for look-ups; a grid
-/// point on a mesh vertex is vertex_point[vertex].
+/// inside a side whose half-edge id is below its twin's, or inside a boundary side), sorted by
+/// (y, x) for look-ups; a grid point on a mesh vertex is vertex_point[vertex].
 struct GridPoints {
   std::vector<GridPoint> points;
   std::vector<int> vertex_point;  // per mesh vertex: its grid point or -1
@@ -107,6 +107,10 @@ int dot_axis(const Point2q& o, const Point2q& a, int m);
 /// from a - o, by an angle in (0, pi]; b - o may equal -(a - o)). Exact.
 bool in_wedge(const Point2q& o, const Point2q& a, const Point2q& b, int m);
 
+/// The axis direction m with a - o = lambda d_m, lambda > 0, or -1 if a - o is not along an axis.
+/// Exact.
+int axis_of(const Point2q& o, const Point2q& a);
+
 /// A direction at a point: triangle, the point's corner in it (-1 if not a corner), axis m in
 /// that triangle's chart, and an integer target point carried along (the trace's end).
 struct Heading {
@@ -116,11 +120,27 @@ struct Heading {
   Grid2 target;
 };
 
+/// Boundary fans: the last corner of a boundary vertex's fan (its side from corner i+2 to corner
+/// i is the incoming boundary edge) holds, besides its half-open wedge, the direction along that
+/// edge away from the vertex (the fan's closing direction), so that the fan's closed wedge is
+/// covered once. Likewise a point inside a boundary side has the closed half-plane.
+/// The closing direction of corner `corner` of face `face` if its side from corner+2 to corner is
+/// a boundary edge, else -1.
+int closing_axis(const Charts& c, int face, int corner);
+
+/// Turns clockwise around vertex corner(3 h.face + h.corner), carrying direction and target
+/// across the seams, to the first corner of its fan (whose outgoing side is a boundary edge).
+/// Returns false and leaves h as it was at an interior vertex (the ring closes). Bound: the
+/// vertex's degree.
+bool rewind_to_fan_start(const Charts& c, Heading& h);
+
 /// Turns around mesh vertex corner(3 h.face + h.corner) counter-clockwise, carrying direction and
-/// target across the seams, until the triangle whose half-open corner wedge holds the direction;
-/// with `unique`, walks the whole ring and checks that exactly one wedge holds it. Throws
-/// igm::Error(Internal) naming the vertex when none does (a vertex of total angle != 2 pi met
-/// away from a grid point) or the ring does not close. Bound: the vertex's degree.
+/// target across the seams, until the triangle whose half-open corner wedge holds the direction
+/// (at the end of a boundary fan: or its closing direction); with `unique`, walks the whole ring
+/// (a boundary vertex's whole fan, from its first corner) and checks that exactly one wedge holds
+/// it. Throws igm::Error(Internal) naming the vertex when none does (a vertex of total angle !=
+/// 2 pi met away from a grid point, or a direction out of the surface) or the ring does not
+/// close. Bound: twice the vertex's degree.
 Heading turn_to_wedge(const Charts& c, Heading h, bool unique);
 
 /// Where a trace ends: the triangle (closed) holding the target, the arrival direction in its
@@ -134,9 +154,12 @@ struct TraceEnd {
 };
 
 /// Follows the integer isoline from a grid point along `start` (start.m lies in the half-open
-/// wedge of start.face at the point; start.target = point + d_m) until the triangle holding the
-/// target. Throws igm::Error(Internal) naming `what` if the walk leaves the isoline's triangles
-/// or passes `max_steps` triangles. Cost O(steps) exact comparisons and orient2d.
+/// wedge of start.face at the point, or is its closing direction on the boundary; start.target =
+/// point + d_m) until the triangle holding the target. Along a boundary side the isoline may run
+/// either way (against the side's direction the triangle is on its right). Throws
+/// igm::Error(Internal) naming `what` if the walk leaves the isoline's triangles, leaves the
+/// surface across a boundary edge or passes `max_steps` triangles. Cost O(steps) exact
+/// comparisons and orient2d.
 TraceEnd trace(const Charts& c, Heading start, std::int64_t max_steps, std::int64_t what);
 
 }  // namespace igm::isolines

@@ -71,29 +71,77 @@ bool in_wedge(const Point2q& o, const Point2q& a, const Point2q& b, int m) {
   return c > 0 ? cross_axis(o, b, m) < 0 : (c == 0 && dot_axis(o, a, m) > 0);
 }
 
+int axis_of(const Point2q& o, const Point2q& a) {
+  for (int m = 0; m < 4; ++m)  // bound: 4
+    if (cross_axis(o, a, m) == 0 && dot_axis(o, a, m) > 0) return m;
+  return -1;
+}
+
+int closing_axis(const Charts& c, int face, int corner) {
+  if (c.mesh.twin(3 * face + (corner + 2) % 3) >= 0) return -1;
+  const std::array<Point2q, 3>& x = (*c.uv)[face];
+  return axis_of(x[corner], x[(corner + 2) % 3]);
+}
+
+namespace {
+
+// Carries h across half-edge he of its face into the twin's chart (he has a twin).
+void cross(const Charts& c, Heading& h, int he) {
+  h.target = apply(c.k[he], h.target, c.t[he]);
+  h.m = (h.m + c.k[he]) & 3;
+}
+
+}  // namespace
+
+bool rewind_to_fan_start(const Charts& c, Heading& h) {
+  const int degree = c.degree[c.vertex(3 * h.face + h.corner)];
+  Heading cur = h;
+  for (int step = 0; step < degree; ++step) {  // bound: the degree of the vertex
+    const int he = 3 * cur.face + cur.corner;  // its outgoing side: the previous triangle's
+    const int tw = c.mesh.twin(he);
+    if (tw < 0) {
+      h = cur;
+      return true;
+    }
+    cross(c, cur, he);
+    cur.face = tw / 3;
+    cur.corner = (tw % 3 + 1) % 3;
+  }
+  return false;
+}
+
 Heading turn_to_wedge(const Charts& c, Heading h, bool unique) {
   const int v = c.vertex(3 * h.face + h.corner);
   const int degree = c.degree[v];
   Heading cur = h, found;
+  if (unique) rewind_to_fan_start(c, cur);  // a boundary vertex: its whole fan from its start
   int matches = 0;
+  bool open = false;
   for (int step = 0; step < degree; ++step) {  // bound: the degree of v
     const std::array<Point2q, 3>& x = (*c.uv)[cur.face];
     const int i = cur.corner;
-    if (in_wedge(x[i], x[(i + 1) % 3], x[(i + 2) % 3], cur.m)) {
+    const int closing = closing_axis(c, cur.face, i);
+    if (in_wedge(x[i], x[(i + 1) % 3], x[(i + 2) % 3], cur.m) || closing == cur.m) {
       if (!unique) return cur;
       if (matches++ == 0) found = cur;
     }
     // The next triangle counter-clockwise around v: across the side from corner i+2 to corner i.
     const int he = 3 * cur.face + (i + 2) % 3;
     const int tw = c.mesh.twin(he);
-    cur.target = apply(c.k[he], cur.target, c.t[he]);
-    cur.m = (cur.m + c.k[he]) & 3;
+    if (tw < 0) {  // the end of a boundary fan
+      open = true;
+      break;
+    }
+    cross(c, cur, he);
     cur.face = tw / 3;
     cur.corner = tw % 3;
   }
-  if (!unique) broken("no triangle around vertex " + std::to_string(v) + " holds the direction", v);
-  if (cur.face != h.face || cur.corner != h.corner || cur.m != h.m || cur.target.x != h.target.x ||
-      cur.target.y != h.target.y)
+  if (!unique)
+    broken("no triangle around vertex " + std::to_string(v) +
+               " holds the direction (it leaves the surface, or the ring does not close)",
+           v);
+  if (!open && (cur.face != h.face || cur.corner != h.corner || cur.m != h.m ||
+                cur.target.x != h.target.x || cur.target.y != h.target.y))
     broken("an isoline passes vertex " + std::to_string(v) +
                " whose seams do not close up to the identity (a cone away from a grid point)",
            v);
@@ -116,17 +164,19 @@ TraceEnd trace(const Charts& c, Heading h, std::int64_t max_steps, std::int64_t 
     int s[3];
     for (int i = 0; i < 3; ++i) s[i] = side(c, 3 * h.face + i, h.m, h.target);
     // Where the line leaves the closed triangle, ahead: along a side (both ends on the line, the
-    // triangle on its left) at the side's end; else where the counter-clockwise boundary crosses
-    // from the line's right to its left: inside side i, or at corner i.
+    // triangle on its left; on a boundary side also on its right, running against the side) at
+    // the side's end; else where the counter-clockwise boundary crosses from the line's right to
+    // its left: inside side i, or at corner i.
     int exit_side = -1, exit_corner = -1, along_side = -1;
     for (int i = 0; i < 3 && exit_corner < 0; ++i) {
       const int j = (i + 1) % 3, l = (i + 2) % 3;
       if (s[i] == 0 && s[j] == 0) {
-        if (s[l] <= 0)
+        const bool against = s[l] < 0 && c.mesh.twin(3 * h.face + i) < 0;
+        if (s[l] <= 0 && !against)
           broken("the isoline from grid point " + std::to_string(what) +
                      " runs along a side of triangle " + std::to_string(h.face) + " outside it",
                  what);
-        exit_corner = j;
+        exit_corner = against ? i : j;
         along_side = i;
       }
     }
@@ -152,8 +202,12 @@ TraceEnd trace(const Charts& c, Heading h, std::int64_t max_steps, std::int64_t 
         return r;
       }
       const int he = 3 * h.face + exit_side;  // cross the seam into the twin's chart
-      h.target = apply(c.k[he], h.target, c.t[he]);
-      h.m = (h.m + c.k[he]) & 3;
+      if (c.mesh.twin(he) < 0)
+        broken("the isoline from grid point " + std::to_string(what) +
+                   " leaves the surface across a boundary side of triangle " +
+                   std::to_string(h.face),
+               what);
+      cross(c, h, he);
       h.face = c.mesh.twin(he) / 3;
       continue;
     }

@@ -7,7 +7,8 @@
 
 namespace igm {
 
-TriMesh TriMesh::from_triangles(int num_vertices, const std::vector<std::array<int, 3>>& triangles) {
+TriMesh TriMesh::from_triangles(int num_vertices, const std::vector<std::array<int, 3>>& triangles,
+                                bool allow_boundary) {
   TriMesh m;
   const std::size_t nh = 3 * triangles.size();
   if (nh > static_cast<std::size_t>(INT32_MAX))
@@ -50,6 +51,11 @@ TriMesh TriMesh::from_triangles(int num_vertices, const std::vector<std::array<i
     std::size_t j = i;
     while (j < nh && keys[j].a == keys[i].a && keys[j].b == keys[i].b) ++j;
     auto edge_name = [&] { return "edge (" + std::to_string(keys[i].a) + ", " + std::to_string(keys[i].b) + ")"; };
+    if (j - i == 1 && allow_boundary) {  // a boundary half-edge: no twin; its origin's first corner
+      m.out_[m.origin_[keys[i].h]] = keys[i].h;
+      i = j;
+      continue;
+    }
     if (j - i == 1)
       throw Error(ErrorKind::Boundary, edge_name() + " has one face", {keys[i].h / 3});
     if (j - i > 2) {

@@ -96,6 +96,15 @@ MapCheck check_map(const SeamlessStructure& s, const std::vector<std::array<Vec2
       if (r.nonpositive++ == 0) r.first_nonpositive = static_cast<int>(f);
     }
   if (r.nonpositive > 0) return r;
+  for (const BoundaryIsoline& e : s.boundary_edges) {  // exact comparisons of doubles
+    const int f = e.halfedge / 3;
+    const std::optional<double> value = small_integer(e.value);  // no grid holds a larger one
+    const Vec2d &a = corners[f][e.halfedge % 3], &b = corners[f][TriMesh::next(e.halfedge) % 3];
+    if (!value || (e.axis == 0 ? a.x : a.y) != *value || (e.axis == 0 ? b.x : b.y) != *value) {
+      if (r.off_isoline++ == 0) r.first_off_isoline = e.halfedge;
+    }
+  }
+  if (r.off_isoline > 0) return r;
   const std::vector<int> angles = angle_indices(s.mesh, corners);
   for (std::size_t v = 0; v < angles.size(); ++v)
     if (angles[v] != s.angle_index[v]) {
@@ -132,6 +141,7 @@ DyadicResult round_to_dyadic(const IgmMesh& igm, const SeamlessStructure& s) {
     const MapCheck check = check_map(s, corners);
     r.stats.nonpositive = check.nonpositive;
     r.stats.first_nonpositive = check.first_nonpositive;
+    r.stats.off_isoline = check.off_isoline;
     r.stats.angles_changed = check.angles_changed;
     const std::string grid =
         "rounding to the grid of spacing 2^" + std::to_string(map->grid.exponent);
@@ -142,6 +152,10 @@ DyadicResult round_to_dyadic(const IgmMesh& igm, const SeamlessStructure& s) {
       r.stats.reason = grid + " makes " + std::to_string(check.nonpositive) +
                        " triangles non-positive (the first: face " +
                        std::to_string(check.first_nonpositive) + ")";
+    } else if (check.off_isoline > 0) {
+      r.stats.reason = grid + " moves " + std::to_string(check.off_isoline) +
+                       " boundary edges off their isolines (the first: half-edge " +
+                       std::to_string(check.first_off_isoline) + ")";
     } else {
       r.stats.reason = grid + " changes the angle of " + std::to_string(check.angles_changed) +
                        " vertices (the first: vertex " + std::to_string(check.first_angle_changed) +

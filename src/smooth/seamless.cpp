@@ -4,6 +4,7 @@
 #include <string>
 
 #include "igm/core/error.h"
+#include "igm/core/union_find.h"
 
 namespace igm {
 
@@ -111,6 +112,48 @@ GridMotion edge_transition(const TriMesh& m, const std::vector<std::array<Point2
           {std::min(u, w), std::max(u, w)});
 }
 
+// The integer isoline of boundary half-edge h (u or v constant and integer along it, in its
+// face's chart), or throws naming the edge's vertices.
+BoundaryIsoline boundary_isoline(const TriMesh& m, const std::vector<std::array<Point2q, 3>>& uv,
+                                 int h) {
+  const Point2q& a = uv[h / 3][h % 3];
+  const Point2q& b = uv[h / 3][TriMesh::next(h) % 3];
+  if (a.x == b.x && a.x.get_den() == 1) return {h, 0, a.x.get_num()};
+  if (a.y == b.y && a.y.get_den() == 1) return {h, 1, a.y.get_num()};
+  const int u = m.origin(h), w = m.target(h);
+  invalid("the boundary edge (" + std::to_string(std::min(u, w)) + ", " +
+              std::to_string(std::max(u, w)) +
+              ") lies on no integer isoline (u or v constant and integer along it)",
+          {std::min(u, w), std::max(u, w)});
+}
+
+// Components (vertices joined by edges), boundary loops (the boundary half-edge leaving the
+// target of one is the next one of its loop: each boundary vertex has one) and the total genus.
+// Pre: every vertex used, one fan per vertex (seamless_structure checked both). Cost O(F).
+void count_topology(SeamlessStructure& s) {
+  const TriMesh& m = s.mesh;
+  const int nv = m.num_vertices(), nh = m.num_halfedges();
+  UnionFind sets(static_cast<std::size_t>(nv));
+  int components = nv, boundary_halfedges = 0;
+  for (int h = 0; h < nh; ++h) {
+    if (sets.unite(m.origin(h), m.target(h))) --components;
+    boundary_halfedges += m.twin(h) < 0;
+  }
+  std::vector<char> seen(nh, 0);
+  int loops = 0;
+  for (const BoundaryIsoline& e : s.boundary_edges) {  // bound: boundary half-edges, each seen once
+    if (seen[e.halfedge]) continue;
+    ++loops;
+    for (int h = e.halfedge; !seen[h]; h = m.vertex_halfedge(m.target(h))) seen[h] = 1;
+  }
+  // chi = V - E + F with E = (3F + boundary half-edges) / 2; genus = sum (2 - chi_i - b_i) / 2
+  const int nf = m.num_faces();
+  const int chi = nv - (3 * nf + boundary_halfedges) / 2 + nf;
+  s.components = components;
+  s.boundary_loops = loops;
+  s.genus = (2 * components - chi - loops) / 2;
+}
+
 }  // namespace
 
 Point2q apply(const GridMotion& m, const Point2q& p) {
@@ -165,7 +208,7 @@ SeamlessStructure seamless_structure(const IgmMesh& igm) {
       invalid("face " + std::to_string(f) + " repeats a vertex", {static_cast<std::int64_t>(f)});
   }
   SeamlessStructure s;
-  s.mesh = TriMesh::from_triangles(nv, igm.triangles);
+  s.mesh = TriMesh::from_triangles(nv, igm.triangles, /*allow_boundary=*/true);
   const TriMesh& m = s.mesh;
   const auto& uv = igm.corner_uv;
   for (std::size_t f = 0; f < nf; ++f)
@@ -175,7 +218,13 @@ SeamlessStructure seamless_structure(const IgmMesh& igm) {
 
   const int nh = m.num_halfedges();
   s.transition.resize(nh);
+  s.boundary.assign(nv, 0);
   for (int h = 0; h < nh; ++h) {
+    if (m.twin(h) < 0) {
+      s.boundary_edges.push_back(boundary_isoline(m, uv, h));
+      s.boundary[m.origin(h)] = 1;
+      continue;
+    }
     if (h > m.twin(h)) continue;
     s.transition[h] = edge_transition(m, uv, h);
     s.transition[m.twin(h)] = inverse(s.transition[h]);
@@ -183,46 +232,56 @@ SeamlessStructure seamless_structure(const IgmMesh& igm) {
 
   s.angle_index = angle_indices(m, uv);
   s.reference_corner.assign(nv, -1);
+  s.isoline_axis.assign(nv, -1);
   s.vertex_uv.resize(nv);
   s.corner_motion.resize(nh);
   std::vector<char> reached(nh, 0);
   for (int v = 0; v < nv; ++v) {
-    const int h0 = m.vertex_halfedge(v);
+    const int h0 = m.vertex_halfedge(v);  // at a boundary vertex: its outgoing boundary half-edge
     if (h0 < 0) invalid(vertex_name(v) + " is used by no face", {v});
     s.reference_corner[v] = h0;
     s.vertex_uv[v] = uv[h0 / 3][h0 % 3];
     // Walk the fan from h0: at most nh steps (each corner is visited once, then the walk is back
-    // at h0 or stops at a corner seen before).
+    // at h0, stops at a corner seen before, or leaves the fan across its incoming boundary edge).
     int h = h0;
+    bool open_end = false;
     GridMotion motion;  // identity at h0
     for (int steps = 0; steps <= nh; ++steps) {
       reached[h] = 1;
       s.corner_motion[h] = motion;
       const int across = TriMesh::prev(h);  // the edge (b, v) into the next corner's face
+      if (m.twin(across) < 0) {
+        open_end = true;
+        break;
+      }
       if (!s.transition[across].is_identity()) motion = compose(s.transition[across], motion);
       h = m.twin(across);
       if (h == h0 || reached[h]) break;
     }
-    if (h != h0)
+    const bool boundary = s.boundary[v] != 0;
+    if (boundary ? !open_end : (open_end || h != h0))
       throw Error(ErrorKind::NonManifoldVertex, "the fan of " + vertex_name(v) + " does not close",
                   {v});
     const int index = s.angle_index[v];
     if (index <= 0)
       invalid(vertex_name(v) + " has the angle index " + std::to_string(index) + " <= 0", {v});
-    if (index == 4 && !motion.is_identity())
+    if (!boundary && index == 4 && !motion.is_identity())
       invalid("the transitions around the regular " + vertex_name(v) +
                   " do not compose to the identity",
               {v});
-    if (index != 4 && (s.vertex_uv[v].x.get_den() != 1 || s.vertex_uv[v].y.get_den() != 1))
-      invalid("the cone " + vertex_name(v) + " (angle " + std::to_string(index) +
-                  " pi/2) is not at an integer point",
+    if (s.is_cone(v) && (s.vertex_uv[v].x.get_den() != 1 || s.vertex_uv[v].y.get_den() != 1))
+      invalid(std::string(boundary ? "the boundary corner " : "the cone ") + vertex_name(v) +
+                  " (angle " + std::to_string(index) + " pi/2) is not at an integer point",
               {v});
+    if (boundary && !s.is_cone(v))  // the isoline of its outgoing boundary edge, in this chart
+      s.isoline_axis[v] = static_cast<signed char>(boundary_isoline(m, uv, h0).axis);
   }
   for (int h = 0; h < nh; ++h)
     if (!reached[h])
       throw Error(ErrorKind::NonManifoldVertex,
                   "the faces around " + vertex_name(m.origin(h)) + " form more than one fan",
                   {m.origin(h)});
+  count_topology(s);
   return s;
 }
 

@@ -107,12 +107,9 @@ class NewtonSolver {
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> ldlt_;
 };
 
-// The genus of the closed surface: V - E + F = 2 - 2g with E = 3F/2.
-int genus(const SeamlessStructure& s) {
-  return (2 - s.num_vertices() + s.mesh.num_faces() / 2) / 2;
-}
-
-// The projected Newton iteration on the free (non-cone) vertex UVs of a grid map.
+// The projected Newton iteration on the free coordinates of a grid map's vertex UVs: both of an
+// interior regular vertex, the sliding one of a straight boundary vertex, none of a cone or a
+// boundary corner (seamless.h).
 class Smoother {
  public:
   Smoother(const SeamlessStructure& s, GridMap map, const std::vector<Vec3d>& positions,
@@ -122,14 +119,19 @@ class Smoother {
         map_(std::move(map)),
         options_(options),
         stats_(stats),
-        solver_(genus(s) <= kMaxSupernodalGenus) {
-    stats_.supernodal = genus(s) <= kMaxSupernodalGenus;
+        solver_(s.genus <= kMaxSupernodalGenus) {
+    stats_.supernodal = s.genus <= kMaxSupernodalGenus;
     const int nv = s_.num_vertices();
-    var_.assign(nv, -1);
-    for (int v = 0; v < nv; ++v)
-      if (!s_.is_cone(v)) var_[v] = n_++;
-    stats_.free_vertices = n_;
-    stats_.cones = nv - n_;
+    unknown_.assign(nv, {-1, -1});
+    for (int v = 0; v < nv; ++v) {  // unknowns in vertex order, u before v (2i, 2i + 1 if closed)
+      if (s_.is_cone(v)) {
+        ++(s_.boundary[v] ? stats_.boundary_corners : stats_.cones);
+        continue;
+      }
+      for (int j = 0; j < 2; ++j)
+        if (j != s_.isoline_axis[v]) unknown_[v][j] = n_++;
+      ++(s_.slides(v) ? stats_.sliding_vertices : stats_.free_vertices);
+    }
     grid_corners(s_, map_, corners_);
     double uv_area = 0;
     for (const auto& t : corners_)
@@ -185,14 +187,13 @@ class Smoother {
   }
 
  private:
-  // The 2n x 2n Hessian's pattern (variable 2 var(v) + j: coordinate j of x_v) in CSR form without
+  // The n x n Hessian's pattern (unknown unknown_[v][j]: coordinate j of x_v) in CSR form without
   // the diagonal, and per face where each of its 36 corner-coordinate pairs goes: an index into
-  // the off-diagonal values, -2 - i for diagonal entry i, or -1 (a cone's coordinate).
+  // the off-diagonal values, -2 - i for diagonal entry i, or -1 (a fixed coordinate).
   void build_pattern() {
-    const int nf = s_.mesh.num_faces(), m = 2 * n_;
+    const int nf = s_.mesh.num_faces(), m = n_;
     auto global = [&](int f, int a) {  // a = 2 i + j: coordinate j of corner i of face f
-      const int v = var_[s_.mesh.origin(3 * f + a / 2)];
-      return v < 0 ? -1 : 2 * v + a % 2;
+      return unknown_[s_.mesh.origin(3 * f + a / 2)][a % 2];
     };
     std::vector<std::vector<int>> rows(m);
     for (int f = 0; f < nf; ++f)
@@ -228,10 +229,10 @@ class Smoother {
         }
   }
 
-  // Gradient and projected Hessian at the current map, in the free vertices' coordinates:
-  // corner c of vertex v is R^k x_v + t, so its derivatives pull back by R^k.
+  // Gradient and projected Hessian at the current map, in the free coordinates: corner c of
+  // vertex v is R^k x_v + t, so its derivatives pull back by R^k.
   void assemble() {
-    gradient_.setZero(2 * n_);
+    gradient_.setZero(n_);
     std::fill(values_.begin(), values_.end(), 0.0);
     std::fill(diag_.begin(), diag_.end(), 0.0);
     const int nf = s_.mesh.num_faces();
@@ -239,10 +240,10 @@ class Smoother {
     for (int f = 0; f < nf; ++f) {
       smooth_detail::sd_derivatives(refs_[f], corners_[f], g, h);
       const double(*R[3])[2];
-      int v[3];
+      const std::array<int, 2>* v[3];
       for (int i = 0; i < 3; ++i) {
         R[i] = kRot[map_.corner_motion[3 * f + i].k & 3];
-        v[i] = var_[s_.mesh.origin(3 * f + i)];
+        v[i] = &unknown_[s_.mesh.origin(3 * f + i)];
       }
       // gx_i = R_i^T g_i; hx_ij = R_i^T h_ij R_j
       for (int i = 0; i < 3; ++i)
@@ -259,10 +260,8 @@ class Smoother {
               hx[6 * (2 * i + r) + 2 * j + c] = sum;
             }
       for (int i = 0; i < 3; ++i)
-        if (v[i] >= 0) {
-          gradient_[2 * v[i]] += gx[2 * i];
-          gradient_[2 * v[i] + 1] += gx[2 * i + 1];
-        }
+        for (int j = 0; j < 2; ++j)
+          if ((*v[i])[j] >= 0) gradient_[(*v[i])[j]] += gx[2 * i + j];
       for (int k = 0; k < 36; ++k) {
         const int slot = slots_[f][k];
         if (slot >= 0)
@@ -298,8 +297,8 @@ class Smoother {
     for (int f = 0; f < nf; ++f) {
       std::array<Vec2d, 3> duv;
       for (int i = 0; i < 3; ++i) {
-        const int c = 3 * f + i, v = var_[s_.mesh.origin(c)];
-        const Vec2d dv = v < 0 ? Vec2d{} : Vec2d{d[2 * v], d[2 * v + 1]};
+        const int c = 3 * f + i;
+        const Vec2d dv = step_of(s_.mesh.origin(c), d);
         const double(*R)[2] = kRot[map_.corner_motion[c].k & 3];
         duv[i] = {R[0][0] * dv.x + R[0][1] * dv.y, R[1][0] * dv.x + R[1][1] * dv.y};
       }
@@ -311,12 +310,14 @@ class Smoother {
     for (int t = 0; t < kMaxTrials; ++t, alpha /= 2, ++stats_.step_halvings) {
       bool inside = true;
       for (int v = 0; v < nv && inside; ++v) {
-        const int i = var_[v];
-        if (i < 0) continue;
-        const auto x = round_to_grid(map_.vertex_uv[v].x + alpha * d[2 * i], map_.grid);
-        const auto y = round_to_grid(map_.vertex_uv[v].y + alpha * d[2 * i + 1], map_.grid);
-        inside = x && y;
-        if (inside) trial.vertex_uv[v] = {*x, *y};
+        const std::array<int, 2>& i = unknown_[v];
+        if (i[0] < 0 && i[1] < 0) continue;
+        // a fixed coordinate (the isoline's integer of a sliding vertex) stays as it is
+        const Vec2d& x = map_.vertex_uv[v];
+        const auto u = i[0] < 0 ? x.x : round_to_grid(x.x + alpha * d[i[0]], map_.grid);
+        const auto w = i[1] < 0 ? x.y : round_to_grid(x.y + alpha * d[i[1]], map_.grid);
+        inside = u && w;
+        if (inside) trial.vertex_uv[v] = {*u, *w};
       }
       if (!inside) continue;
       grid_corners(s_, trial, trial_corners_);
@@ -335,12 +336,18 @@ class Smoother {
     return false;
   }
 
+  // The step of vertex v's x_v along the direction d (0 in its fixed coordinates).
+  Vec2d step_of(int v, const Eigen::VectorXd& d) const {
+    const std::array<int, 2>& i = unknown_[v];
+    return {i[0] < 0 ? 0.0 : d[i[0]], i[1] < 0 ? 0.0 : d[i[1]]};
+  }
+
   const SeamlessStructure& s_;
   GridMap map_;
   const SmoothOptions& options_;
   SmoothStats& stats_;
-  std::vector<int> var_;  // per vertex: its index among the free vertices, -1 at a cone
-  int n_ = 0;
+  std::vector<std::array<int, 2>> unknown_;  // per vertex and coordinate: its unknown, or -1
+  int n_ = 0;                                // unknowns
   std::vector<SdReference> refs_;
   std::vector<std::array<Vec2d, 3>> corners_, trial_corners_;
   std::vector<int> xadj_, adj_;
@@ -421,7 +428,10 @@ SmoothResult smooth_igm(const IgmMesh& igm, const SmoothOptions& options) {
   }
   if (options.certify) {
     const Clock::time_point tc = Clock::now();
-    result.report = certify::certify_igm(certify_input(igm, result.corner_uv));
+    certify::Options co;  // what the input is: open, several components (closed: the defaults)
+    co.allow_boundary = s.boundary_loops > 0;
+    co.allow_components = s.components > 1;
+    result.report = certify::certify_igm(certify_input(igm, result.corner_uv), co);
     stats.certified = result.report.valid();
     stats.certify_seconds = std::chrono::duration<double>(Clock::now() - tc).count();
   }

@@ -11,7 +11,7 @@
 #include <sstream>
 #include <string>
 
-#include "../certify/igm_builders.h"
+#include "../certify/boundary_builders.h"
 #include "test_data.h"
 
 namespace {
@@ -226,4 +226,32 @@ TEST_CASE("igm extract: unreadable files and usage errors exit 2") {
   CHECK(extract(dir, "garbage.obj --frobnicate").code == 2);
   CHECK(extract(dir, "garbage.obj -o").code == 2);
   CHECK_FALSE(std::filesystem::exists(dir / "garbage.quad.obj"));
+}
+
+TEST_CASE(
+    "igm extract --boundary --components: an L-shape and a torus, certified with their loops; "
+    "refused without the flags, with a hint") {
+  const Folder dir("open");
+  // [0, 4]^2 without its upper right quarter (12 quads) and the 3 x 3 torus (9 quads).
+  const igm::certify::IgmInput both =
+      certify_test::disjoint_union(certify_test::l_shape(2).igm, certify_test::torus(3));
+  const ExtractRun r = extract_igm(dir, "both.obj", both,
+                                   "--boundary --components -o both.quad.obj --json both.json");
+  CHECK(r.code == 0);
+  CHECK(contains(r.out, "21 quads, 30 vertices"));
+  CHECK(contains(r.out, "genus 1, 1 boundary loops"));
+  CHECK(contains(r.out, "certified"));
+  CHECK(run_in(dir, IGM_CERTIFY_CLI_PATH,
+               "--quad --boundary --components --component 0:1 --component 1:0 both.quad.obj")
+            .code == 0);
+  const std::string json = read_text(dir / "both.json");
+  CHECK(contains(json, "\"boundary_loops\": 1"));
+  CHECK(contains(json, "\"grid_points_on_boundary\": 16"));
+  CHECK(contains(json, "\"boundary_corners\": 6"));
+  const ExtractRun closed = extract_igm(dir, "both.obj", both, "-o refused.quad.obj");
+  CHECK(closed.code == 1);
+  CHECK(contains(closed.out, "NOT AN IGM"));
+  CHECK(contains(closed.out, "--boundary accepts them"));
+  CHECK(contains(closed.out, "--components accepts them"));
+  CHECK_FALSE(std::filesystem::exists(dir / "refused.quad.obj"));
 }

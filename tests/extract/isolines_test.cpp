@@ -10,13 +10,14 @@
 #include <string>
 #include <tuple>
 
-#include "../certify/igm_builders.h"
 #include "certify/certify.h"
 #include "generated_mesh.h"
 #include "igm/core/error.h"
 #include "igm/extract/isolines.h"
 #include "igm/mesh/surface_point.h"
 #include "igm/pipeline/pipeline.h"
+#include "igm/smooth/smooth.h"
+#include "open_igm.h"
 
 using namespace igm;
 
@@ -105,14 +106,44 @@ certify::Report certify_result(const IsolineQuads& q, int genus) {
   return certify::certify_quads(qin, o);
 }
 
+// The input's boundary, found here from the triangles alone: undirected edges with one face.
+std::set<std::pair<int, int>> boundary_edges(const IsolineInput& in) {
+  std::map<std::pair<int, int>, int> faces;
+  for (const auto& t : in.triangles)
+    for (int i = 0; i < 3; ++i) ++faces[std::minmax(t[i], t[(i + 1) % 3])];
+  std::set<std::pair<int, int>> edges;
+  for (const auto& [e, n] : faces)
+    if (n == 1) edges.insert(e);
+  return edges;
+}
+
+// The total UV length of the input's boundary edges (each axis-parallel: |du| + |dv|), exactly.
+Rational boundary_length(const IsolineInput& in) {
+  const std::set<std::pair<int, int>> edges = boundary_edges(in);
+  Rational length = 0;
+  for (std::size_t f = 0; f < in.triangles.size(); ++f)
+    for (int i = 0; i < 3; ++i)
+      if (edges.count(std::minmax(in.triangles[f][i], in.triangles[f][(i + 1) % 3]))) {
+        const Point2q &a = in.corner_uv[f][i], &b = in.corner_uv[f][(i + 1) % 3];
+        length += abs(Rational(b.x - a.x)) + abs(Rational(b.y - a.y));
+      }
+  return length;
+}
+
 // Extracts, requires the certifier to accept the input, and checks what holds for every output:
 // each vertex exactly where it says (its barycentric coordinates give its integer UV, vanish as its
-// kind says), the vertices are the test's own grid points once each, every edge id on two sides.
-IsolineQuads extract_checked(const IsolineInput& in, const IsolineOptions& options = {}) {
+// kind says), the vertices are the test's own grid points once each, every edge id on two sides
+// (on one side: a boundary segment of the quads, between two boundary points; as many as the
+// input's boundary is long), boundary points where the input's boundary is; with boundary or
+// components allowed, the quads certified with the input's loops and components.
+IsolineResult extract_result(const IsolineInput& in, const IsolineOptions& options = {}) {
   IsolineResult r = extract_isolines(in, options);
   REQUIRE(r.report.valid());
   REQUIRE(r.quads.has_value());
   const IsolineQuads& q = *r.quads;
+  const std::set<std::pair<int, int>> open = boundary_edges(in);
+  std::set<int> open_vertices;
+  for (const auto& [a, b] : open) open_vertices.insert(a), open_vertices.insert(b);
   std::set<std::string> keys;
   for (const IsolineQuadVertex& v : q.vertices) {
     const auto& x = in.corner_uv[v.triangle];
@@ -130,17 +161,44 @@ IsolineQuads extract_checked(const IsolineInput& in, const IsolineOptions& optio
     if (v.kind == GridPointKind::Vertex) CHECK((zeros == 2 && w[v.local] == 1));
     if (v.kind == GridPointKind::Edge) CHECK((zeros == 1 && sgn(w[(v.local + 2) % 3]) == 0));
     if (v.kind == GridPointKind::Face) CHECK(zeros == 0);
-    if (v.valence != 4) CHECK(v.kind == GridPointKind::Vertex);
+    const auto& t = in.triangles[v.triangle];
+    const bool on_boundary = (v.kind == GridPointKind::Vertex && open_vertices.count(t[v.local])) ||
+                             (v.kind == GridPointKind::Edge &&
+                              open.count(std::minmax(t[v.local], t[(v.local + 1) % 3])));
+    CHECK(v.boundary == on_boundary);
+    if (v.valence != (v.boundary ? 3 : 4)) CHECK(v.kind == GridPointKind::Vertex);
     keys.insert(key(on_mesh(in.triangles[v.triangle], w, nullptr)));
   }
   CHECK(keys.size() == q.vertices.size());  // no point twice
   CHECK(keys == brute_force_points(in));    // and every one
   std::vector<int> sides(q.num_edges, 0);
-  for (const auto& e : q.quad_edges)
-    for (int id : e) ++sides[id];
-  for (int n : sides) CHECK(n == 2);
+  std::vector<std::array<int, 2>> ends(q.num_edges);
+  for (std::size_t f = 0; f < q.quads.size(); ++f)
+    for (int k = 0; k < 4; ++k) {
+      ++sides[q.quad_edges[f][k]];
+      ends[q.quad_edges[f][k]] = {q.quads[f][k], q.quads[f][(k + 1) % 4]};
+    }
+  int boundary_segments = 0;
+  for (int e = 0; e < q.num_edges; ++e) {
+    CHECK((sides[e] == 2 || (sides[e] == 1 && options.allow_boundary)));
+    if (sides[e] != 1) continue;
+    ++boundary_segments;
+    CHECK(q.vertices[ends[e][0]].boundary);
+    CHECK(q.vertices[ends[e][1]].boundary);
+  }
+  CHECK(Rational(boundary_segments) == boundary_length(in));
   CHECK(q.stats.max_trace_steps <= q.stats.trace_step_bound);
-  return q;
+  if (options.allow_boundary || options.allow_components) {
+    const certify::Report quads = certify_isoline_quads(r, options);
+    CHECK(quads.valid());
+    CHECK(quads.boundary_loops == r.report.boundary_loops);
+    CHECK(q.boundary_loops == *r.report.boundary_loops);
+  }
+  return r;
+}
+
+IsolineQuads extract_checked(const IsolineInput& in, const IsolineOptions& options = {}) {
+  return *extract_result(in, options).quads;
 }
 
 // A quad up to rotation: its lexicographically smallest rotation (ids may repeat at coarse grids).
@@ -459,4 +517,246 @@ TEST_CASE("isolines: the pipeline's genus-0 IGM (four pi-cones) gives the pipeli
   const ValidMesh sphere = igm_test::generated_mesh(0, 600, 3);
   check_against_pipeline(sphere, 1);
   check_against_pipeline(sphere, 3);
+}
+
+// ---- surfaces with boundary and several components ----
+
+namespace {
+
+IsolineOptions open_surfaces() {
+  IsolineOptions o;
+  o.allow_boundary = true;
+  o.allow_components = true;
+  return o;
+}
+
+// Per valence, the grid points on the boundary.
+std::map<int, int> boundary_valences(const IsolineQuads& q) {
+  std::map<int, int> h;
+  for (const IsolineQuadVertex& v : q.vertices)
+    if (v.boundary) ++h[v.valence];
+  return h;
+}
+
+}  // namespace
+
+TEST_CASE("isolines with boundary: the n x n disk gives its n^2 cells, corners of valence 2") {
+  for (int n : {1, 2, 3}) {
+    CAPTURE(n);
+    const certify_test::GridPatch g = certify_test::square_disk(n);
+    const IsolineInput in = from_certify(g.igm);
+    const IsolineQuads q = extract_checked(in, open_surfaces());
+    CHECK(q.quads.size() == std::size_t(n * n));
+    CHECK(q.vertices.size() == std::size_t((n + 1) * (n + 1)));
+    CHECK(q.num_edges == 2 * n * (n + 1));
+    CHECK(q.genus == 0);
+    CHECK(q.boundary_loops == 1);
+    CHECK(q.stats.grid_points_on_vertices == (n + 1) * (n + 1));
+    CHECK(q.stats.grid_points_on_edges + q.stats.grid_points_in_faces == 0);
+    CHECK(q.stats.grid_points_on_boundary == 4 * n);
+    CHECK(q.stats.boundary_corners == 4);
+    CHECK(q.stats.cones == 0);
+    std::map<int, std::pair<int, int>> at;  // mesh vertex -> (i, j)
+    for (const auto& [k, v] : g.ids) at[v] = {k[0], k[1]};
+    for (const IsolineQuadVertex& v : q.vertices) {
+      const auto [i, j] = at.at(mesh_vertex(in, v));
+      const int sides = (i == 0 || i == n) + (j == 0 || j == n);
+      CHECK(v.valence == 4 - sides);
+      CHECK(v.boundary == (sides > 0));
+    }
+    std::multiset<std::array<int, 4>> expected, got;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        expected.insert(
+            canonical({g.id(i, j), g.id(i + 1, j), g.id(i + 1, j + 1), g.id(i, j + 1)}));
+    for (const auto& quad : q.quads) {
+      std::array<int, 4> m;
+      for (int k = 0; k < 4; ++k) m[k] = mesh_vertex(in, q.vertices[quad[k]]);
+      got.insert(canonical(m));
+    }
+    CHECK(got == expected);
+  }
+}
+
+TEST_CASE("isolines with boundary: grid points inside boundary edges, inside edges and faces") {
+  // The 4 x 4 disk scaled by 3/4: [0, 3]^2 with vertices at multiples of 3/4. Its 16 integer
+  // points: the 4 corners on vertices; (1, 0), (2, 0), ... inside the 8 boundary edges they meet;
+  // (1, 1) and (2, 2) inside diagonals, (1, 2) and (2, 1) inside triangles.
+  const IsolineInput in = affine(from_certify(certify_test::square_disk(4).igm), Rational(3, 4));
+  const IsolineQuads q = extract_checked(in, open_surfaces());
+  CHECK(q.quads.size() == 9u);
+  CHECK(q.vertices.size() == 16u);
+  CHECK(q.stats.grid_points_on_vertices == 4);
+  CHECK(q.stats.grid_points_on_edges == 10);
+  CHECK(q.stats.grid_points_in_faces == 2);
+  CHECK(q.stats.grid_points_on_boundary == 12);
+  CHECK(q.stats.boundary_corners == 4);
+  int inside_boundary_edges = 0;
+  for (const IsolineQuadVertex& v : q.vertices)
+    inside_boundary_edges += v.boundary && v.kind == GridPointKind::Edge;
+  CHECK(inside_boundary_edges == 8);
+  CHECK(boundary_valences(q) == std::map<int, int>{{2, 4}, {3, 8}});
+  // The unit segments along the boundary pass through its vertices at 3/4, 3/2 and 9/4 of each
+  // side (one each), traced from both ends: forwards and backwards through 12 fans. No interior
+  // vertex (3i/4, 3j/4), 0 < i, j < 4, is on an integer line.
+  CHECK(q.stats.vertex_crossings == 24);
+}
+
+TEST_CASE("isolines with boundary: cylinders, two loops of straight boundary") {
+  for (const auto& [n, m] : {std::pair{3, 1}, std::pair{4, 2}, std::pair{5, 3}}) {
+    CAPTURE(n);
+    CAPTURE(m);
+    const IsolineQuads q = extract_checked(from_certify(certify_test::cylinder(n, m).igm),
+                                           open_surfaces());
+    CHECK(q.quads.size() == std::size_t(n * m));
+    CHECK(q.vertices.size() == std::size_t(n * (m + 1)));
+    CHECK(q.genus == 0);
+    CHECK(q.boundary_loops == 2);
+    CHECK(boundary_valences(q) == std::map<int, int>{{3, 2 * n}});
+    CHECK(q.stats.boundary_corners == 0);
+  }
+}
+
+TEST_CASE("isolines with boundary: L-shapes (a reflex corner of valence 4) and a slit (tip 5)") {
+  for (int n : {1, 2}) {
+    CAPTURE(n);
+    const IsolineQuads q = extract_checked(from_certify(certify_test::l_shape(n).igm),
+                                           open_surfaces());
+    CHECK(q.quads.size() == std::size_t(3 * n * n));
+    CHECK(q.vertices.size() == std::size_t((2 * n + 1) * (2 * n + 1) - n * n));
+    CHECK(q.boundary_loops == 1);
+    CHECK(boundary_valences(q) == std::map<int, int>{{2, 5}, {3, 8 * n - 6}, {4, 1}});
+  }
+  // [0, 4]^2 cut along x = 2 up to y = 2: the points (2, 0) and (2, 1) twice.
+  const certify_test::GridPatch g = certify_test::slit_square(4, 2, 2);
+  const IsolineInput in = from_certify(g.igm);
+  const IsolineQuads q = extract_checked(in, open_surfaces());
+  CHECK(q.quads.size() == 16u);
+  CHECK(q.vertices.size() == 27u);
+  CHECK(q.boundary_loops == 1);
+  CHECK(boundary_valences(q) == std::map<int, int>{{2, 6}, {3, 13}, {5, 1}});
+  for (const IsolineQuadVertex& v : q.vertices)
+    if (v.valence == 5) CHECK(mesh_vertex(in, v) == g.id(2, 2));
+}
+
+TEST_CASE("isolines with boundary: interior cones and boundary corners, an open cube") {
+  // The pillow 3 x 3 without one front cell: a disk, 4 cones of valence 2, a square hole whose
+  // 4 corners have boundary angle 3 pi/2 (valence 4).
+  const IsolineQuads pillow =
+      extract_checked(from_certify(certify_test::pillow_with_hole(3, 1, 1)), open_surfaces());
+  CHECK(pillow.quads.size() == 17u);
+  CHECK(pillow.vertices.size() == 20u);
+  CHECK(pillow.stats.cones == 4);
+  CHECK(pillow.stats.boundary_corners == 4);
+  CHECK(boundary_valences(pillow) == std::map<int, int>{{4, 4}});
+  for (const IsolineQuadVertex& v : pillow.vertices)
+    if (!v.boundary) CHECK((v.valence == 4 || v.valence == 2));
+  // The cube 2 x 2 x 2 without its bottom: the rim is straight (two quarter angles at its
+  // corners), the 4 top corners are cones of valence 3.
+  const IsolineQuads cube = extract_checked(from_certify(certify_test::cube(2, 63 & ~(1 << 4))),
+                                            open_surfaces());
+  CHECK(cube.quads.size() == 20u);
+  CHECK(cube.vertices.size() == 25u);
+  CHECK(cube.stats.cones == 4);
+  CHECK(cube.stats.boundary_corners == 0);
+  CHECK(boundary_valences(cube) == std::map<int, int>{{3, 8}});
+}
+
+TEST_CASE("isolines of several components: a disk and a torus, two tori") {
+  const certify::IgmInput disk = certify_test::square_disk(2).igm;
+  const IsolineQuads q =
+      extract_checked(from_certify(certify_test::disjoint_union(disk, certify_test::torus(3))),
+                      open_surfaces());
+  CHECK(q.quads.size() == 4u + 9u);
+  CHECK(q.vertices.size() == 9u + 9u);
+  CHECK(q.genus == 1);
+  CHECK(q.boundary_loops == 1);
+  IsolineOptions components;
+  components.allow_components = true;
+  const IsolineInput tori =
+      from_certify(certify_test::disjoint_union(certify_test::torus(3), certify_test::torus(4)));
+  const IsolineResult r = extract_result(tori, components);
+  CHECK(r.quads->quads.size() == 9u + 16u);
+  CHECK(r.quads->genus == 2);
+  CHECK(r.quads->boundary_loops == 0);
+  const certify::Report report = certify_isoline_quads(r, components);
+  CHECK(report.components.size() == 2u);
+  CHECK(report.valid());
+  // Refused without allow_components: check 1, no quads.
+  const IsolineResult refused = extract_isolines(tori);
+  CHECK_FALSE(refused.report.valid());
+  CHECK_FALSE(refused.quads.has_value());
+  CHECK(refused.report.check(1)->status == certify::Status::Fail);
+}
+
+TEST_CASE("isolines with boundary: an IGM scaled by an integer k has k^2 times the quads") {
+  const IsolineInput inputs[] = {
+      from_certify(certify_test::square_disk(2).igm),
+      from_certify(certify_test::cylinder(3, 1).igm),
+      from_certify(certify_test::l_shape(1).igm),
+      from_certify(certify_test::slit_square(4, 2, 2).igm),
+      from_certify(certify_test::pillow_with_hole(3, 1, 1)),
+      from_certify(certify_test::disjoint_union(certify_test::square_disk(1).igm,
+                                                certify_test::torus(3)))};
+  const int loops[] = {1, 2, 1, 1, 1, 1};
+  for (int i = 0; i < 6; ++i) {
+    CAPTURE(i);
+    const IsolineQuads base = extract_checked(inputs[i], open_surfaces());
+    CHECK(base.boundary_loops == loops[i]);
+    for (int k : {2, 3}) {
+      CAPTURE(k);
+      const IsolineQuads q = extract_checked(affine(inputs[i], k), open_surfaces());
+      CHECK(q.quads.size() == std::size_t(k * k) * base.quads.size());
+      CHECK(q.boundary_loops == loops[i]);
+      CHECK(q.stats.grid_points_on_boundary == k * base.stats.grid_points_on_boundary);
+    }
+  }
+}
+
+TEST_CASE(
+    "isolines with boundary: refused without allow_boundary, or with a boundary edge off its "
+    "isoline") {
+  certify_test::GridPatch g = certify_test::square_disk(3);
+  const IsolineResult closed_only = extract_isolines(from_certify(g.igm));
+  CHECK_FALSE(closed_only.quads.has_value());
+  CHECK(closed_only.report.check(1)->status == certify::Status::Fail);
+  // Vertex (1, 0) moved up by 1/10: its triangles stay positive, its boundary edges leave v = 0.
+  const int v = g.id(1, 0);
+  certify_test::move_vertex(g.igm, v, certify_test::uv(1, mpq_class(1, 10)));
+  const IsolineResult r = extract_isolines(from_certify(g.igm), open_surfaces());
+  CHECK_FALSE(r.report.valid());
+  CHECK_FALSE(r.quads.has_value());
+  const certify::CheckResult* seams = r.report.check(3);
+  REQUIRE(seams != nullptr);
+  CHECK(seams->status == certify::Status::Fail);
+  CHECK(seams->count("boundary_edges_off_isoline") == 2);
+  CHECK(certify_test::has_edge_witness(*seams, g.id(0, 0), v));
+  CHECK(certify_test::has_edge_witness(*seams, v, g.id(2, 0)));
+  CHECK_THROWS_AS(certify_isoline_quads(r), Error);
+}
+
+TEST_CASE("isolines with boundary: smoothed open IGMs keep their quad counts") {
+  // Smoothing moves no corner and slides boundary vertices along their isolines: the UV area and
+  // the boundary's length stay, so do the numbers of quads and of boundary grid points; the grid
+  // points now lie inside edges and triangles.
+  const IgmMesh inputs[] = {igm_test::tube(8, 3),
+                            igm_test::lifted(certify_test::l_shape(3).igm, igm_test::bumped),
+                            igm_test::inflated_pillow_with_hole(4, 1, 2),
+                            igm_test::disk_and_torus(3, 4)};
+  for (const IgmMesh& igm : inputs) {
+    IsolineInput before;
+    before.triangles = igm.triangles;
+    before.corner_uv = igm.corner_uv;
+    const IsolineQuads q0 = extract_checked(before, open_surfaces());
+    SmoothOptions so;
+    so.max_iterations = 10;
+    IsolineInput after = before;
+    after.corner_uv = smooth_igm(igm_test::perturbed(igm, 20, 9), so).corner_uv;
+    const IsolineQuads q1 = extract_checked(after, open_surfaces());
+    CHECK(q1.quads.size() == q0.quads.size());
+    CHECK(q1.boundary_loops == q0.boundary_loops);
+    CHECK(q1.stats.grid_points_on_boundary == q0.stats.grid_points_on_boundary);
+    CHECK(q1.stats.boundary_corners == q0.stats.boundary_corners);
+    CHECK(q1.stats.grid_points_in_faces > 0);
+  }
 }

@@ -56,6 +56,35 @@ TEST_CASE("from_triangles rejects boundary, non-manifold and inconsistent orient
   }
 }
 
+TEST_CASE("from_triangles with allow_boundary: boundary half-edges without twins, fans from them") {
+  // The tetrahedron without face (0, 3, 2): a disk whose boundary 0 -> 2 -> 3 -> 0 runs along the
+  // removed face's edges reversed; vertex 1, where the three faces meet, has a closed fan.
+  auto open = kTetra;
+  open.pop_back();
+  const TriMesh m = TriMesh::from_triangles(4, open, /*allow_boundary=*/true);
+  std::set<std::pair<int, int>> boundary;
+  for (int h = 0; h < m.num_halfedges(); ++h) {
+    if (m.twin(h) < 0) {
+      boundary.insert({m.origin(h), m.target(h)});
+      continue;
+    }
+    CHECK(m.twin(m.twin(h)) == h);
+    CHECK(m.origin(m.twin(h)) == m.target(h));
+  }
+  CHECK(boundary == std::set<std::pair<int, int>>{{0, 2}, {2, 3}, {3, 0}});
+  for (int v : {0, 2, 3}) {  // the first corner of its fan: the outgoing boundary half-edge
+    CHECK(m.twin(m.vertex_halfedge(v)) < 0);
+    CHECK(m.origin(m.vertex_halfedge(v)) == v);
+  }
+  CHECK(m.valence(1) == 3);  // closed fan
+  // Without the option the same faces are refused; a closed mesh gives the same mesh either way.
+  CHECK_THROWS_AS(TriMesh::from_triangles(4, open), Error);
+  const TriMesh a = TriMesh::from_triangles(4, kTetra);
+  const TriMesh b = TriMesh::from_triangles(4, kTetra, true);
+  CHECK(a.twins() == b.twins());
+  for (int v = 0; v < 4; ++v) CHECK(a.vertex_halfedge(v) == b.vertex_halfedge(v));
+}
+
 TEST_CASE("from_halfedges builds the mesh from_triangles builds from the same faces") {
   // A split mesh (its vertex half-edges and twins are the splits', not from_triangles') rebuilt
   // both ways: the same arrays, vertex half-edges included.

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "igm/smooth/dyadic.h"
+#include "open_igm.h"
 #include "smooth_fixture.h"
 
 using namespace igm;
@@ -143,4 +144,73 @@ TEST_CASE("check_map: a flipped triangle, and an angle that is not the structure
   CHECK(flipped.nonpositive == 1);
   CHECK(flipped.first_nonpositive == igm_test::kSliverFace);
   CHECK(flipped.angles_changed == 0);
+}
+
+TEST_CASE("open IGMs on the grid: integers kept exactly, every boundary edge on its isoline") {
+  // Thirds do not round: every free vertex moves, but cones, boundary corners and the isoline
+  // coordinates of sliding vertices are integers, kept bit for bit.
+  const IgmMesh inputs[] = {
+      igm_test::perturbed(igm_test::lifted(certify_test::l_shape(2).igm, igm_test::bumped), 20, 3),
+      igm_test::perturbed(igm_test::inflated_pillow_with_hole(3, 1, 1), 20, 4),
+      igm_test::perturbed(igm_test::disk_and_torus(3, 3), 20, 5)};
+  for (const IgmMesh& exact : inputs) {
+    // Every vertex UV coordinate that is not an integer shifted by a third of 2^-10, every
+    // corner following its vertex.
+    const SeamlessStructure s0 = seamless_structure(exact);
+    IgmMesh igm = exact;
+    for (int c = 0; c < s0.mesh.num_halfedges(); ++c) {
+      Point2q x = s0.vertex_uv[s0.mesh.origin(c)];
+      if (x.x.get_den() != 1) x.x += Rational(1, 3 * 1024);
+      if (x.y.get_den() != 1) x.y += Rational(1, 3 * 1024);
+      igm.corner_uv[c / 3][c % 3] = apply(s0.corner_motion[c], x);
+    }
+    const certify::Options open = igm_test::open_options();
+    REQUIRE(certify::certify_igm(certify_input(igm, igm.corner_uv), open).valid());
+    const SeamlessStructure s = seamless_structure(igm);
+    const DyadicResult r = round_to_dyadic(igm, s);
+    REQUIRE(r.stats.on_grid);
+    CHECK(r.stats.off_isoline == 0);
+    int integers_changed = 0, thirds = 0;
+    for (std::size_t f = 0; f < igm.corner_uv.size(); ++f)
+      for (int i = 0; i < 3; ++i)
+        for (const auto& [before, after] :
+             {std::pair{&igm.corner_uv[f][i].x, &r.corner_uv[f][i].x},
+              std::pair{&igm.corner_uv[f][i].y, &r.corner_uv[f][i].y}}) {
+          if (before->get_den() == 1) integers_changed += *before != *after;
+          thirds += before->get_den() % 3 == 0 && *before != *after;
+        }
+    CHECK(integers_changed == 0);
+    CHECK(thirds > 0);
+    CHECK(certify::certify_igm(certify_input(igm, r.corner_uv), open).valid());
+    IgmMesh rounded = igm;
+    rounded.corner_uv = r.corner_uv;
+    CHECK(igm_test::structure_difference(s, seamless_structure(rounded)) == "");
+    std::ostringstream text;
+    write_igm_obj(text, rounded, false);
+    CHECK(certify::certify_igm_text(text.str(), open).valid());
+  }
+}
+
+TEST_CASE("check_map: a sliding vertex moved off its isoline") {
+  // The square disk [0, 3]^2: vertex (1, 0) slides along v = 0; moved up by 1/8 its triangles stay
+  // positive but its two boundary edges leave the isoline.
+  const certify_test::GridPatch g = certify_test::square_disk(3);
+  const SeamlessStructure s = seamless_structure(igm_test::lifted(g.igm, igm_test::bumped));
+  GridMap map = *round_to_grid(s);
+  std::vector<std::array<Vec2d, 3>> corners;
+  grid_corners(s, map, corners);
+  CHECK(check_map(s, corners).valid());
+  const int v = g.id(1, 0);
+  REQUIRE(s.isoline_axis[v] == 1);
+  map.vertex_uv[v] = {1.25, 0.0};  // along the isoline: fine
+  grid_corners(s, map, corners);
+  CHECK(check_map(s, corners).valid());
+  map.vertex_uv[v] = {1.0, 0.125};
+  grid_corners(s, map, corners);
+  const MapCheck off = check_map(s, corners);
+  CHECK(off.nonpositive == 0);
+  CHECK(off.off_isoline == 2);
+  REQUIRE(off.first_off_isoline >= 0);
+  CHECK((s.mesh.origin(off.first_off_isoline) == v || s.mesh.target(off.first_off_isoline) == v));
+  CHECK_FALSE(off.valid());
 }

@@ -7,6 +7,7 @@
 
 #include "igm/core/error.h"
 #include "igm/smooth/seamless.h"
+#include "open_igm.h"
 #include "smooth_fixture.h"
 
 using namespace igm;
@@ -25,6 +26,10 @@ void check_definitions(const IgmMesh& igm, const SeamlessStructure& s) {
     const Point2q& want = igm.corner_uv[c / 3][c % 3];
     if (uv.x != want.x || uv.y != want.y) ++wrong_corners;
     const int t = m.twin(c);
+    if (t < 0) {  // a boundary half-edge: no transition
+      if (!s.transition[c].is_identity()) ++wrong_edges;
+      continue;
+    }
     const Point2q a = apply(s.transition[c], igm.corner_uv[c / 3][c % 3]);
     const Point2q b = apply(s.transition[c], igm.corner_uv[c / 3][TriMesh::next(c) % 3]);
     const Point2q& a_twin = igm.corner_uv[t / 3][TriMesh::next(t) % 3];
@@ -145,5 +150,143 @@ TEST_CASE("invalid maps are rejected with the element") {
     REQUIRE(e.has_value());
     CHECK(e->kind() == ErrorKind::InvalidArgument);
     CHECK(e->elements() == std::vector<std::int64_t>{16});
+  }
+}
+
+// ---- surfaces with boundary and several components ----
+
+namespace {
+
+// The structure's boundary bookkeeping against the certifier's report with allow_boundary and
+// allow_components: boundary vertices, boundary angles (histogram), loops, components, genus.
+void check_against_certifier(const IgmMesh& igm, const SeamlessStructure& s) {
+  const certify::Report r =
+      certify::certify_igm(certify_input(igm, igm.corner_uv), igm_test::open_options());
+  REQUIRE(r.valid());
+  std::map<std::int64_t, std::int64_t> interior, boundary;
+  for (int v = 0; v < s.num_vertices(); ++v)
+    ++(s.boundary[v] ? boundary : interior)[s.angle_index[v]];
+  CHECK(interior == r.check(4)->histogram);
+  CHECK(boundary == r.check(4)->boundary_histogram);
+  CHECK(s.boundary_loops == *r.boundary_loops);
+  CHECK(s.components == static_cast<int>(r.components.size()));
+  CHECK(s.genus == *r.genus);
+  CHECK(static_cast<std::int64_t>(s.boundary_edges.size()) == r.num_boundary_edges);
+}
+
+}  // namespace
+
+TEST_CASE(
+    "the square disk: four corners fixed, the sides' vertices slide along u = 0, n or v = 0, n") {
+  const int n = 4;
+  const certify_test::GridPatch g = certify_test::square_disk(n);
+  const IgmMesh igm = igm_test::lifted(g.igm, igm_test::bumped);
+  const SeamlessStructure s = seamless_structure(igm);
+  check_definitions(igm, s);
+  check_against_certifier(igm, s);
+  CHECK(s.components == 1);
+  CHECK(s.boundary_loops == 1);
+  CHECK(s.genus == 0);
+  CHECK(s.boundary_edges.size() == std::size_t(4 * n));
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      CAPTURE(i);
+      CAPTURE(j);
+      const int v = g.id(i, j);
+      const bool side_u = i == 0 || i == n, side_v = j == 0 || j == n;
+      CHECK(bool(s.boundary[v]) == (side_u || side_v));
+      CHECK(s.angle_index[v] == (side_u && side_v ? 1 : side_u || side_v ? 2 : 4));
+      CHECK(s.is_cone(v) == (side_u && side_v));
+      // the isoline's coordinate: u on the sides u = 0, n, v on the sides v = 0, n
+      CHECK(s.isoline_axis[v] == (side_u && side_v ? -1 : side_u ? 0 : side_v ? 1 : -1));
+      if (s.boundary[v]) {  // the reference corner's outgoing edge is a boundary edge
+        CHECK(s.mesh.twin(s.reference_corner[v]) < 0);
+        CHECK(s.mesh.origin(s.reference_corner[v]) == v);
+      }
+    }
+  for (const BoundaryIsoline& e : s.boundary_edges) {
+    const Point2q &a = igm.corner_uv[e.halfedge / 3][e.halfedge % 3],
+                  &b = igm.corner_uv[e.halfedge / 3][TriMesh::next(e.halfedge) % 3];
+    CHECK((e.axis == 0 ? a.x : a.y) == Rational(e.value));
+    CHECK((e.axis == 0 ? b.x : b.y) == Rational(e.value));
+    CHECK((e.value == 0 || e.value == n));
+  }
+}
+
+TEST_CASE("cylinder, L-shape, slit, pillow with a hole, two components: angles, loops, genus") {
+  struct Case {
+    const char* name;
+    IgmMesh igm;
+    int loops, components, genus;
+    std::map<int, int> boundary_angles;  // boundary angle index -> vertices
+    std::map<int, int> interior_cones;   // interior angle index != 4 -> vertices
+  };
+  const Case cases[] = {
+      {"cylinder 5 x 3", igm_test::tube(5, 3), 2, 1, 0, {{2, 10}}, {}},
+      {"L-shape 2", igm_test::lifted(certify_test::l_shape(2).igm, igm_test::bumped), 1, 1, 0,
+       {{1, 5}, {2, 10}, {3, 1}}, {}},
+      {"slit 4, cut 2 long",
+       igm_test::lifted(certify_test::slit_square(4, 2, 2).igm, igm_test::bumped), 1, 1, 0,
+       {{1, 6}, {2, 13}, {4, 1}}, {}},
+      {"pillow 3 with a hole", igm_test::inflated_pillow_with_hole(3, 1, 1), 1, 1, 0,
+       {{3, 4}}, {{2, 4}}},
+      {"disk 2 and torus 3", igm_test::disk_and_torus(2, 3), 1, 2, 1, {{1, 4}, {2, 4}}, {}},
+  };
+  for (const Case& c : cases) {
+    CAPTURE(c.name);
+    const SeamlessStructure s = seamless_structure(c.igm);
+    check_definitions(c.igm, s);
+    check_against_certifier(c.igm, s);
+    CHECK(s.boundary_loops == c.loops);
+    CHECK(s.components == c.components);
+    CHECK(s.genus == c.genus);
+    std::map<int, int> boundary_angles, interior_cones;
+    int sliding = 0;
+    for (int v = 0; v < s.num_vertices(); ++v) {
+      if (s.boundary[v]) ++boundary_angles[s.angle_index[v]];
+      if (!s.boundary[v] && s.is_cone(v)) ++interior_cones[s.angle_index[v]];
+      sliding += s.slides(v);
+      if (s.is_cone(v)) {
+        CHECK(s.vertex_uv[v].x.get_den() == 1);
+        CHECK(s.vertex_uv[v].y.get_den() == 1);
+        CHECK_FALSE(s.slides(v));
+      }
+    }
+    CHECK(boundary_angles == c.boundary_angles);
+    CHECK(interior_cones == c.interior_cones);
+    CHECK(sliding == (c.boundary_angles.count(2) ? c.boundary_angles.at(2) : 0));
+  }
+}
+
+TEST_CASE(
+    "open IGMs refused with the element: a boundary edge off its isoline, a slit tip off the "
+    "grid") {
+  SUBCASE("a straight boundary vertex moved off its side: its two boundary edges") {
+    certify_test::GridPatch g = certify_test::square_disk(3);
+    const int v = g.id(1, 0);
+    certify_test::move_vertex(g.igm, v, certify_test::uv(1, mpq_class(1, 10)));
+    const IgmMesh igm = igm_test::lifted(g.igm, igm_test::bumped);
+    const certify::Report r = certify::certify_igm(g.igm, igm_test::open_options());
+    CHECK(certify_test::has_edge_witness(*r.check(3), g.id(0, 0), v));
+    const auto e = igm_test::error_of([&] { seamless_structure(igm); });
+    REQUIRE(e.has_value());
+    CHECK(e->kind() == ErrorKind::InvalidArgument);
+    CHECK(std::string(e->what()).find("isoline") != std::string::npos);
+    const std::vector<std::int64_t> ids = e->elements();
+    CHECK((ids == std::vector<std::int64_t>{g.id(0, 0), v} ||
+           ids == std::vector<std::int64_t>{v, g.id(2, 0)}));
+  }
+  SUBCASE("the tip of a slit (boundary angle 2 pi) half a unit up: not at an integer point") {
+    certify_test::GridPatch g = certify_test::slit_square(4, 2, 2);
+    const int tip = g.id(2, 2);
+    certify_test::move_vertex(g.igm, tip, certify_test::uv(2, mpq_class(5, 2)));
+    const certify::Report r = certify::certify_igm(g.igm, igm_test::open_options());
+    CHECK(certify_test::has_witness(*r.check(4), "vertex", tip));
+    const auto e = igm_test::error_of(
+        [&] { seamless_structure(igm_test::lifted(g.igm, igm_test::bumped)); });
+    REQUIRE(e.has_value());
+    CHECK(e->kind() == ErrorKind::InvalidArgument);
+    CHECK(e->elements() == std::vector<std::int64_t>{tip});
+    CHECK(std::string(e->what()).find("boundary corner") != std::string::npos);
   }
 }

@@ -11,6 +11,7 @@
 #include "distortion.h"
 #include "igm/core/error.h"
 #include "igm/smooth/smooth.h"
+#include "open_igm.h"
 #include "random_mesh.h"
 #include "smooth_fixture.h"
 #include "test_data.h"
@@ -21,16 +22,46 @@ using igm_test::certify_uv;
 namespace {
 
 // What the on_iterate callback saw: the energies, and how many iterates had a triangle that the
-// exact orient2d (run here, on the doubles handed out) does not find strictly positive.
+// exact orient2d (run here, on the doubles handed out) does not find strictly positive. With the
+// input's structure (open surfaces): how many had a boundary edge off the input's isoline, a cone
+// or boundary corner not bit for bit where it was, a sliding vertex off its isoline coordinate.
 struct Iterates {
   std::vector<double> energy;
   int with_bad_triangle = 0;
+  int with_off_isoline = 0, with_fixed_moved = 0, with_slide_off = 0;
 };
 
-SmoothOptions watched(Iterates& seen, int iterations) {
+// Exact comparison of a double with a rational.
+bool same(double x, const Rational& q) { return to_rational(x) == q; }
+
+void watch_boundary(const SeamlessStructure& s, const std::vector<std::array<Vec2d, 3>>& uv,
+                    Iterates& seen) {
+  auto corner = [&](int c) { return uv[c / 3][c % 3]; };
+  bool off = false, moved = false, slid_off = false;
+  for (const BoundaryIsoline& e : s.boundary_edges)
+    for (const Vec2d& p : {corner(e.halfedge), corner(TriMesh::next(e.halfedge))})
+      off = off || !same(e.axis == 0 ? p.x : p.y, Rational(e.value));
+  for (int c = 0; c < s.mesh.num_halfedges(); ++c) {
+    const int v = s.mesh.origin(c);
+    if (s.is_cone(v)) {
+      const Point2q exact = apply(s.corner_motion[c], s.vertex_uv[v]);
+      moved = moved || !same(corner(c).x, exact.x) || !same(corner(c).y, exact.y);
+    }
+    if (s.slides(v) && c == s.reference_corner[v]) {
+      const int a = s.isoline_axis[v];
+      const Rational& fixed = a == 0 ? s.vertex_uv[v].x : s.vertex_uv[v].y;
+      slid_off = slid_off || !same(a == 0 ? corner(c).x : corner(c).y, fixed);
+    }
+  }
+  seen.with_off_isoline += off;
+  seen.with_fixed_moved += moved;
+  seen.with_slide_off += slid_off;
+}
+
+SmoothOptions watched(Iterates& seen, int iterations, const SeamlessStructure* open = nullptr) {
   SmoothOptions o;
   o.max_iterations = iterations;
-  o.on_iterate = [&seen](const SmoothIterate& it) {
+  o.on_iterate = [&seen, open](const SmoothIterate& it) {
     CHECK(it.iteration == static_cast<int>(seen.energy.size()));
     seen.energy.push_back(it.energy);
     for (const auto& t : *it.corner_uv)
@@ -38,6 +69,7 @@ SmoothOptions watched(Iterates& seen, int iterations) {
         ++seen.with_bad_triangle;
         break;
       }
+    if (open) watch_boundary(*open, *it.corner_uv, seen);
   };
   return o;
 }
@@ -45,7 +77,8 @@ SmoothOptions watched(Iterates& seen, int iterations) {
 // Everything a smoothing must keep: the energy never rises over the accepted iterates, each of
 // them is flip-free, the result is certified (in memory, by the smoother's own report, and from
 // the doubles file, read back exactly), and its transitions, angles and cones are the input's.
-void check_smoothed(const IgmMesh& igm, const SmoothResult& r, const Iterates& seen) {
+void check_smoothed(const IgmMesh& igm, const SmoothResult& r, const Iterates& seen,
+                    const certify::Options& options = {}) {
   CHECK(r.stats.returned == SmoothReturned::Smoothed);
   CHECK(r.stats.dyadic.on_grid);
   REQUIRE(seen.energy.size() == static_cast<std::size_t>(r.stats.iterations) + 1);
@@ -53,9 +86,12 @@ void check_smoothed(const IgmMesh& igm, const SmoothResult& r, const Iterates& s
   for (std::size_t i = 1; i < seen.energy.size(); ++i) CHECK(seen.energy[i] <= seen.energy[i - 1]);
   for (double e : seen.energy) CHECK(std::isfinite(e));
   CHECK(seen.with_bad_triangle == 0);
+  CHECK(seen.with_off_isoline == 0);
+  CHECK(seen.with_fixed_moved == 0);
+  CHECK(seen.with_slide_off == 0);
   CHECK(r.stats.certified);
   CHECK(r.report.valid());
-  CHECK(certify_uv(igm, r.corner_uv).valid());
+  CHECK(certify::certify_igm(certify_input(igm, r.corner_uv), options).valid());
   IgmMesh out = igm;
   out.corner_uv = r.corner_uv;
   const SeamlessStructure before = seamless_structure(igm), after = seamless_structure(out);
@@ -69,7 +105,7 @@ void check_smoothed(const IgmMesh& igm, const SmoothResult& r, const Iterates& s
   CHECK(cone_corners_moved == 0);
   std::ostringstream s;
   write_igm_obj(s, out, false);
-  CHECK(certify::certify_igm_text(s.str()).valid());
+  CHECK(certify::certify_igm_text(s.str(), options).valid());
 }
 
 }  // namespace
@@ -270,4 +306,70 @@ TEST_CASE("options, budgets and callbacks") {
     CHECK_FALSE(r.stats.certified);
     CHECK(certify_uv(igm, r.corner_uv).valid());
   }
+}
+
+TEST_CASE(
+    "open surfaces and two components: monotone, flip-free, boundary on its isolines, corners and "
+    "cones fixed, sliding along the isolines, certified, less distorted") {
+  struct Case {
+    const char* name;
+    IgmMesh igm;
+  };
+  const Case cases[] = {
+      {"disk 5", igm_test::lifted(certify_test::square_disk(5).igm, igm_test::bumped)},
+      {"cylinder 8 x 4", igm_test::tube(8, 4)},
+      {"L-shape 3", igm_test::lifted(certify_test::l_shape(3).igm, igm_test::bumped)},
+      {"slit 6", igm_test::lifted(certify_test::slit_square(6, 3, 3).igm, igm_test::bumped)},
+      {"pillow 4 with a hole", igm_test::inflated_pillow_with_hole(4, 1, 2)},
+      {"disk 4 and torus 4", igm_test::disk_and_torus(4, 4)},
+  };
+  std::uint32_t seed = 1;
+  for (const Case& c : cases) {
+    CAPTURE(c.name);
+    const IgmMesh igm = igm_test::perturbed(c.igm, 20, seed++);
+    const certify::Options open = igm_test::open_options();
+    REQUIRE(certify::certify_igm(certify_input(igm, igm.corner_uv), open).valid());
+    const SeamlessStructure s = seamless_structure(igm);
+    Iterates seen;
+    const SmoothResult r = smooth_igm(igm, watched(seen, 30, &s));
+    check_smoothed(igm, r, seen, open);
+    // The smoother's own report judged the open surface as such.
+    CHECK(r.report.check(4)->count("boundary_vertices") > 0);
+    int interior = 0, sliding = 0, cones = 0, corners = 0, slid = 0;
+    for (int v = 0; v < s.num_vertices(); ++v) {
+      if (!s.boundary[v]) ++(s.is_cone(v) ? cones : interior);
+      if (s.boundary[v]) ++(s.is_cone(v) ? corners : sliding);
+    }
+    CHECK(r.stats.free_vertices == interior);
+    CHECK(r.stats.sliding_vertices == sliding);
+    CHECK(r.stats.cones == cones);
+    CHECK(r.stats.boundary_corners == corners);
+    for (int v = 0; v < s.num_vertices(); ++v)  // the sliding coordinate moves
+      if (s.slides(v)) {
+        const int h = s.reference_corner[v], a = 1 - s.isoline_axis[v];
+        const Point2q &p = igm.corner_uv[h / 3][h % 3], &q = r.corner_uv[h / 3][h % 3];
+        slid += (a == 0 ? p.x != q.x : p.y != q.y);
+      }
+    if (sliding > 0) CHECK(slid * 2 > sliding);
+    const igm_test::Distortion before = igm_test::measure_distortion(igm, igm.corner_uv);
+    const igm_test::Distortion after = igm_test::measure_distortion(igm, r.corner_uv);
+    MESSAGE(std::string(c.name) << ": " << igm.triangles.size() << " triangles, "
+                                << r.stats.iterations << " iterations ("
+                                << std::string(to_string(r.stats.stop)) << "), " << sliding
+                   << " sliding, SD " << before.sd_energy << " -> " << after.sd_energy
+                   << ", p99 s1/s2 " << before.p99_conformal << " -> " << after.p99_conformal);
+    CHECK(after.sd_energy < before.sd_energy);
+    CHECK(r.stats.energy.back() < r.stats.energy.front());
+  }
+}
+
+TEST_CASE("an open surface with nothing to move: the square disk of one cell, four corners") {
+  const IgmMesh igm = igm_test::lifted(certify_test::square_disk(1).igm, igm_test::bumped);
+  const SmoothResult r = smooth_igm(igm);
+  CHECK(r.stats.stop == SmoothStop::NothingToMove);
+  CHECK(r.stats.returned == SmoothReturned::InputOnGrid);
+  CHECK(r.stats.boundary_corners == 4);
+  CHECK(r.stats.free_vertices + r.stats.sliding_vertices + r.stats.cones == 0);
+  CHECK(igm_test::changed_corners(r.corner_uv, igm.corner_uv) == 0);
+  CHECK(r.stats.certified);
 }

@@ -14,7 +14,8 @@
 
 namespace igm {
 
-/// One IGM: a closed oriented triangle mesh with one exact UV per face corner.
+/// One IGM: an oriented triangle mesh (closed and connected unless IsolineOptions allow otherwise)
+/// with one exact UV per face corner.
 struct IsolineInput {
   std::vector<std::array<int, 3>> triangles;      // 0-based vertex ids
   std::vector<std::array<Point2q, 3>> corner_uv;  // per triangle, per corner, exact
@@ -27,6 +28,12 @@ struct IsolineOptions {
   /// triangle scans the integer rows of its UV bounding box). Beyond it igm::Error(TooLarge)
   /// (an IGM scaled far beyond what fits in memory: ~0.4 KB per grid point). 1 .. 2^30.
   std::int64_t max_grid_work = std::int64_t{1} << 26;
+  /// Accept IGMs of surfaces with boundary (the certifier's Options::allow_boundary: every
+  /// boundary edge on an integer isoline of its chart, boundary corners at integer points) and of
+  /// several connected components (Options::allow_components). Off: closed, connected IGMs only,
+  /// as the certifier's defaults judge them.
+  bool allow_boundary = false;
+  bool allow_components = false;
 };
 
 /// Where a grid point lies on its triangle.
@@ -42,12 +49,18 @@ struct IsolineQuadVertex {
   int local = -1;  // Vertex: the corner 0..2 of `triangle` it is; Edge: the side from corner
                    // local to local+1 (mod 3) it lies inside; Face: -1
   std::array<std::int64_t, 2> uv{};  // its integer UV in the chart of `triangle`
-  int valence = 4;  // outgoing isolines: 4, or the index k of a cone (total angle k pi/2)
+  /// Outgoing isolines: 4, or the index k of a cone (total angle k pi/2); on the boundary k + 1
+  /// for the boundary angle k pi/2 (3 on a straight boundary, 2 at a convex corner, 4 at a
+  /// reflex one, 5 at the tip of a slit), the two along the boundary included.
+  int valence = 4;
+  bool boundary = false;  // on a boundary vertex or inside a boundary edge of the IGM
 };
 
 struct IsolineStats {
   std::int64_t grid_points_on_vertices = 0, grid_points_on_edges = 0, grid_points_in_faces = 0;
-  std::int64_t cones = 0;             // grid points of valence != 4 (all on vertices)
+  std::int64_t cones = 0;             // interior grid points of valence != 4 (all on vertices)
+  std::int64_t grid_points_on_boundary = 0;  // on boundary vertices or inside boundary edges
+  std::int64_t boundary_corners = 0;         // boundary grid points of valence != 3
   std::int64_t rows_scanned = 0;      // grid rows the point search scanned
   std::int64_t traces = 0;            // unit isoline segments traced (each edge from both ends)
   std::int64_t trace_steps = 0;       // triangles entered by all traces together
@@ -68,7 +81,8 @@ struct IsolineQuads {
   /// If IsolineInput::positions: sum w_i p_i over the triangle's corners in doubles (w_i rounded
   /// toward zero; a grid point on a vertex gets the vertex's position). For display only.
   std::vector<Vec3d> positions;
-  int genus = 0;
+  int genus = 0;           // the input's (the sum over its components)
+  int boundary_loops = 0;  // of the quad mesh: the input's, each made of isoline segments
   IsolineStats stats;
 };
 
@@ -78,19 +92,25 @@ struct IsolineResult {
 };
 
 /// The quad mesh of the integer isolines of an IGM, exactly. First the independent certifier
-/// (certify::certify_igm); if it rejects the input, no quads (the report says why). Then:
+/// (certify::certify_igm, with options.allow_boundary / allow_components); if it rejects the
+/// input, no quads (the report says why). Then:
 ///  1. every integer point of the surface, once: per triangle the integer points of its closed UV
 ///     triangle (rows of its bounding box, exact rational row ends); a point on a mesh vertex is
 ///     that vertex, one inside an edge belongs to the side whose half-edge id is the smaller and
-///     is checked to be found from the other side too (through the edge's transition);
+///     is checked to be found from the other side too (through the edge's transition); one inside
+///     a boundary edge belongs to its triangle;
 ///  2. per grid point its outgoing isoline directions in counter-clockwise order: the axis
 ///     directions in each incident triangle's half-open wedge at the point (4 at a regular point,
-///     k at a cone of index k); from each, the unit segment traced through triangles and across
-///     seams (transition applied to direction and target) to the grid point at UV distance 1,
-///     which must be the target and send its reverse direction back (else igm::Error(Internal)
-///     naming the grid point and the direction);
-///  3. the faces of that graph (at each end, from the reverse direction one step clockwise): each
-///     must have 4 sides, and V - E + F must equal the input's Euler characteristic.
+///     k at a cone of index k; on the boundary the closed wedge, both boundary directions
+///     included: a boundary edge lies on an isoline); from each, the unit segment traced through
+///     triangles and across seams (transition applied to direction and target) to the grid point
+///     at UV distance 1, which must be the target and send its reverse direction back (else
+///     igm::Error(Internal) naming the grid point and the direction). A segment meets the
+///     boundary only at grid points or runs along it: leaving the surface is an error;
+///  3. the faces of that graph (at each end, from the reverse direction one step clockwise): the
+///     bounded ones are the quads and must have 4 sides; the others run backwards along the
+///     boundary, one per boundary loop of the input; V - E + F of the quads must equal the
+///     input's Euler characteristic.
 /// Every decision is exact: comparisons of rationals and igm::orient2d; no tolerance.
 /// Pre: a valid IGM with |UV coordinate| <= 2^60 (else igm::Error(TooLarge)); positions empty
 /// or one per vertex (else the certifier's verdict is Unreadable).
@@ -101,5 +121,12 @@ struct IsolineResult {
 /// Cost: the certifier (O(F log F)) plus O(F + rows + grid points + trace steps) exact
 /// comparisons; measured in bench/isolines_bench.cpp.
 IsolineResult extract_isolines(const IsolineInput& input, const IsolineOptions& options = {});
+
+/// The certifier's quad mode on the extraction's quads (certify::certify_quads): pure quads,
+/// manifold, oriented, of the input's genus; with options.allow_boundary / allow_components also
+/// with the input's boundary loops and per component the input's (genus, boundary loops), as a
+/// multiset. Pre: result.quads (else igm::Error(InvalidArgument)). Cost O(Q log Q).
+certify::Report certify_isoline_quads(const IsolineResult& result,
+                                      const IsolineOptions& options = {});
 
 }  // namespace igm

@@ -2,6 +2,9 @@
 // Combinatorics of a closed, oriented triangle mesh as half-edge index arrays.
 // Face f owns half-edges 3f, 3f+1, 3f+2 (counter-clockwise); half-edge h runs from
 // origin(h) to origin(next(h)); twin(h) runs the other way in the neighbouring face.
+// Built with allow_boundary, a mesh may have boundary half-edges: twin(h) == -1 (the surface lies
+// to their left); the rest of the class then assumes nothing about them (only from_triangles,
+// the accessors and next_around_origin, which returns -1 across the boundary, are meant for it).
 // Numbers (positions, UVs) live in separate arrays indexed by vertex or half-edge (corner).
 #include <array>
 #include <cstdint>
@@ -18,7 +21,11 @@ class TriMesh {
   /// consistently oriented surface (validate first: see mesh/validate.h); throws
   /// igm::Error(NonManifoldEdge/Boundary/IndexOutOfRange) if an edge has no unique twin.
   /// Vertices used by no face are allowed (they get vertex_halfedge = -1). Cost O(F log F).
-  static TriMesh from_triangles(int num_vertices, const std::vector<std::array<int, 3>>& triangles);
+  /// With allow_boundary an edge with one face is a boundary half-edge (twin -1) instead of an
+  /// error, and a vertex with one leaving boundary half-edge gets it as its vertex_halfedge (the
+  /// first corner of its fan, counter-clockwise); every other vertex as without the option.
+  static TriMesh from_triangles(int num_vertices, const std::vector<std::array<int, 3>>& triangles,
+                                bool allow_boundary = false);
 
   /// Builds from half-edge arrays (face f owns 3f, 3f+1, 3f+2): origin per half-edge over
   /// 0..num_vertices-1 and twin per half-edge, for a builder that has kept the pairing (edge

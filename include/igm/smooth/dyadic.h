@@ -1,13 +1,15 @@
 #pragma once
 // Certification in plain doubles: a map given by one UV per vertex (seamless.h) is placed on a
 // dyadic grid fine enough that every vertex UV x_v and every copy T_c(x_v) = R^k x_v + t of it
-// is exactly a double. Rounding the vertex UVs to the grid and rebuilding every corner from its
-// vertex keeps every transition exact: the two UVs of an edge end in its two faces are T_c(x_v)
-// and T_c'(x_v) = M(T_c(x_v)) for the edge's transition M, whatever x_v is (at a regular vertex
-// the fan closes up with the identity; a cone keeps its integer point). Cones stay at their
-// integer points; so the rounded map is a valid IGM iff every UV triangle is still strictly
-// positive and every vertex keeps its angle (regular vertices stay regular, cones keep their
-// index), which is checked exactly (check_map). Used for smoothed maps (smooth.h) and for exact
+// is exactly a double. Integers are on every grid: cones, boundary corners and the isoline
+// coordinate of sliding boundary vertices (seamless.h) keep their exact values. Rounding the
+// vertex UVs to the grid and rebuilding every corner from its vertex keeps every transition
+// exact: the two UVs of an edge end in its two faces are T_c(x_v) and T_c'(x_v) = M(T_c(x_v))
+// for the edge's transition M, whatever x_v is (at a regular vertex the fan closes up with the
+// identity; a cone keeps its integer point). Cones stay at their integer points; so the rounded
+// map is a valid IGM iff every UV triangle is still strictly positive, every boundary edge still
+// on its isoline and every vertex keeps its angle (regular vertices stay regular, cones keep
+// their index), which is checked exactly (check_map). Used for smoothed maps (smooth.h) and for exact
 // maps, so that a doubles file (write_igm_obj) certifies too.
 #include <array>
 #include <cstddef>
@@ -63,15 +65,21 @@ void grid_corners(const SeamlessStructure& s, const GridMap& map,
 
 /// The exact checks that make a map rebuilt from vertex UVs (grid_corners) a valid IGM, all else
 /// holding by construction (see the top of this file): every UV triangle strictly positive
-/// (orient2d on the doubles), and then every vertex's angle the structure's (angle_indices,
-/// seamless.h). Orientation alone does not fix the angles of a map that jumped (rounding, a
-/// Newton step): a vertex's link could wind around it once more, and a cone once less. Cost O(F).
+/// (orient2d on the doubles), then every boundary edge on its isoline (the structure's
+/// BoundaryIsoline: exact equality of doubles with its integer), then every vertex's angle the
+/// structure's (angle_indices, seamless.h). Orientation alone does not fix the angles of a map
+/// that jumped (rounding, a Newton step): a vertex's link could wind around it once more, and a
+/// cone once less. A boundary edge stays on its isoline when its ends keep their fixed coordinates
+/// (the structure's cones, boundary corners and sliding coordinates): the check is a second line.
+/// Cost O(F).
 struct MapCheck {
   int nonpositive = 0;           // triangles not strictly positive
   int first_nonpositive = -1;    // the first of them (-1: none)
+  int off_isoline = 0;           // boundary edges off their isoline (checked only when every
+  int first_off_isoline = -1;    // triangle is positive): the first one's half-edge
   int angles_changed = 0;        // vertices whose angle is not the structure's (checked only when
-  int first_angle_changed = -1;  // every triangle is positive)
-  bool valid() const { return nonpositive == 0 && angles_changed == 0; }
+  int first_angle_changed = -1;  // every triangle is positive and every boundary edge on its line)
+  bool valid() const { return nonpositive == 0 && off_isoline == 0 && angles_changed == 0; }
 };
 MapCheck check_map(const SeamlessStructure& s, const std::vector<std::array<Vec2d, 3>>& corners);
 
@@ -86,6 +94,7 @@ struct DyadicStats {
   int grid_exponent = 0;        // the grid's spacing is 2^grid_exponent (when a grid exists)
   int nonpositive = 0;          // triangles that rounding made non-positive (then on_grid is false)
   int first_nonpositive = -1;   // the first of them
+  int off_isoline = 0;          // boundary edges rounding moved off their isolines (never: a check)
   int angles_changed = 0;       // vertices whose angle rounding changed (then on_grid is false)
   std::size_t max_uv_bits = 0;  // largest bit_size of a returned UV coordinate
   std::string reason;           // why the map stayed exact (empty when on_grid)

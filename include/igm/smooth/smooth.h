@@ -4,7 +4,10 @@
 // rigid map, cones stay at their integer points. Transitions are fixed by construction; each
 // accepted iterate is checked exactly to have every triangle positive and every angle unchanged
 // (dyadic.h, check_map), so each is a valid IGM. The pipeline's map is only an initialization
-// (paper §7); this lowers its distortion.
+// (paper §7); this lowers its distortion. On a surface with boundary (seamless.h) boundary
+// corners stay fixed like cones and straight boundary vertices slide along their isolines (one
+// unknown each), so every boundary edge stays on its isoline; several components are smoothed
+// together, each on its own.
 #include <array>
 #include <functional>
 #include <string>
@@ -57,7 +60,7 @@ enum class SmoothStop {
   TimeBudget,       // time_budget_seconds passed
   NoDescent,        // the (regularized) Newton system gave no descent direction
   LineSearch,       // no step along the direction lowered the energy and passed the exact checks
-  NothingToMove,    // every vertex is a cone
+  NothingToMove,    // every vertex is a cone or a boundary corner
   NotStarted,       // the input does not round onto a double grid (see SmoothStats::dyadic), or
                     // its energy is not finite in doubles
 };
@@ -79,7 +82,10 @@ struct SmoothStats {
   SmoothStop stop = SmoothStop::NotStarted;
   SmoothReturned returned = SmoothReturned::InputExact;
   std::string reason;  // a sentence on why it stopped (and what was returned)
-  int free_vertices = 0, cones = 0;
+  int free_vertices = 0;     // interior regular vertices: two unknowns each
+  int sliding_vertices = 0;  // straight boundary vertices: one unknown each (along the isoline)
+  int cones = 0;             // interior cones: fixed
+  int boundary_corners = 0;  // boundary vertices of boundary angle != pi: fixed
   int enlarged_references = 0;  // 3D triangles below the size floor (zero area included)
   int fattened_references = 0;  // 3D triangles thinner than the aspect floor
   int factorizations = 0;       // of the Newton systems (more than iterations where one failed)
@@ -94,27 +100,32 @@ struct SmoothResult {
   /// Three per face of the input, for its triangles, positions and vertex ids: every coordinate
   /// exactly a double (dyadic.stats.on_grid) unless returned == InputExact. Always a valid IGM:
   /// every triangle strictly positive by exact orient2d, every angle, transition and cone the
-  /// input's.
+  /// input's, every boundary edge on the input's isoline, every boundary corner where it was.
   std::vector<std::array<Point2q, 3>> corner_uv;
   SmoothStats stats;
-  certify::Report report;  // the independent certifier on corner_uv (when options.certify)
+  /// The independent certifier on corner_uv (when options.certify), with allow_boundary when the
+  /// input has boundary loops and allow_components when it has several components.
+  certify::Report report;
 };
 
 /// Lowers the symmetric Dirichlet energy of the IGM: per triangle s1^2 + s2^2 + s1^-2 + s2^-2
 /// of the map from the 3D triangle (scaled by sqrt(total UV area / total 3D area), regularized
 /// where degenerate: src/smooth/symmetric_dirichlet.h) to its UV triangle, area weighted and
-/// normalized (4 at best). The total UV area does not change when non-cone vertices move, so
-/// the scale is fixed. Projected Newton: per-triangle Hessians made positive semi-definite through
-/// the analytic eigensystem (the one eigenvalue that can be negative replaced by its absolute
-/// value), a sparse Cholesky solve of the system with its diagonal raised by 1e-9 of itself
+/// normalized (4 at best). The total UV area does not change when non-cone vertices move (nor
+/// when a straight boundary vertex slides: the area's gradient there is normal to its isoline),
+/// so the scale is fixed. Projected Newton: per-triangle Hessians made positive semi-definite
+/// through the analytic eigensystem (the one eigenvalue that can be negative replaced by its
+/// absolute value), a sparse Cholesky solve of the system with its diagonal raised by 1e-9 of itself
 /// (more where the factorization fails; embed/sparse_cholesky.h up to genus 8, above it Eigen's
-/// SimplicialLDLT with AMD ordering, whose cost does not grow with the handles), a line search
+/// SimplicialLDLT with AMD ordering, whose cost does not grow with the handles; genus: the sum
+/// over the components), a line search
 /// that starts at step_fraction of the first degeneracy (Smith & Schaefer 2015) and halves until
 /// the energy decreases enough (Armijo) and the new map, rounded onto the dyadic grid (dyadic.h),
 /// passes the exact checks (check_map). So every accepted iterate is a certified map in doubles,
 /// the energy never increases, and the last one is returned.
-/// Pre: `igm` is a valid IGM (seamless_structure checks it and throws igm::Error naming the
-/// element otherwise), finite positions (igm::Error(NonFinite) naming the vertex otherwise).
+/// Pre: `igm` is a valid IGM, closed or with boundary, with one component or several
+/// (seamless_structure checks it and throws igm::Error naming the element otherwise), finite
+/// positions (igm::Error(NonFinite) naming the vertex otherwise).
 /// A trial step that would take a vertex UV beyond the grid's bound (8 times the largest input
 /// coordinate, dyadic.h) is halved like one that fails the checks.
 /// Bounds: max_iterations iterations, each at most 64 trial steps. Cost per iteration: O(F) for
