@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "igm/core/error.h"
+#include "igm/core/union_find.h"
 #include "topology_internal.h"
 
 namespace igm {
@@ -40,6 +41,19 @@ struct Work {
   std::vector<char> corner;   // per vertex: every disk copy is a corner
   std::vector<Vec3d> pos;     // per vertex: unit-scaled positions, for the legs' metric
   std::vector<CutPath> paths;
+  std::vector<std::int64_t> cut_edges;  // sorted keys min * 2^32 + max of the paths' edges
+
+  static std::int64_t key(int a, int b) {
+    return (std::int64_t(std::min(a, b)) << 32) | std::int64_t(std::max(a, b));
+  }
+  bool is_cut_edge(int a, int b) const { return std::binary_search(cut_edges.begin(), cut_edges.end(), key(a, b)); }
+  void add_path(std::vector<int> v, bool cycle) {
+    const std::size_t k = v.size();
+    for (std::size_t i = 0; i + 1 < k + (cycle ? 1 : 0); ++i) cut_edges.push_back(key(v[i], v[(i + 1) % k]));
+    std::sort(cut_edges.begin(), cut_edges.end());
+    for (int x : v) on_cut[x] = 1;
+    paths.push_back({std::move(v), cycle});
+  }
 
   int nv() const { return rs.mesh.num_vertices(); }
   bool is_center(int v) const { return v >= nv_s && v < nv_s + holes; }
@@ -105,12 +119,17 @@ int fill(const SurfaceComponent& s, Work& w) {
   const int b = static_cast<int>(s.boundary_loops.size());
   if (n == 0) throw Error(ErrorKind::Empty, "cut_open_surface: no vertices");
   if (nf == 0) throw Error(ErrorKind::NoFaces, "cut_open_surface: no triangles");
-  (void)unit_scaled(s.positions);  // NonFinite check
+  for (int v = 0; v < n; ++v) {
+    const Vec3d& p = s.positions[v];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw Error(ErrorKind::NonFinite, "cut_open_surface: vertex " + str(v) + " has a non-finite coordinate", {v});
+  }
   if (b == 0)
     throw Error(ErrorKind::Unsupported,
                 "cut_open_surface: the surface is closed (use cut_to_canonical_disk or cut_sphere)");
   std::vector<char> used(n, 0);
-  std::vector<std::int64_t> directed;  // a * n + b per half-edge a -> b
+  // Per half-edge a -> c: (min * n + max) * 2 + (a > c), sorted: an edge's half-edges side by side.
+  std::vector<std::int64_t> directed;
   directed.reserve(3 * static_cast<std::size_t>(nf));
   for (int f = 0; f < nf; ++f) {
     const auto& t = s.triangles[f];
@@ -122,20 +141,30 @@ int fill(const SurfaceComponent& s, Work& w) {
     }
     if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
       throw Error(ErrorKind::RepeatedVertex, "cut_open_surface: triangle " + str(f) + " repeats a vertex", {f});
-    for (int i = 0; i < 3; ++i) directed.push_back(std::int64_t(t[i]) * n + t[(i + 1) % 3]);
+    for (int i = 0; i < 3; ++i) {
+      const int a = t[i], c = t[(i + 1) % 3];
+      directed.push_back((std::int64_t(std::min(a, c)) * n + std::max(a, c)) * 2 + (a > c));
+    }
   }
   for (int v = 0; v < n; ++v)
     if (!used[v]) bad("vertex " + str(v) + " is used by no triangle", {v});
   std::sort(directed.begin(), directed.end());
-  for (std::size_t i = 1; i < directed.size(); ++i)
-    if (directed[i] == directed[i - 1])
-      throw Error(ErrorKind::NonManifoldEdge, "cut_open_surface: two triangles have the half-edge " +
-                                                  str(directed[i] / n) + " -> " + str(directed[i] % n),
-                  {directed[i] / n, directed[i] % n});
-  auto has = [&](int a, int c) { return std::binary_search(directed.begin(), directed.end(), std::int64_t(a) * n + c); };
-  long long open_halfedges = 0;
-  for (std::int64_t d : directed)
-    if (!has(static_cast<int>(d % n), static_cast<int>(d / n))) ++open_halfedges;
+  auto origin_of = [&](std::int64_t d) { return d % 2 ? (d / 2) % n : (d / 2) / n; };
+  auto target_of = [&](std::int64_t d) { return d % 2 ? (d / 2) / n : (d / 2) % n; };
+  std::vector<std::int64_t> open;  // a * n + c per half-edge a -> c without a twin, sorted
+  for (std::size_t i = 0; i < directed.size();) {
+    std::size_t j = i;
+    while (j < directed.size() && directed[j] / 2 == directed[i] / 2) ++j;
+    if (j - i > 2 || (j - i == 2 && directed[i] == directed[i + 1]))
+      throw Error(ErrorKind::NonManifoldEdge, "cut_open_surface: edge " + str(origin_of(directed[i])) + " - " +
+                                                  str(target_of(directed[i])) + " has two triangles on one side",
+                  {origin_of(directed[i]), target_of(directed[i])});
+    if (j - i == 1) open.push_back(origin_of(directed[i]) * n + target_of(directed[i]));
+    i = j;
+  }
+  std::sort(open.begin(), open.end());
+  const long long open_halfedges = static_cast<long long>(open.size());
+  auto is_open = [&](int a, int c) { return std::binary_search(open.begin(), open.end(), std::int64_t(a) * n + c); };
   w.hole_of.assign(n, -1);
   long long loop_length = 0;
   for (int j = 0; j < b; ++j) {
@@ -146,7 +175,7 @@ int fill(const SurfaceComponent& s, Work& w) {
       if (a < 0 || a >= n) bad("boundary loop " + str(j) + " has vertex " + str(a) + " out of range", {j});
       if (w.hole_of[a] >= 0) bad("vertex " + str(a) + " is on two boundary loops or twice on one", {a});
       w.hole_of[a] = j;
-      if (c < 0 || c >= n || !has(a, c) || has(c, a))
+      if (c < 0 || c >= n || !is_open(a, c))
         bad("boundary loop " + str(j) + ": " + str(a) + " -> " + str(c) + " is not a boundary half-edge", {a, c});
     }
     loop_length += static_cast<long long>(L.size());
@@ -309,35 +338,157 @@ int loops_step(Work& w, int genus, const OpenCutOptions& options, OpenCutStats& 
   w.rs.mesh = std::move(surf.mesh);
   w.rs.constructed = std::move(constructed);
   w.grow();
-  for (auto& L : loops) {
-    for (int v : L) w.on_cut[v] = 1;
-    w.paths.push_back({std::move(L), true});
-  }
+  for (auto& L : loops) w.add_path(std::move(L), true);
   return cr.root;
 }
 
-// Step 4: the legs. O(sum over the legs of (settled vertices) log) plus the splits.
-void legs_step(Work& w, int genus, OpenCutStats& stats) {
+// The legs' search graph (step 4): the vertices, and the chords (edges between two S faces, on no
+// cut, joining two blocked vertices: on a hole or a cut) as nodes nv + h (h the edge's smaller
+// half-edge), crossed at their midpoints, which a leg that uses one splits off. A leg may enter
+// passable vertices (off the holes and the cuts), chords, and its target. Every interior edge of
+// the region has a passable end or is a chord, and the nodes of one face are pairwise neighbours,
+// so the nodes of the faces along any dual path form a path: every hole is reachable from every
+// corner, whatever the cuts box in.
+struct LegGraph {
+  const Work& w;
+  const TriMesh& m;
+  int nv;
+  double penalty;  // added per chord crossed (a vertex the leg adds): mean_edge_length(work)
+  LegGraph(const Work& work, double mean_edge) : w(work), m(work.rs.mesh), nv(work.nv()), penalty(mean_edge) {}
+  int size() const { return nv + m.num_halfedges(); }
+  bool blocked(int v) const { return w.hole_of[v] >= 0 || w.on_cut[v]; }
+  bool passable(int v) const { return !w.in_hole(v) && !w.on_cut[v]; }
+  bool chord(int h) const {
+    const int a = m.origin(h), c = m.target(h);
+    return blocked(a) && blocked(c) && !w.fan_face(TriMesh::face(h)) && !w.fan_face(TriMesh::face(m.twin(h))) &&
+           !w.is_cut_edge(a, c);
+  }
+  int node(int h) const { return nv + std::min(h, m.twin(h)); }
+  Vec3d position(int x) const {
+    if (x < nv) return w.pos[x];
+    const Vec3d &p = w.pos[m.origin(x - nv)], &q = w.pos[m.target(x - nv)];
+    return {(p.x + q.x) / 2, (p.y + q.y) / 2, (p.z + q.z) / 2};
+  }
+  // f(y) for every node y next to node x: for a vertex, its neighbours and the chords at it or
+  // opposite it; for a chord, its ends, its faces' apexes and their other chords. O(valence).
+  template <class F>
+  void around(int x, F&& f) const {
+    if (x < nv) {
+      const int h0 = m.vertex_halfedge(x);
+      int h = h0;
+      do {  // valence(x) steps
+        f(m.target(h));
+        if (chord(h)) f(node(h));
+        if (!w.fan_face(TriMesh::face(h)) && chord(TriMesh::next(h))) f(node(TriMesh::next(h)));
+        h = m.next_around_origin(h);
+      } while (h != h0);
+      return;
+    }
+    const int h = x - nv;
+    for (int g : {h, m.twin(h)}) {
+      f(m.origin(g));
+      f(m.target(TriMesh::next(g)));
+      for (int k : {TriMesh::next(g), TriMesh::prev(g)})
+        if (chord(k)) f(node(k));
+    }
+  }
+};
+
+// The mean edge length on w.pos. O(n).
+double mean_edge_length(const Work& w) {
+  const TriMesh& m = w.rs.mesh;
+  double sum = 0;
+  for (int h = 0; h < m.num_halfedges(); ++h) sum += length(w.pos[m.origin(h)], w.pos[m.target(h)]);
+  return sum / std::max(1, m.num_halfedges());
+}
+
+// The order of the legs (step 4): a spanning tree of the holes and the root (g >= 1; for g = 0
+// hole 0 is the root node), the minimum one over the connections of one multi-source search from
+// every hole vertex and the root (Voronoi regions: two regions touching across nodes x, y give
+// the connection dist(x) + |xy| + dist(y); Kruskal), listed depth-first from the root node as
+// (parent node, hole) pairs, a parent before its children. Each leg then runs from its parent's
+// corner to its hole: a short, local search. Node b is the root. O(n log n).
+std::vector<std::pair<int, int>> leg_order(const Work& w, int genus, int root, double mean_edge) {
+  const LegGraph g(w, mean_edge);
+  const int b = w.holes, n = g.size();
+  std::vector<double> dist(n, std::numeric_limits<double>::infinity());
+  std::vector<int> label(n, -1);
+  MinQueue pq;
+  for (int v = 0; v < g.nv; ++v)
+    if (w.hole_of[v] >= 0) dist[v] = 0, label[v] = w.hole_of[v], pq.push({0.0, v});
+  if (genus >= 1) dist[root] = 0, label[root] = b, pq.push({0.0, root});
+  auto enterable = [&](int y) { return y >= g.nv || g.passable(y); };
+  // Links are seen when the later of their two nodes settles (the earlier's distance is final).
+  struct Link { double len; int a, b; };
+  std::vector<Link> links;
+  std::vector<char> settled(n, 0);
+  while (!pq.empty()) {  // each node settled once
+    const auto [d, x] = pq.top();
+    pq.pop();
+    if (d > dist[x] || settled[x]) continue;
+    settled[x] = 1;
+    g.around(x, [&](int y) {
+      if (!enterable(y) && !(settled[y] && enterable(x))) return;
+      const double step = length(g.position(x), g.position(y));
+      if (settled[y]) {
+        if (label[y] != label[x])
+          links.push_back({d + step + dist[y], std::min(label[x], label[y]), std::max(label[x], label[y])});
+        return;
+      }
+      const double nd = d + step + (y >= g.nv ? g.penalty : 0);
+      if (nd < dist[y]) dist[y] = nd, label[y] = label[x], pq.push({nd, y});
+    });
+  }
+  std::sort(links.begin(), links.end(), [](const Link& x, const Link& y) {
+    return x.len < y.len || (x.len == y.len && (x.a < y.a || (x.a == y.a && x.b < y.b)));
+  });
+  UnionFind uf(static_cast<std::size_t>(b) + 1);
+  std::vector<std::vector<int>> adj(b + 1);
+  for (const Link& l : links)
+    if (uf.unite(l.a, l.b)) adj[l.a].push_back(l.b), adj[l.b].push_back(l.a);
+  std::vector<std::pair<int, int>> order;
+  std::vector<char> seen(b + 1, 0);
+  std::vector<int> stack{genus >= 1 ? b : 0};
+  seen[stack[0]] = 1;
+  while (!stack.empty()) {  // each node once
+    const int p = stack.back();
+    stack.pop_back();
+    for (auto it = adj[p].rbegin(); it != adj[p].rend(); ++it)
+      if (!seen[*it]) seen[*it] = 1, order.push_back({p, *it}), stack.push_back(*it);
+  }
+  return order;
+}
+
+// Step 4: the legs. O(n log n) for the order, plus each leg's search (its settled nodes x log),
+// plus the splits.
+void legs_step(Work& w, int genus, int root, OpenCutStats& stats) {
   const int b = w.holes;
   {
     std::vector<Vec3d> real(w.nv());
     for (int v = 0; v < w.nv(); ++v) real[v] = w.rs.position(v);
     w.pos = unit_scaled(real);
   }
+  const double mean_edge = mean_edge_length(w);
   std::vector<char> joined(b, 0);
   std::vector<int> corners;  // surface vertices whose copies are corners
-  for (int v = 0; v < w.nv(); ++v)
-    if (w.corner[v]) corners.push_back(v);
+  std::vector<std::vector<int>> hole_corners(b);
+  if (genus >= 1) corners.push_back(root);
+  if (genus == 0) joined[0] = 1;
   std::vector<double> dist;
   std::vector<int> parent;
   std::vector<char> source;
   std::vector<int> touched;
-  auto passable = [&](int v) { return !w.in_hole(v) && !w.on_cut[v]; };
-  auto target = [&](int v) { return w.hole_of[v] >= 0 && !joined[w.hole_of[v]]; };
-  // One search from `from` (surface vertices) to the nearest vertex of a hole not joined, through
-  // passable vertices (at least one). Returns the path from a source to the target, or empty.
-  auto search = [&](const std::vector<int>& from) {
-    const std::size_t n = static_cast<std::size_t>(w.nv());
+  // One search from `from` (surface vertices) to the nearest vertex of hole `to` (-1: of any hole
+  // not joined) through passable vertices and chords (at least one node between). Returns the
+  // path's nodes from a source to the target (LegGraph ids), or empty.
+  auto search = [&](const std::vector<int>& from, int to) {
+    const LegGraph g(w, mean_edge);
+    auto target = [&](int x) {
+      if (x >= g.nv) return false;
+      const int j = w.hole_of[x];
+      return j >= 0 && !joined[j] && (to < 0 || j == to);
+    };
+    const std::size_t n = static_cast<std::size_t>(g.size());
     dist.resize(n, std::numeric_limits<double>::infinity());
     parent.resize(n, -1);
     source.resize(n, 0);
@@ -348,69 +499,88 @@ void legs_step(Work& w, int genus, OpenCutStats& stats) {
       pq.push({0.0, x});
     }
     int found = -1;
-    settle_until(
-        w.rs.mesh, dist, pq,
-        [&](int v, int u, double d) {
-          if (found >= 0 || target(v)) return;  // a target is an end, not a way through
-          if (!passable(u) && !(target(u) && !source[v])) return;
-          const double nd = d + length(w.pos[v], w.pos[u]);
-          if (nd < dist[u]) {
-            if (dist[u] == std::numeric_limits<double>::infinity()) touched.push_back(u);
-            dist[u] = nd, parent[u] = v;
-            pq.push({nd, u});
-          }
-        },
-        [&] {
-          // settle_until calls this after each settled vertex; the queue's top is the next one.
-          while (!pq.empty() && pq.top().first > dist[pq.top().second]) pq.pop();
-          if (!pq.empty() && target(pq.top().second)) found = pq.top().second;
-          return found >= 0;
-        });
+    while (!pq.empty()) {  // each node settled once
+      const auto [d, x] = pq.top();
+      pq.pop();
+      if (d > dist[x]) continue;
+      if (target(x)) {
+        found = x;
+        break;
+      }
+      g.around(x, [&](int y) {
+        if (!(y >= g.nv || g.passable(y) || (target(y) && !source[x]))) return;
+        const double nd = d + length(g.position(x), g.position(y)) + (y >= g.nv ? g.penalty : 0);
+        if (nd < dist[y]) {
+          if (dist[y] == std::numeric_limits<double>::infinity()) touched.push_back(y);
+          dist[y] = nd, parent[y] = x;
+          pq.push({nd, y});
+        }
+      });
+    }
     std::vector<int> path;
-    for (int v = found, guard = 0; v >= 0; v = parent[v], ++guard) {  // the tree has <= n vertices
-      if (guard > w.nv()) internal("open cut: a leg's parents form a cycle", {found});
-      path.push_back(v);
+    for (int x = found, guard = 0; x >= 0; x = parent[x], ++guard) {  // the tree has <= n nodes
+      if (guard > g.size()) internal("open cut: a leg's parents form a cycle", {found});
+      path.push_back(x);
     }
     std::reverse(path.begin(), path.end());
-    for (int v : touched) dist[v] = std::numeric_limits<double>::infinity(), parent[v] = -1, source[v] = 0;
+    for (int x : touched) dist[x] = std::numeric_limits<double>::infinity(), parent[x] = -1, source[x] = 0;
     touched.clear();
-    return path;
+    // Chords as their ends, split below (the half-edge ids change with the splits).
+    std::vector<std::pair<int, int>> nodes;
+    for (int x : path)
+      nodes.push_back(x < g.nv ? std::pair{x, -1} : std::pair{g.m.origin(x - g.nv), g.m.target(x - g.nv)});
+    return nodes;
   };
-  // Every chord of the current region (an edge of two S faces, on no cut, between two vertices on
-  // a hole or a cut) split at its midpoint. O(n).
-  auto split_region_chords = [&] {
-    const std::vector<char> cut = w.cut_halfedges();
-    const TriMesh& m = w.rs.mesh;
-    std::vector<std::pair<int, int>> todo;
-    auto blocked = [&](int v) { return w.hole_of[v] >= 0 || w.on_cut[v]; };
-    for (int h = 0; h < m.num_halfedges(); ++h)
-      if (h < m.twin(h) && !cut[h] && !w.fan_face(TriMesh::face(h)) && !w.fan_face(TriMesh::face(m.twin(h))) &&
-          blocked(m.origin(h)) && blocked(m.target(h)))
-        todo.push_back({m.origin(h), m.target(h)});
-    for (auto [a, c] : todo) w.split(a, c);
-    return static_cast<int>(todo.size());
+  // The sources of a leg from node p: the root; a hole's corners, or for hole 0 of a genus-0
+  // surface before its first leg every vertex of it.
+  auto node_sources = [&](int p) {
+    if (p == b) return std::vector<int>{root};
+    if (!hole_corners[p].empty()) return hole_corners[p];
+    std::vector<int> all;
+    for (int v = 0; v < w.nv(); ++v)
+      if (w.hole_of[v] == p) all.push_back(v);
+    return all;
   };
-  int first = 0;
-  if (genus == 0) joined[0] = 1, first = 1;  // the first leg starts anywhere on loop 0
-  for (int leg = first; leg < b; ++leg) {  // b - first legs, each joining one more hole
-    std::vector<int> from = corners;
-    if (genus == 0 && leg == 1)
-      for (int v = 0; v < w.nv(); ++v)
-        if (w.hole_of[v] == 0) from.push_back(v);
-    std::vector<int> path = search(from);
-    if (path.empty()) {  // bound: one retry, which succeeds (see the header)
-      stats.leg_chord_splits += split_region_chords();
-      path = search(from);
-      if (path.empty()) internal("open cut: no leg to the holes left after the chord splits");
+  // Cuts a leg found by `search`: its chords split at their midpoints (consecutive nodes stay
+  // adjacent: a chord's midpoint is joined to its ends, to its faces' apexes and to the midpoints
+  // of their other chords split after it), its ends made corners.
+  auto cut_leg = [&](const std::vector<std::pair<int, int>>& nodes) {
+    std::vector<int> path;
+    for (auto [a, c] : nodes) {
+      if (c < 0) {
+        path.push_back(a);
+        continue;
+      }
+      path.push_back(w.split(a, c));
+      ++stats.leg_chord_splits;
     }
     const int s = path.front(), t = path.back();
-    for (std::size_t i = 1; i + 1 < path.size(); ++i) w.on_cut[path[i]] = 1;
     joined[w.hole_of[t]] = 1;
     for (int x : {s, t})
-      if (!w.corner[x]) w.corner[x] = 1, corners.push_back(x);
+      if (!w.corner[x]) {
+        w.corner[x] = 1, corners.push_back(x);
+        if (w.hole_of[x] >= 0) hole_corners[w.hole_of[x]].push_back(x);
+      }
     stats.leg_edges += static_cast<int>(path.size()) - 1;
     ++stats.legs;
-    w.paths.push_back({std::move(path), false});
+    w.add_path(std::move(path), false);
+  };
+  // The tree's legs, each from its parent's corner to its hole; where that finds no way (the
+  // parent not joined: an earlier fallback took another hole), or for a hole the tree missed,
+  // from every corner to the nearest hole not joined, which always exists (LegGraph). Each round
+  // joins one hole: at most b rounds of at most two searches.
+  const std::vector<std::pair<int, int>> order = leg_order(w, genus, root, mean_edge);
+  std::size_t next = 0;
+  for (int round = 0; round < b && std::count(joined.begin(), joined.end(), 1) < b; ++round) {
+    while (next < order.size() && joined[order[next].second]) ++next;
+    std::vector<std::pair<int, int>> nodes;
+    if (next < order.size()) {
+      const auto [p, j] = order[next];
+      if (p == b || joined[p]) nodes = search(node_sources(p), j);
+    }
+    if (nodes.empty()) nodes = search(corners.empty() ? node_sources(0) : corners, -1);
+    if (nodes.empty()) internal("open cut: no leg to the holes left");
+    cut_leg(nodes);
   }
 }
 
@@ -590,7 +760,7 @@ OpenCut cut_open_surface(const SurfaceComponent& surface, const OpenCutOptions& 
   st.seconds_loops = seconds_since(t_loops);
   const auto t_legs = Clock::now();
   if (b >= 2 || genus >= 1) {
-    legs_step(w, genus, st);
+    legs_step(w, genus, out.root, st);
   } else {
     std::vector<Vec3d> real(w.nv());
     for (int v = 0; v < w.nv(); ++v) real[v] = w.rs.position(v);
