@@ -156,6 +156,16 @@ SurfaceComponent hexagon() {
   return only_component(soup_of(pos, {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}}));
 }
 
+// The random open mesh of genus g with `loops` loops (tests/support/random_mesh.h, plain geometry).
+SurfaceComponent random_open(int genus, std::int64_t faces, std::uint64_t seed, int loops) {
+  igm_test::RandomMeshSpec spec;
+  spec.genus = genus;
+  spec.faces = faces;
+  spec.seed = seed;
+  spec.boundaries = loops;
+  return only_component(igm_test::random_mesh(spec));
+}
+
 template <class F>
 ErrorKind error_kind(F&& f) {
   try {
@@ -234,12 +244,7 @@ TEST_CASE("open cut: hand-made surfaces") {
 }
 
 TEST_CASE("open cut: options") {
-  igm_test::RandomMeshSpec spec;
-  spec.genus = 2;
-  spec.faces = 1500;
-  spec.seed = 5;
-  spec.boundaries = 3;
-  const SurfaceComponent s = only_component(igm_test::random_mesh(spec));
+  const SurfaceComponent s = random_open(2, 1500, 5, 3);
   const OpenCut base = cut_and_check(s, "default");
   OpenCutOptions serial;
   serial.parallel = false;
@@ -293,11 +298,7 @@ TEST_CASE("open cut: typed errors") {
     CHECK(error_kind([&] { cut_open_surface(s); }) == ErrorKind::NonManifoldEdge);
   }
   SUBCASE("bad roots") {
-    igm_test::RandomMeshSpec spec;
-    spec.genus = 1;
-    spec.faces = 400;
-    spec.boundaries = 1;
-    const SurfaceComponent s = only_component(igm_test::random_mesh(spec));
+    const SurfaceComponent s = random_open(1, 400, 1, 1);
     OpenCutOptions o;
     o.root = s.boundary_loops[0][0];
     CHECK(error_kind([&] { cut_open_surface(s, o); }) == ErrorKind::InvalidArgument);
@@ -307,12 +308,7 @@ TEST_CASE("open cut: typed errors") {
 }
 
 TEST_CASE("open cut: check_open_cut finds broken results") {
-  igm_test::RandomMeshSpec spec;
-  spec.genus = 1;
-  spec.faces = 600;
-  spec.seed = 9;
-  spec.boundaries = 2;
-  const SurfaceComponent s = only_component(igm_test::random_mesh(spec));
+  const SurfaceComponent s = random_open(1, 600, 9, 2);
   const OpenCut good = cut_open_surface(s);
   REQUIRE(check_open_cut(s, good) == "");
   int glued = -1, free_side = -1;

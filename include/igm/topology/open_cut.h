@@ -22,17 +22,20 @@
 //     every loop vertex is interior to S, no exact point involves an h_j. The loops are then
 //     tightened (tighten_loops) with the boundary vertices and the h_j barred. Checked: a loop
 //     vertex on a boundary or a fan is igm::Error(Internal).
-//  4. legs: the holes are joined to the cut one at a time (greedy, like Prim's algorithm): a
-//     shortest path (3D lengths) from any CORNER of the current disk (a root copy, or a hole
-//     vertex where an earlier leg ended; for g = 0 the first leg starts anywhere on loop 0)
-//     through interior vertices of the current region (not on a loop, a leg or a boundary) to the
-//     nearest vertex of a hole not yet joined, with at least one interior vertex. Cutting it keeps
-//     a disk and inserts the sides c d c^-1 at its start corner (c the leg, d the whole loop, a
-//     free side from the leg's end back to it). Where no leg exists (a region pinched between cut
-//     paths), every chord of the current region (an edge between two of its boundary vertices,
-//     not on a cut) is split at its midpoint and the search runs once more: then the region's
-//     interior vertices are connected and every corner and hole vertex has an interior
-//     neighbour, so it succeeds (else Internal).
+//  4. legs: the holes are joined to the cut one at a time, each by a leg from a CORNER of the
+//     current disk (a root copy, or a hole vertex where an earlier leg ended; for g = 0 the first
+//     leg starts anywhere on loop 0) to a vertex of the hole, through the interior of the current
+//     region only. Cutting it keeps a disk and inserts the sides c d c^-1 at its start corner (c
+//     the leg, d the whole loop, a free side from the leg's end back to it). The searches (3D
+//     lengths) run on the passable vertices (not on a loop, a leg or a boundary) and the chords
+//     (interior edges between two blocked vertices), a chord crossed at its midpoint, split off
+//     when a leg uses it (it costs one mean edge length more): then every hole is reachable from
+//     every corner, however the cuts box a corner or a pocket in, and every leg has an interior
+//     vertex. Order: the minimum spanning tree of the holes and the root over one multi-source
+//     search from all of them (Voronoi regions touching across an edge), depth-first from the
+//     root; each leg runs from its parent's corners to its hole, a search that settles about the
+//     ball between them. Where that finds nothing, a search from every corner to the nearest hole
+//     not joined. At most b rounds of two searches.
 //     This differs from a path h_1 -> h_2 -> ... through the fans (each inner loop split in two):
 //     a leg touches its hole at one vertex, so each hole adds 3 sides instead of 4; for genus 0
 //     and b >= 2 the word has 3b - 2 sides (the annulus: loop 0, leg, loop 1, leg^-1), for
@@ -76,7 +79,7 @@ struct OpenCutStats {
   int disk_vertices = 0, disk_faces = 0;
   int boundary_splits = 0;      // loop edges split so that a disk's loop has 4 vertices (step 1)
   int chord_splits = 0;         // step 2
-  int leg_chord_splits = 0;     // chords split where a leg search found no way (step 4)
+  int leg_chord_splits = 0;     // chords the legs cross, split at their midpoints (step 4)
   int precondition_splits = 0;  // step 6
   int legs = 0, leg_edges = 0;  // step 4
   int extra_corners = 0;        // corners added to make the side count even (step 5)
@@ -116,7 +119,8 @@ struct OpenCut {
 /// or out of range), NonFinite for a non-finite coordinate, the errors of TriMesh::from_triangles
 /// for non-manifold triangles; igm::Error(Internal) if an invariant breaks. Post: check_open_cut
 /// returns "". Cost: the closed cut's (without the normal form, one root, g >= 1) plus
-/// O(sum over the legs of the vertices their searches settle x log) plus O(n) splits.
+/// O(n log n) for the legs' order and O(sum over the legs of the nodes their searches settle x
+/// log), O(n) splits and O(n) for the disk.
 OpenCut cut_open_surface(const SurfaceComponent& surface, const OpenCutOptions& options = {});
 
 /// The post-conditions of cut_open_surface, recomputed from the arrays: "" or the first violation.
