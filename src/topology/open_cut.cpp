@@ -111,6 +111,13 @@ std::vector<Vec3d> unit_scaled(const std::vector<Vec3d>& p) {
   return out;
 }
 
+// The number of half-edges leaving each vertex. O(n).
+std::vector<int> out_degrees(const TriMesh& m) {
+  std::vector<int> degree(m.num_vertices(), 0);
+  for (int h = 0; h < m.num_halfedges(); ++h) ++degree[m.origin(h)];
+  return degree;
+}
+
 // Step 1: the input checked, S' built (fans to the centers at the loops' centroids). Returns the
 // genus. O(F log F).
 int fill(const SurfaceComponent& s, Work& w) {
@@ -200,8 +207,20 @@ int fill(const SurfaceComponent& s, Work& w) {
     for (std::size_t i = 0; i < L.size(); ++i) tris.push_back({L[(i + 1) % L.size()], L[i], n + j});
   }
   w.rs.mesh = TriMesh::from_triangles(n + b, tris);
-  const std::string inv = w.rs.mesh.check_invariants();
-  if (!inv.empty()) throw Error(ErrorKind::NonManifoldVertex, "cut_open_surface: the filled surface: " + inv);
+  {  // each vertex one fan: the walk around it meets all of its half-edges
+    const TriMesh& m = w.rs.mesh;
+    const std::vector<int> degree = out_degrees(m);
+    for (int v = 0; v < n + b; ++v) {
+      int steps = 0;
+      for (int h = m.next_around_origin(m.vertex_halfedge(v)); steps <= degree[v]; h = m.next_around_origin(h)) {
+        ++steps;
+        if (h == m.vertex_halfedge(v)) break;
+      }
+      if (steps != degree[v])
+        throw Error(ErrorKind::NonManifoldVertex, "cut_open_surface: the faces around vertex " + str(v) +
+                                                      " form more than one fan", {v});
+    }
+  }
   w.rs.num_input_vertices = n + b;
   w.rs.input_positions = std::move(positions);
   w.nv_s = n;
@@ -287,9 +306,10 @@ int loops_step(Work& w, int genus, const OpenCutOptions& options, OpenCutStats& 
     if (w.hole_of[root] >= 0) bad("root " + str(root) + " lies on boundary loop " + str(w.hole_of[root]), {root});
   } else {
     int best = -1;
+    const std::vector<int> valence = out_degrees(m);
     for (int pass = 0; pass < 2 && root < 0; ++pass)  // S's vertices, then the chord midpoints
       for (int v = pass == 0 ? 0 : nin; v < (pass == 0 ? w.nv_s : n0); ++v)
-        if (!w.in_hole(v) && m.valence(v) > best) best = m.valence(v), root = v;
+        if (!w.in_hole(v) && valence[v] > best) best = valence[v], root = v;
     if (root < 0) internal("open cut: no interior vertex after the chord splits");
   }
   CutOptions co;
@@ -799,7 +819,12 @@ OpenCut cut_open_surface(const SurfaceComponent& surface, const OpenCutOptions& 
     const int mid = nearest_index(cum, 1, k - 2, cum.back() == 0 ? (k - 1) / 2.0 : cum.back() / 2);
     w.corner[d.d2s[side.disk_vertices[mid]]] = 1;
     ++st.extra_corners;
-    d = build_disk(w);
+    // The side in two at the new corner (a vertex on one free side only: one copy).
+    OpenSide second{{side.disk_vertices.begin() + mid, side.disk_vertices.end()}, -1, side.loop};
+    d.sides[longest].disk_vertices.resize(mid + 1);
+    d.sides.insert(d.sides.begin() + longest + 1, std::move(second));
+    for (OpenSide& o : d.sides)
+      if (o.mate > longest) ++o.mate;
   }
   st.precondition_splits = precondition_pass(w, d);
   out.num_surface_faces = s_faces_first(w);
