@@ -247,7 +247,7 @@ struct FaceList {
 }  // namespace
 
 TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int>> loops, int root,
-                             bool every_vertex_every_pass) {
+                             bool every_vertex_every_pass, const std::vector<char>& barred) {
   TightenedLoops out;
   RefinedSurface& rs = surface;
   const int nv = rs.mesh.num_vertices();
@@ -274,6 +274,8 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
     }
     head[i] = L[1], tail[i] = L.back();
   }
+  // Vertices no loop may move onto (ids past the flags are not barred).
+  auto is_barred = [&](int v) { return v < static_cast<int>(barred.size()) && barred[v]; };
   // The vertices whose loop state or incident faces a move changed (see the passes below).
   std::vector<int> touched;
   // Scratch lists of the moves, kept across calls so that a pass allocates nothing once warm; each
@@ -418,7 +420,7 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
     far_arc(w, from, p, n);
     if (arc.empty()) return false;
     for (int z : arc)
-      if (z == root || loop_of[z] != -1) return false;
+      if (z == root || loop_of[z] != -1 || is_barred(z)) return false;
     save(w);
     save_ends(B);
     int before = p;
@@ -457,9 +459,9 @@ TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int
     fl.neighbours(c, cand);
     std::sort(cand.begin(), cand.end());
     for (int w : cand)
-      if (loop_of[w] == -1 && w != root && pull_into(c, w)) return w;
+      if (loop_of[w] == -1 && w != root && !is_barred(w) && pull_into(c, w)) return w;
     for (int w : cand)
-      if (loop_of[w] >= 0 && push_and_pull(c, w)) return w;
+      if (loop_of[w] >= 0 && !is_barred(w) && push_and_pull(c, w)) return w;
     return -1;
   };
 

@@ -80,8 +80,10 @@ StraightenedPaths straighten_paths(RefinedSurface surface, const std::vector<std
 /// per tried collapse; later passes check only the vertices near the last pass's moves (the same
 /// moves as checking all: see the .cpp); at most V (V + 2) + 1 passes, in practice 3 to 9.
 /// every_vertex_every_pass checks every vertex in every pass instead: the reference the
-/// dirty-vertex passes must equal exactly (tests compare the two).
+/// dirty-vertex passes must equal exactly (tests compare the two). `barred` (one flag per vertex,
+/// or empty): vertices no loop may move onto (M1 and M4 never make a loop run through one); the
+/// open surfaces' cut (open_cut.h) bars the boundary and the filled holes.
 TightenedLoops tighten_loops(RefinedSurface surface, std::vector<std::vector<int>> loops, int root,
-                             bool every_vertex_every_pass = false);
+                             bool every_vertex_every_pass = false, const std::vector<char>& barred = {});
 
 }  // namespace igm
