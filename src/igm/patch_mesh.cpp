@@ -128,6 +128,7 @@ PatchMesh build_patch_mesh(PatchMeshInput in, bool split_chords) {
   // A new point on a polygon side is one surface vertex with its glued partner on the mate side.
   const int ns = L.num_corners();
   for (int s = 0; s < ns; ++s) {
+    if (L.side_mate[s] < 0) continue;  // a free side: its new points are vertices of their own (below)
     const auto &sp = L.side_points[s], &mp = L.side_points[L.side_mate[s]];
     const std::size_t n = sp.size() - 1;
     for (std::size_t j = 1; j < n; ++j) {
@@ -160,7 +161,7 @@ PatchMesh build_patch_mesh(PatchMeshInput in, bool split_chords) {
     }
   for (int e = 0; e < ne; ++e) {
     const LayoutEdge& E = L.edges[e];
-    if (E.side < 0) continue;
+    if (E.side < 0 || L.side_mate[E.side] < 0) continue;
     const auto& mate_pieces = piece_edge[L.side_mate[E.side]];
     const int f = mate_pieces[mate_pieces.size() - 1 - E.piece];
     const auto &a = m.edge_chain[e], &b = m.edge_chain[f];

@@ -170,6 +170,7 @@ void smooth_extract_certify(PipelineResult& result, const PipelineOptions& optio
     in.corner_uv = igm.corner_uv;
     IsolineOptions io;
     io.max_witnesses = options.max_witnesses;
+    io.allow_boundary = stats.boundary_loops > 0;
     IsolineResult x = extract_isolines(in, io);
     result.igm_report = std::move(x.report);
     if (x.quads) {

@@ -11,7 +11,8 @@ namespace igm {
 
 PipelineResult compute_igm(const SurfaceComponent& surface, const PipelineOptions& options) {
   if (surface.boundary_loops.empty()) return compute_igm(to_valid_mesh(surface), options);
-  throw Error(ErrorKind::Unsupported, "PENDING open cut");
+  check_sizes(options);
+  return compute_igm_open(surface, options);  // open_pipeline.cpp
 }
 
 SurfacesResult compute_igms(const SurfaceSet& set, const PipelineOptions& options) {
