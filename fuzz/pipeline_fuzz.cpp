@@ -1,15 +1,21 @@
-// libFuzzer target: the whole pipeline on a small random closed mesh decoded from the bytes.
+// libFuzzer target: the whole pipeline on a small random mesh decoded from the bytes.
 //
-// Bytes -> RandomMeshSpec (tests/support/random_mesh.h: genus 0..12, 4..2000 target faces, seed,
+// Bytes -> RandomMeshSpec (tests/support/random_mesh.h: genus 0..12 closed for a first byte below
+// 208, else open: genus 0..5 with 1..8 boundary loops; 4..2000 target faces (open: at least what
+// the generator needs for the holes), seed,
 // jitter, up to 15 edge and 15 face splits, a hostile geometry, permuted order), a root, a
 // resolution 3..5, the normal form on or off (flag bit 0x40), then up to 64 coordinate perturbations (collapse a vertex onto another, put it
 // on the segment of two others, scale it by 1e300 / 1e-300, send it to +-1e308, zero it). The
-// combinatorics stay those of a closed genus-g surface, so:
+// combinatorics stay those of a closed genus-g surface (or of genus g with b loops), so:
 //   validate() must accept it with genus g, and compute_igm must return an output that BOTH
-//   certifier reports accept, with genus g and N x N quads per layout quad (2 cells for a sphere).
+//   certifier reports accept, with genus g and N x N quads per layout quad (2 cells for a sphere);
+//   open: validate_surfaces() must give one surface of genus g with b loops, and compute_igm on it
+//   an output both reports accept in boundary mode, with that genus and those loops (the root
+//   moved to the first vertex off the boundary: a boundary root is a typed error).
 // No igm::Error is accepted (the mesh is valid by construction; with kGenus0Certifies false only
 // Unsupported for genus 0 was; with the normal form, Unsupported for its growth bound is): any igm::Error, any other exception, a rejected output, a crash
 // or a hang is a finding (abort).
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -18,8 +24,10 @@
 #include <cstring>
 #include <exception>
 #include <string>
+#include <vector>
 
 #include "igm/core/error.h"
+#include "igm/mesh/validate_surfaces.h"
 #include "igm/pipeline/pipeline.h"
 #include "random_mesh.h"
 
@@ -46,14 +54,61 @@ struct Reader {  // the fuzz bytes, read front to back; past the end every read 
   std::abort();
 }
 
+// The open branch (see the top of the file).
+int run_open(const igm::PolygonSoup& soup, const igm_test::RandomMeshSpec& s, std::uint64_t root_bytes, std::uint64_t flags) {
+  igm::SurfaceSet set;
+  try {
+    set = igm::validate_surfaces(soup);
+  } catch (const igm::Error& e) {
+    finding("validate_surfaces rejected an open mesh", s, e.what());
+  }
+  if (set.components.size() != 1 || set.components[0].genus != s.genus ||
+      set.components[0].boundary_loops.size() != static_cast<std::size_t>(s.boundaries))
+    finding("wrong surfaces, genus or loops from validate_surfaces", s, "");
+  const igm::SurfaceComponent& c = set.components[0];
+  const int nv = static_cast<int>(c.positions.size());
+  std::vector<char> on_boundary(nv, 0);
+  for (const auto& loop : c.boundary_loops)
+    for (int v : loop) on_boundary[v] = 1;
+  igm::PipelineOptions o;
+  o.resolution = 0;
+  o.quads = 200 + static_cast<std::int64_t>(flags % 3) * 300;
+  o.root = -1;
+  if (root_bytes != 0xFFFF)
+    for (int k = 0; k < nv && o.root < 0; ++k) {
+      const int v = static_cast<int>((root_bytes + static_cast<std::uint64_t>(k)) % static_cast<std::uint64_t>(nv));
+      if (!on_boundary[v]) o.root = v;
+    }
+  o.max_witnesses = 3;
+  o.quality = false;
+  o.smooth_iterations = 3;
+  o.smooth_seconds = 0;
+  try {
+    const igm::PipelineResult r = igm::compute_igm(c, o);
+    if (!r.igm_report.valid()) finding("open IGM rejected by the certifier", s, igm::certify::summary(r.igm_report).c_str());
+    if (!r.quad_report.valid()) finding("open quads rejected by the certifier", s, igm::certify::summary(r.quad_report).c_str());
+    if (r.quad_report.genus != s.genus || r.quad_report.boundary_loops != s.boundaries)
+      finding("wrong genus or loops of the open quad mesh", s, "");
+  } catch (const igm::Error& e) {
+    finding("typed error on a valid open mesh", s, e.what());
+  } catch (const std::exception& e) {
+    finding("untyped exception", s, e.what());
+  }
+  return 0;
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size > 4096) return 0;  // 18 header bytes + 64 perturbations of 5 bytes are all that is read
   Reader in{data, size};
   igm_test::RandomMeshSpec s;
-  s.genus = static_cast<int>(in.get(1) % 13);
+  const int first = static_cast<int>(in.get(1));
+  const bool open = first >= 208;  // 208 = 16 * 13: the closed genera stay uniform below it
+  s.genus = open ? (first - 208) % 6 : first % 13;
+  s.boundaries = open ? 1 + (first - 208) / 6 : 0;
   s.faces = 4 + static_cast<std::int64_t>(in.get(2) % 1997);
+  if (open) s.faces = std::max<std::int64_t>(s.faces, 200 + 250 * s.genus + 40 * s.boundaries);
   s.seed = in.get(8);
   s.geometry = static_cast<igm_test::Geometry>(in.get(1) % static_cast<unsigned>(igm_test::Geometry::Count));
   s.jitter = 0.45 * static_cast<double>(in.get(1)) / 255.0;
@@ -64,7 +119,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   s.permute = (flags & 0x80) != 0;
   const int resolution = 3 + static_cast<int>(flags % 3);
 
-  igm::PolygonSoup soup = igm_test::random_closed_mesh(s);
+  igm::PolygonSoup soup = open ? igm_test::random_mesh(s) : igm_test::random_closed_mesh(s);
   auto& pos = soup.positions;
   const std::size_t nv = pos.size();
   for (int k = 0; k < 64 && in.n >= 5; ++k) {  // at most 64 perturbations
@@ -80,6 +135,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       default: q = {0.0, 0.0, 0.0}; break;
     }
   }
+
+  if (open) return run_open(soup, s, root_bytes, flags);
 
   igm::ValidMesh mesh;
   try {

@@ -47,10 +47,13 @@ int cmd_batch(const Args& args) { return igm_cli::batch_command(args); }
 
 const Command kCommands[] = {
     {"run", "igm run MESH [-o DIR] [--quads Q | --edge-length H | --resolution N] [--layout spread|kite|paper]\n"
-            "        [--map tutte|affine] [--root V] [--normal-form [--restarts K|auto]] [--cones A,B,C,D]\n"
+            "        [--map tutte|affine] [--no-smooth] [--smooth-iterations N] [--smooth-seconds S]\n"
+            "        [--split-nonmanifold] [--root V] [--normal-form [--restarts K|auto]] [--cones A,B,C,D]\n"
             "        [--memory-limit-mb M]\n"
             "                                the whole pipeline: certified IGM, quad mesh, certificate, schema picture\n"
-            "                                (genus 0: four pi-cones, --cones picks them as 0-based vertex ids)\n"
+            "                                (genus 0: four pi-cones, --cones picks them as 0-based vertex ids; open\n"
+            "                                surfaces: boundaries on integer isolines; several components: each its\n"
+            "                                own IGM, one output; `igm run --help` for every option)\n"
             "                                (writes DIR/NAME.igm.obj .igm.exact .quad.obj .cert.json .schema.svg\n"
             "                                .quad.svg; DIR=out)",
      cmd_run},
@@ -79,7 +82,8 @@ const Command kCommands[] = {
 
 void print_usage(std::FILE* out) {
   std::fprintf(out,
-               "igm: integer grid maps of closed orientable triangle meshes\n\n"
+               "igm: certified integer grid maps and quad meshes of orientable triangle meshes\n"
+               "     (closed or open, one or several components)\n\n"
                "usage:\n"
                "  igm                           `run` on a built-in generated mesh of genus 2 (outputs in ./out)\n");
   for (const Command& c : kCommands) std::fprintf(out, "  %s\n", c.usage);

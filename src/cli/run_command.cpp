@@ -34,9 +34,10 @@ bool parse_int(std::string_view s, long long& out) {
   return ec == std::errc() && p == s.data() + s.size();
 }
 
-int usage(const std::string& message) {
-  std::fprintf(stderr,
-               "igm run: %s\nusage: igm run MESH [-o DIR] [--quads Q | --edge-length H | --resolution N]\n"
+// The options (to stderr after a usage error, exit 2; to stdout for --help, exit 0).
+int usage(const std::string& message, bool help = false) {
+  std::fprintf(help ? stdout : stderr,
+               "%s%susage: igm run MESH [-o DIR] [--quads Q | --edge-length H | --resolution N]\n"
                "               [--layout spread|kite|paper] [--map tutte|affine] [--no-smooth] [--root V]\n"
                "               [--normal-form [--restarts K|auto]] [--cones A,B,C,D] [--memory-limit-mb M]\n"
                "  writes DIR/NAME.igm.obj, NAME.igm.exact, NAME.quad.obj, NAME.cert.json, NAME.schema.svg,\n"
@@ -62,8 +63,8 @@ int usage(const std::string& message) {
                "  --restarts K    with --normal-form, 0..64 or auto: where the loops added more than 2 %% of\n"
                "                  the vertices, cut K copies with shuffled vertex ids too, keep the fewest\n"
                "                  (auto: clamp(5e6 / (faces x genus^2), 0, 15) copies)\n",
-               message.c_str(), static_cast<long long>(igm::kDefaultQuads));
-  return kExitInput;
+               help ? "" : "igm run: ", help ? "" : (message + "\n").c_str(), static_cast<long long>(igm::kDefaultQuads));
+  return help ? 0 : kExitInput;
 }
 
 bool parse_double(std::string_view s, double& out) {
@@ -235,6 +236,7 @@ int run_command(const std::vector<std::string_view>& args) {
   bool split_nonmanifold = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string_view a = args[i];
+    if (a == "--help" || a == "-h") return usage("", true);
     if (a == "--cones") {
       if (i + 1 >= args.size()) return usage("--cones needs a value");
       const std::string_view v = args[++i];

@@ -91,7 +91,30 @@ std::vector<Point2q> schema_polygon(int n) {
   if (n < 3 || n > 400000)
     throw Error(ErrorKind::InvalidArgument, "schema_polygon: a polygon needs 3 to 400000 corners, got " + std::to_string(n));
   if (n % 4 == 0) return canonical_polygon(n / 4);
-  // Rational points of the unit circle; 2 bits per doubling of n past 64 keep them apart.
+  if (n % 2 == 0) {
+    // Half the corners at angles in (-pi/2, pi/2), the others their negations (a half turn,
+    // exactly). As in canonical_polygon: tan(theta/2) has derivative >= 1/2 there and consecutive
+    // angles differ by 2 pi / n, so consecutive exact tangents differ by >= pi / n > 50 units of
+    // 1/N (N a power of two >= 16 n): rounding keeps them strictly increasing, and the bit sizes
+    // stay those of canonical_polygon (small denominators N^2 + p^2), not those of a full circle.
+    long N = 1;
+    while (N < 16L * n) N *= 2;
+    const Integer NN = Integer(N) * N;
+    const int h = n / 2;
+    const double pi = std::acos(-1.0);
+    std::vector<Point2q> corners(static_cast<std::size_t>(n));
+    for (int k = 0; k < h; ++k) {
+      const double theta = -pi / 2 + pi * (k + 0.5) / h;  // in (-pi/2, pi/2)
+      const long p = std::lround(std::tan(theta / 2.0) * static_cast<double>(N));
+      const Integer pp = Integer(p) * p, den = NN + pp;
+      corners[k] = {make_rational(NN - pp, den), make_rational(Integer(2) * p * N, den)};
+      corners[k + h] = {Rational(-corners[k].x), Rational(-corners[k].y)};
+    }
+    if (!is_strictly_convex_ccw(corners))
+      throw Error(ErrorKind::Internal, "schema_polygon: the " + std::to_string(n) + "-gon is not strictly convex");
+    return corners;
+  }
+  // Odd n: rational points of the unit circle; 2 bits per doubling of n past 64 keep them apart.
   int bits = 24;
   for (int m = 64; m < n && bits < 60; m *= 2) bits += 2;
   return rational_circle_polygon(n, bits);

@@ -335,9 +335,10 @@ void map_disk(PipelineResult& result, CutDisk& cut, const PipelineOptions& optio
   stats.output_vertices = static_cast<int>(patches.locations.size());
   stats.output_triangles = static_cast<int>(igm.triangles.size());
   stage.done("igm", t0,
-             format("%.0f triangles (%.2fx input), %.0f quads of edge length %.3g", stats.output_triangles,
-                    double(stats.output_triangles) / std::max(1, stats.input_faces), double(sizing.quads),
-                    stats.edge_length) +
+             format("%.0f triangles (%.2fx input), %.0f quads ", stats.output_triangles,
+                    double(stats.output_triangles) / std::max(1, stats.input_faces), double(sizing.quads)) +
+                 (options.resolution > 0 ? format("at resolution %.0f", double(options.resolution))
+                                         : format("of edge length %.3g", stats.edge_length)) +
                  ", " + to_string(options.patch_map) + " maps" +
                  format(", %.0f patches refined, UV bits max %.0f", double(maps.stats.patches_refined),
                         double(stats.max_uv_bits)));

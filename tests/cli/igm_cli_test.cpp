@@ -193,6 +193,13 @@ TEST_CASE("help and usage errors") {
     CHECK(has(r.out, "igm info MESH"));
     CHECK(has(r.out, "igm generate --genus G --faces N"));
   }
+  for (const char* a : {"run --help", "run -h"}) {  // every option of run, on stdout
+    const Run r = igm(a);
+    CHECK(r.code == 0);
+    CHECK(has(r.out, "usage: igm run MESH"));
+    CHECK(has(r.out, "--split-nonmanifold"));
+    CHECK(r.err.empty());
+  }
   for (const char* a :
        {"--bogus", "bogus", "info", "info a.off b.off", "info --x", "generate", "generate --genus 2 x.obj",
         "generate --genus 2 --faces 100", "generate --genus two --faces 100 x.obj",

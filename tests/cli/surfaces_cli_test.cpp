@@ -175,3 +175,68 @@ TEST_CASE("info on the shared meshes: surfaces per component, non-manifold ones 
     CHECK(has(r.out, "problem: no_faces"));
   }
 }
+
+namespace {
+
+// `igm-certify ARGS`: its exit code.
+int run_certify(const std::string& args) {
+  return WEXITSTATUS(std::system((q(IGM_CERTIFY_CLI_PATH) + " " + args + " >/dev/null 2>&1").c_str()));
+}
+
+}  // namespace
+
+TEST_CASE("run on an open mesh: certified outputs whose files igm-certify accepts in boundary mode only") {
+  const fs::path d = scratch();
+  const std::string mesh = (d / "holes.obj").string();
+  REQUIRE(run_igm("generate --genus 1 --boundaries 3 --faces 1500 " + q(mesh)).code == 0);
+  const Output r = run_igm("run " + q(mesh) + " -o " + q((d / "out").string()) + " --quads 800 --smooth-iterations 5");
+  CHECK(r.code == 0);
+  CHECK(has(r.out, "genus 1, 3 boundary loops"));
+  const std::string cert = file_text(d / "out" / "holes.cert.json");
+  CHECK(has(cert, "\"certified\": true"));
+  CHECK(has(cert, "\"boundary_loops\": 3"));
+  const std::string igm = q((d / "out" / "holes.igm.obj").string()), exact = q((d / "out" / "holes.igm.exact").string());
+  const std::string quads = q((d / "out" / "holes.quad.obj").string());
+  CHECK(run_certify("--boundary " + igm) == 0);
+  CHECK(run_certify("--boundary " + exact) == 0);
+  CHECK(run_certify("--quad --boundary --genus 1 --boundary-loops 3 " + quads) == 0);
+  CHECK(run_certify(igm) == 1);                                                     // boundary edges need --boundary
+  CHECK(run_certify("--quad --boundary --genus 1 --boundary-loops 2 " + quads) == 1);  // the loops are counted
+  CHECK(fs::file_size(d / "out" / "holes.quad.svg") > 0);
+  // extraction from the written IGM gives the same number of quads
+  const Output x = run_igm("extract " + igm + " --boundary -o " + q((d / "x.obj").string()));
+  CHECK(x.code == 0);
+  const igm::SurfaceSet a = igm::validate_surfaces(igm::read_soup(d / "x.obj"));
+  const igm::SurfaceSet b = igm::validate_surfaces(igm::read_soup(d / "out" / "holes.quad.obj"));
+  REQUIRE(a.components.size() == 1);
+  REQUIRE(b.components.size() == 1);
+  CHECK(a.components[0].triangles.size() == b.components[0].triangles.size());  // two per quad
+  CHECK(a.components[0].boundary_loops.size() == 3);
+  fs::remove_all(d);
+}
+
+TEST_CASE("run on shared meshes with several components and non-manifold elements") {
+  IGM_REQUIRE_DATA(dir);
+  const fs::path d = scratch();
+  const fs::path m = dir / "meshes" / "invalid";
+  {
+    const Output r = run_igm("run " + q((m / "knot2.off").string()) + " -o " + q((d / "k").string()) +
+                             " --quads 1500 --smooth-iterations 3");
+    CHECK(r.code == 0);
+    const std::string cert = file_text(d / "k" / "knot2.cert.json");
+    CHECK(has(cert, "\"surfaces\": 2}"));
+    CHECK(has(cert, "\"certified\": true"));
+    CHECK(run_certify("--components " + q((d / "k" / "knot2.igm.obj").string())) == 0);
+    CHECK(run_certify("--quad --components --component 1:0 --component 1:0 " + q((d / "k" / "knot2.quad.obj").string())) == 0);
+    CHECK(run_certify(q((d / "k" / "knot2.igm.obj").string())) == 1);  // two components need --components
+  }
+  {
+    const std::string pig = q((m / "pig.stl").string());
+    CHECK(run_igm("run " + pig + " -o " + q((d / "p").string())).code == 2);  // non-manifold: typed error
+    const Output r = run_igm("run --split-nonmanifold " + pig + " -o " + q((d / "p").string()) + " --quads 1500 --no-smooth");
+    CHECK(r.code == 0);
+    CHECK(has(r.err + r.out, "cut 421 non-manifold vertices"));
+    CHECK(has(file_text(d / "p" / "pig.cert.json"), "\"surfaces\": 17}"));
+  }
+  fs::remove_all(d);
+}

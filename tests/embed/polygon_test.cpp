@@ -213,3 +213,30 @@ TEST_CASE("place_boundary_at: points at the given parameters, bad parameter list
   CHECK_THROWS_AS(igm::place_boundary_at(sq, {{0, q(1, 2), q(1, 2)}, {0}, {0}, {0}}), igm::Error);
   CHECK_THROWS_AS(igm::place_boundary_at(sq, {{0, 1}, {0}, {0}, {0}}), igm::Error);
 }
+
+TEST_CASE("schema_polygon: every n from 3 to 600 (and 1022, 4098) strictly convex, even n symmetric with small corners") {
+  std::vector<int> ns;
+  for (int n = 3; n <= 600; ++n) ns.push_back(n);
+  for (int n : {1022, 4098}) ns.push_back(n);
+  for (int n : ns) {
+    CAPTURE(n);
+    const std::vector<Point2q> c = schema_polygon(n);
+    REQUIRE(static_cast<int>(c.size()) == n);
+    CHECK(is_strictly_convex_ccw(c));
+    if (n % 2 == 0 && n > 4) {
+      // the half-turn construction: corner k + n/2 is minus corner k, on the unit circle, and its
+      // denominators are N^2 + p^2 with N <= 32 n, p <= N: at most 2 log2(32 n) + 2 bits
+      std::size_t max_bits = 0;
+      int off = 0;
+      for (int k = 0; k < n / 2; ++k) {
+        off += c[k + n / 2].x != -c[k].x || c[k + n / 2].y != -c[k].y || c[k].x * c[k].x + c[k].y * c[k].y != 1;
+        max_bits = std::max({max_bits, mpz_sizeinbase(c[k].x.get_den_mpz_t(), 2), mpz_sizeinbase(c[k].y.get_den_mpz_t(), 2)});
+      }
+      CHECK(off == 0);
+      CHECK(max_bits <= static_cast<std::size_t>(2 * std::ceil(std::log2(32.0 * n)) + 2));
+      CHECK(same(polygon_centre(c), Point2q{Rational(0), Rational(0)}));
+    }
+  }
+  CHECK_THROWS_AS(schema_polygon(2), Error);
+  CHECK_THROWS_AS(schema_polygon(400001), Error);
+}

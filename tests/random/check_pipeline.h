@@ -10,6 +10,7 @@
 #include "igm/core/error.h"
 #include "igm/mesh/soup.h"
 #include "igm/mesh/validate.h"
+#include "igm/mesh/validate_surfaces.h"
 #include "igm/output/igm_mesh.h"
 #include "igm/pipeline/pipeline.h"
 
@@ -88,6 +89,68 @@ inline Outcome run_pipeline(const igm::PolygonSoup& soup, int expected_genus, in
   }
   out.certified = r.certified();
   out.genus = *r.igm_report.genus;
+  out.quads = static_cast<int>(r.quads.quads.size());
+  return out;
+}
+
+// An open random mesh (boundary loops): validate_surfaces -> one component of genus g with
+// `loops` loops -> compute_igm with `root` -> both certifier reports valid in boundary mode, with
+// that genus and those loops; the IGM on its quads' grid; the written files through the
+// certifier's reader in boundary mode.
+inline Outcome run_open_pipeline(const igm::PolygonSoup& soup, int expected_genus, int loops, int root) {
+  Outcome out;
+  const igm::SurfaceSet set = igm::validate_surfaces(soup);  // the geometry never changes the combinatorics
+  REQUIRE(set.components.size() == 1);
+  const igm::SurfaceComponent& s = set.components[0];
+  REQUIRE(s.genus == expected_genus);
+  REQUIRE(static_cast<int>(s.boundary_loops.size()) == loops);
+  igm::PipelineOptions o;
+  o.quads = 600;
+  o.quality = false;
+  o.smooth_iterations = 3;
+  o.smooth_seconds = 0;
+  // A root off the boundary (a boundary root is a typed error of cut_open_surface): the first
+  // interior vertex from root on, or the default when there is none.
+  {
+    std::vector<char> on_boundary(s.positions.size(), 0);
+    for (const auto& loop : s.boundary_loops)
+      for (int v : loop) on_boundary[v] = 1;
+    const int nv = static_cast<int>(s.positions.size());
+    o.root = -1;
+    for (int k = 0; k < nv && o.root < 0; ++k)
+      if (!on_boundary[(root + k) % nv]) o.root = (root + k) % nv;
+  }
+  igm::PipelineResult r;
+  try {
+    r = igm::compute_igm(s, o);
+  } catch (const igm::Error& e) {
+    FAIL("compute_igm threw on a valid open mesh: " << std::string(e.what()));
+    return out;
+  }
+  CHECK_MESSAGE(r.igm_report.valid(), igm::certify::summary(r.igm_report));
+  CHECK_MESSAGE(r.quad_report.valid(), igm::certify::summary(r.quad_report));
+  REQUIRE(r.quad_report.genus.has_value());
+  REQUIRE(r.quad_report.boundary_loops.has_value());
+  CHECK(*r.quad_report.genus == expected_genus);
+  CHECK(*r.quad_report.boundary_loops == loops);
+  igm::Rational area2 = 0;
+  for (const auto& t : r.igm.corner_uv) area2 += (t[1].x - t[0].x) * (t[2].y - t[0].y) - (t[1].y - t[0].y) * (t[2].x - t[0].x);
+  CHECK(area2 == igm::Rational(2 * static_cast<long>(r.quads.quads.size())));
+  std::ostringstream exact, quads;
+  igm::write_igm_obj(exact, r.igm, false);  // the doubles file: smoothed, so exact doubles
+  igm::write_quad_obj(quads, r.quads);
+  igm::certify::Options co;
+  co.allow_boundary = true;
+  co.expected_genus = expected_genus;
+  co.expected_boundary_loops = loops;
+  if (r.stats.uv_doubles) {
+    const igm::certify::Report re = igm::certify::certify_igm_text(exact.str(), co);
+    CHECK_MESSAGE(re.valid(), igm::certify::summary(re));
+  }
+  const igm::certify::Report rq = igm::certify::certify_quads_text(quads.str(), co);
+  CHECK_MESSAGE(rq.valid(), igm::certify::summary(rq));
+  out.certified = r.certified();
+  out.genus = *r.quad_report.genus;
   out.quads = static_cast<int>(r.quads.quads.size());
   return out;
 }

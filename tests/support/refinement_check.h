@@ -29,10 +29,14 @@ using namespace igm;
 //    orientations, so at most one of them gives a positive determinant;
 //  - with check_areas, these exact area fractions sum to exactly 1 in every input face (the
 //    triangles tile each face: no face missed, none covered twice).
-inline std::string refinement_violation(const ValidMesh& input, const IgmMesh& igm, bool check_areas) {
-  const int n = input.mesh.num_vertices(), F = input.mesh.num_faces();
-  std::vector<std::array<int, 3>> in_tris(F);
-  for (int f = 0; f < F; ++f) in_tris[f] = input.mesh.face_vertices(f);
+// The input as its triangles and positions (an open surface's too: nothing here needs it closed).
+inline std::string refinement_violation(const std::vector<std::array<int, 3>>& in_tris,
+                                        const std::vector<Vec3d>& in_positions, const IgmMesh& igm,
+                                        bool check_areas) {
+  const int n = static_cast<int>(in_positions.size()), F = static_cast<int>(in_tris.size());
+  struct {
+    const std::vector<Vec3d>& positions;
+  } input{in_positions};
   std::vector<std::pair<int, int>> in_edges;  // sorted (a < b)
   std::vector<std::pair<std::array<int, 3>, int>> faces_of(F);  // (sorted corners, input face), sorted
   for (int f = 0; f < F; ++f) {
@@ -130,6 +134,12 @@ inline std::string refinement_violation(const ValidMesh& input, const IgmMesh& i
     if (area[f] != 1)
       return "input face " + std::to_string(f) + ": output triangles cover a fraction " + to_string(area[f]) + " of it";
   return {};
+}
+
+inline std::string refinement_violation(const ValidMesh& input, const IgmMesh& igm, bool check_areas) {
+  std::vector<std::array<int, 3>> tris(input.mesh.num_faces());
+  for (int f = 0; f < input.mesh.num_faces(); ++f) tris[f] = input.mesh.face_vertices(f);
+  return refinement_violation(tris, input.positions, igm, check_areas);
 }
 
 /// The same check on a refined surface (its vertices' exact points, positions and faces).

@@ -20,9 +20,11 @@ namespace igm {
 std::vector<Point2q> canonical_polygon(int genus);
 
 /// The convex polygon of a disk with n >= 3 sides: the unit square for n = 4, canonical_polygon(n / 4)
-/// for other multiples of 4, else rational_circle_polygon(n) (near-regular, corners on the unit
-/// circle). Strictly convex and counter-clockwise. Throws igm::Error(InvalidArgument) for n < 3 or
-/// n > 400000. Cost O(n).
+/// for other multiples of 4; for other even n the same construction by half turns (corners on the
+/// unit circle from tangents rounded to multiples of 1/N, N a power of two >= 16 n; corner k + n/2
+/// is minus corner k, so the mean is exactly the origin; bit sizes as canonical_polygon's); odd n:
+/// rational_circle_polygon(n) (near-regular, corners on the unit circle). Strictly convex and
+/// counter-clockwise. Throws igm::Error(InvalidArgument) for n < 3 or n > 400000. Cost O(n).
 std::vector<Point2q> schema_polygon(int n);
 
 /// The exact centroid (mean) of the corners: a strictly interior point of a strictly convex
