@@ -20,6 +20,7 @@
 #include "igm/io/read_mesh.h"
 #include "igm/mesh/generate.h"
 #include "igm/mesh/validate.h"
+#include "igm/mesh/validate_surfaces.h"
 #include "igm/pipeline/pipeline.h"
 
 namespace py = pybind11;
@@ -68,6 +69,11 @@ const std::map<std::string, Setter>& option_setters() {
       {"cones", field(&igm::PipelineOptions::cones)},
       {"memory_limit_bytes", field(&igm::PipelineOptions::memory_limit_bytes)},
       {"max_witnesses", field(&igm::PipelineOptions::max_witnesses)},
+      {"smooth", field(&igm::PipelineOptions::smooth)},
+      {"smooth_iterations", field(&igm::PipelineOptions::smooth_iterations)},
+      {"smooth_seconds", field(&igm::PipelineOptions::smooth_seconds)},
+      {"smooth_auto_max_triangles", field(&igm::PipelineOptions::smooth_auto_max_triangles)},
+      {"quality_distance", field(&igm::PipelineOptions::quality_distance)},
   };
   return setters;
 }
@@ -119,14 +125,71 @@ void warn_all(const std::vector<std::string>& warnings) {
 }
 
 // --- compute ---
+py::dict stats_dict(const igm::PipelineStats& st) {
+  py::list stages;
+  for (const igm::StageEvent& e : st.stages)
+    stages.append(py::dict("stage"_a = e.stage, "seconds"_a = e.seconds, "detail"_a = e.detail));
+  return py::dict("genus"_a = st.genus, "boundary_loops"_a = st.boundary_loops, "input_vertices"_a = st.input_vertices,
+                  "input_faces"_a = st.input_faces, "refined_vertices"_a = st.refined_vertices,
+                  "refined_faces"_a = st.refined_faces, "output_vertices"_a = st.output_vertices,
+                  "output_triangles"_a = st.output_triangles, "layout_quads"_a = st.layout_quads, "quads"_a = st.quads,
+                  "chords"_a = st.chords, "edge_length"_a = st.edge_length, "max_uv_bits"_a = st.max_uv_bits,
+                  "smooth_iterations"_a = st.smooth.iterations, "smooth_skipped"_a = st.smooth_skipped,
+                  "stages"_a = stages);
+}
+
+// The outputs as NumPy arrays and dicts (one surface, or several merged).
+py::dict result_dict(const igm::IgmMesh& igm, const igm::QuadMesh& quads, const igm::certify::Report& igm_report,
+                     const igm::certify::Report& quad_report, const igm::IgmQuality& igm_quality,
+                     const igm::QuadQuality& quad_quality, bool quality, bool exact, py::dict stats,
+                     const std::vector<std::string>& warnings) {
+  const std::size_t nt = igm.triangles.size();
+  py::array_t<double> uv({static_cast<py::ssize_t>(nt), py::ssize_t{3}, py::ssize_t{2}});
+  auto u = uv.mutable_unchecked<3>();
+  for (std::size_t t = 0; t < nt; ++t)
+    for (py::ssize_t c = 0; c < 3; ++c) {
+      const igm::Point2q& p = igm.corner_uv[t][static_cast<std::size_t>(c)];
+      u(static_cast<py::ssize_t>(t), c, 0) = igm::to_double(p.x);
+      u(static_cast<py::ssize_t>(t), c, 1) = igm::to_double(p.y);
+    }
+  py::dict igm_out("vertices"_a = points_array(igm.positions), "faces"_a = array_of(igm.triangles), "uv"_a = uv);
+  if (exact) {
+    py::array uv_exact(py::dtype("O"), {static_cast<py::ssize_t>(nt), py::ssize_t{3}, py::ssize_t{2}});
+    auto* cells = static_cast<PyObject**>(uv_exact.mutable_data());
+    for (std::size_t t = 0; t < nt; ++t)
+      for (std::size_t c = 0; c < 3; ++c)
+        for (std::size_t d = 0; d < 2; ++d) {
+          const igm::Rational& q = d == 0 ? igm.corner_uv[t][c].x : igm.corner_uv[t][c].y;
+          PyObject*& cell = cells[6 * t + 2 * c + d];
+          Py_XDECREF(cell);
+          cell = py::str(igm::to_string(q)).release().ptr();
+        }
+    igm_out["uv_exact"] = uv_exact;
+  }
+  const bool certified = igm_report.valid() && quad_report.valid();
+  return py::dict("igm"_a = igm_out,
+                  "quads"_a = py::dict("vertices"_a = points_array(quads.positions), "quads"_a = array_of(quads.quads)),
+                  "certificate"_a = py::dict("igm"_a = json_dict(igm::certify::to_json(igm_report)),
+                                             "quad"_a = json_dict(igm::certify::to_json(quad_report))),
+                  "quality"_a = quality ? py::object(py::dict("igm"_a = json_dict(igm::to_json(igm_quality)),
+                                                              "quads"_a = json_dict(igm::to_json(quad_quality))))
+                                        : py::object(py::none()),
+                  "certified"_a = certified, "stats"_a = stats, "warnings"_a = warnings);
+}
+
 py::dict compute(const DoubleArray& v, const IndexArray& f, const py::kwargs& kwargs) {
   igm::PipelineOptions options;
   bool exact = false;
+  igm::SurfaceOptions surface_options;
   for (const auto& [k, value] : kwargs) {
     const std::string key = py::str(k);
     try {
       if (key == "exact") {
         exact = value.cast<bool>();
+        continue;
+      }
+      if (key == "split_nonmanifold") {
+        surface_options.split_nonmanifold = value.cast<bool>();
         continue;
       }
       const auto it = option_setters().find(key);
@@ -139,58 +202,35 @@ py::dict compute(const DoubleArray& v, const IndexArray& f, const py::kwargs& kw
     }
   }
   const igm::PolygonSoup soup = soup_of(v, f);
+  igm::SurfaceSet set;
   igm::ValidMesh mesh;
   igm::PipelineResult r;
+  igm::SurfacesResult surfaces;
+  bool several = false;  // open or several components: compute_igms and the merged outputs
   {
     py::gil_scoped_release release;
-    mesh = igm::validate(soup);
-    r = igm::compute_igm(mesh, options);
-  }
-  warn_all(mesh.warnings);
-
-  const std::size_t nt = r.igm.triangles.size();
-  py::array_t<double> uv({static_cast<py::ssize_t>(nt), py::ssize_t{3}, py::ssize_t{2}});
-  auto u = uv.mutable_unchecked<3>();
-  for (std::size_t t = 0; t < nt; ++t)
-    for (py::ssize_t c = 0; c < 3; ++c) {
-      const igm::Point2q& p = r.igm.corner_uv[t][static_cast<std::size_t>(c)];
-      u(static_cast<py::ssize_t>(t), c, 0) = igm::to_double(p.x);
-      u(static_cast<py::ssize_t>(t), c, 1) = igm::to_double(p.y);
+    set = igm::validate_surfaces(soup, surface_options);
+    several = set.components.size() != 1 || !set.components[0].boundary_loops.empty();
+    if (several) {
+      surfaces = igm::compute_igms(set, options);
+    } else {
+      mesh = igm::to_valid_mesh(set.components[0], set.warnings);
+      r = igm::compute_igm(mesh, options);
     }
-  py::dict igm_out("vertices"_a = points_array(r.igm.positions), "faces"_a = array_of(r.igm.triangles), "uv"_a = uv);
-  if (exact) {
-    py::array uv_exact(py::dtype("O"), {static_cast<py::ssize_t>(nt), py::ssize_t{3}, py::ssize_t{2}});
-    auto* cells = static_cast<PyObject**>(uv_exact.mutable_data());
-    for (std::size_t t = 0; t < nt; ++t)
-      for (std::size_t c = 0; c < 3; ++c)
-        for (std::size_t d = 0; d < 2; ++d) {
-          const igm::Rational& q = d == 0 ? r.igm.corner_uv[t][c].x : r.igm.corner_uv[t][c].y;
-          PyObject*& cell = cells[6 * t + 2 * c + d];
-          Py_XDECREF(cell);
-          cell = py::str(igm::to_string(q)).release().ptr();
-        }
-    igm_out["uv_exact"] = uv_exact;
   }
-  const igm::PipelineStats& st = r.stats;
-  py::list stages;
-  for (const igm::StageEvent& e : st.stages)
-    stages.append(py::dict("stage"_a = e.stage, "seconds"_a = e.seconds, "detail"_a = e.detail));
-  py::dict stats("genus"_a = st.genus, "input_vertices"_a = st.input_vertices, "input_faces"_a = st.input_faces,
-                 "refined_vertices"_a = st.refined_vertices, "refined_faces"_a = st.refined_faces,
-                 "output_vertices"_a = st.output_vertices, "output_triangles"_a = st.output_triangles,
-                 "layout_quads"_a = st.layout_quads, "quads"_a = st.quads, "chords"_a = st.chords,
-                 "edge_length"_a = st.edge_length, "max_uv_bits"_a = st.max_uv_bits,
-                 "stages"_a = stages);
-  return py::dict("igm"_a = igm_out,
-                  "quads"_a = py::dict("vertices"_a = points_array(r.quads.positions),
-                                       "quads"_a = array_of(r.quads.quads)),
-                  "certificate"_a = py::dict("igm"_a = json_dict(igm::certify::to_json(r.igm_report)),
-                                             "quad"_a = json_dict(igm::certify::to_json(r.quad_report))),
-                  "quality"_a = options.quality
-                                    ? py::object(py::dict("igm"_a = json_dict(igm::to_json(r.igm_quality)),
-                                                          "quads"_a = json_dict(igm::to_json(r.quad_quality))))
-                                    : py::object(py::none()),
-                  "certified"_a = r.certified(), "stats"_a = stats, "warnings"_a = mesh.warnings);
+  warn_all(set.warnings);
+  if (!several)
+    return result_dict(r.igm, r.quads, r.igm_report, r.quad_report, r.igm_quality, r.quad_quality, options.quality,
+                       exact, stats_dict(r.stats), set.warnings);
+  py::list per_surface;
+  int quads = 0;
+  for (const igm::PipelineResult& c : surfaces.components) {
+    per_surface.append(stats_dict(c.stats));
+    quads += c.stats.quads;
+  }
+  return result_dict(surfaces.igm, surfaces.quads, surfaces.igm_report, surfaces.quad_report, surfaces.igm_quality,
+                     surfaces.quad_quality, options.quality, exact,
+                     py::dict("surfaces"_a = per_surface, "quads"_a = quads), set.warnings);
 }
 
 // --- certify ---
@@ -216,7 +256,7 @@ mpq_class exact_of(py::handle x) {
 }
 
 py::dict certify(const DoubleArray& v, const IndexArray& f, const py::object& uv, const IndexArray& fuv,
-                 std::size_t max_witnesses) {
+                 std::size_t max_witnesses, bool boundary, bool components) {
   igm::certify::IgmInput in;
   in.num_vertices = static_cast<std::int64_t>(points_of(v).size());
   if (f.ndim() != 2 || f.shape(1) != 3) throw igm::Error(igm::ErrorKind::InvalidArgument, "F must have shape (m, 3)");
@@ -258,6 +298,8 @@ py::dict certify(const DoubleArray& v, const IndexArray& f, const py::object& uv
   }
   igm::certify::Options options;
   options.max_witnesses = max_witnesses;
+  options.allow_boundary = boundary;
+  options.allow_components = components;
   igm::certify::Report report;
   {
     py::gil_scoped_release release;
@@ -270,13 +312,24 @@ py::dict certify(const DoubleArray& v, const IndexArray& f, const py::object& uv
 // --- meshes ---
 py::tuple read_mesh(const std::string& path, bool validate) {
   igm::PolygonSoup soup;
-  igm::ValidMesh mesh;
+  struct {
+    std::vector<igm::Vec3d> positions;
+    std::vector<std::string> warnings;
+  } mesh;
+  std::vector<std::array<int, 3>> tris;
   {
     py::gil_scoped_release release;
     soup = igm::read_soup(std::filesystem::path(path));
     if (validate) {
       try {
-        mesh = igm::validate(soup);
+        // open surfaces and several components too: their triangles one after the other
+        const igm::SurfaceSet set = igm::validate_surfaces(soup);
+        for (const igm::SurfaceComponent& c : set.components) {
+          const int base = static_cast<int>(mesh.positions.size());
+          mesh.positions.insert(mesh.positions.end(), c.positions.begin(), c.positions.end());
+          for (const auto& t : c.triangles) tris.push_back({t[0] + base, t[1] + base, t[2] + base});
+        }
+        mesh.warnings = set.warnings;
       } catch (const igm::Error& e) {
         throw igm::with_path(e, path);
       }
@@ -291,24 +344,22 @@ py::tuple read_mesh(const std::string& path, bool validate) {
     return py::make_tuple(points_array(soup.positions), faces);
   }
   warn_all(mesh.warnings);
-  std::vector<std::array<int, 3>> tris(static_cast<std::size_t>(mesh.mesh.num_faces()));
-  for (int t = 0; t < mesh.mesh.num_faces(); ++t) tris[static_cast<std::size_t>(t)] = mesh.mesh.face_vertices(t);
   return py::make_tuple(points_array(mesh.positions), array_of(tris));
 }
 
-py::tuple generate(int genus, std::int64_t faces, std::uint64_t seed) {
+py::tuple generate(int genus, std::int64_t faces, std::uint64_t seed, int boundaries) {
   igm::GenerateOptions g;
   g.genus = genus;
   g.faces = faces;
   g.seed = seed;
-  igm::ValidMesh mesh;
+  g.boundaries = boundaries;
+  igm::SurfaceSet set;
   {
     py::gil_scoped_release release;
-    mesh = igm::validate(igm::generate_closed_mesh(g));
+    set = igm::validate_surfaces(igm::generate_mesh(g));
   }
-  std::vector<std::array<int, 3>> tris(static_cast<std::size_t>(mesh.mesh.num_faces()));
-  for (int t = 0; t < mesh.mesh.num_faces(); ++t) tris[static_cast<std::size_t>(t)] = mesh.mesh.face_vertices(t);
-  return py::make_tuple(points_array(mesh.positions), array_of(tris));
+  const igm::SurfaceComponent& c = set.components.at(0);
+  return py::make_tuple(points_array(c.positions), array_of(c.triangles));
 }
 
 }  // namespace
@@ -326,20 +377,27 @@ PYBIND11_MODULE(_igm, m) {
     }
   });
   m.def("compute", &compute, "V"_a, "F"_a,
-        "compute(V, F, **options) -> dict: a certified IGM of the closed orientable mesh (V: (n, 3) floats,\n"
-        "F: (m, k) vertex ids, k >= 3). Options: quads, edge_length, resolution, layout ('spread', 'kite',\n"
-        "'paper'), map ('tutte', 'affine'), quality, root, normal_form, restarts, cones,\n"
-        "memory_limit_bytes, max_witnesses (igm::PipelineOptions), exact (also the UVs as 'p/q' strings).\n"
+        "compute(V, F, **options) -> dict: a certified IGM of the orientable mesh (V: (n, 3) floats,\n"
+        "F: (m, k) vertex ids, k >= 3), closed or open (boundaries on integer isolines), one or several\n"
+        "components (one IGM each, merged; stats['surfaces'] per surface). Options: quads, edge_length,\n"
+        "resolution, layout ('spread', 'kite', 'paper'), map ('tutte', 'affine'), smooth, smooth_iterations,\n"
+        "smooth_seconds, smooth_auto_max_triangles, quality, quality_distance, root, normal_form, restarts,\n"
+        "cones, memory_limit_bytes, max_witnesses (igm::PipelineOptions), split_nonmanifold (cut\n"
+        "non-manifold elements apart first), exact (also the UVs as 'p/q' strings).\n"
         "Returns {'igm': {'vertices', 'faces', 'uv' (t, 3, 2) [, 'uv_exact']}, 'quads': {'vertices', 'quads'},\n"
         "'certificate': {'igm', 'quad'} (the certifier's JSON), 'certified', 'stats', 'warnings'}.\n"
         "Raises igm.Error for bad input or options, TypeError for an unknown option. Releases the GIL.");
-  m.def("certify", &certify, "V"_a, "F"_a, "UV"_a, "FUV"_a, "max_witnesses"_a = 20,
+  m.def("certify", &certify, "V"_a, "F"_a, "UV"_a, "FUV"_a, "max_witnesses"_a = 20, "boundary"_a = false,
+        "components"_a = false,
         "certify(V, F, UV, FUV) -> {'valid', 'verdict', 'report'}: the independent certifier on anyone's IGM:\n"
         "triangles F (m, 3), UV (k, 2) floats (taken exactly) or str/Fraction values (e.g. '1/3'), FUV (m, 3)\n"
-        "rows of UV per face corner. Releases the GIL.");
+        "rows of UV per face corner; boundary=True: surfaces with boundary (every boundary edge on an integer\n"
+        "isoline), components=True: several components. Releases the GIL.");
   m.def("read_mesh", &read_mesh, "path"_a, "validate"_a = true,
-        "read_mesh(path, validate=True) -> (V, F): OBJ, OFF, PLY or STL; validated and triangulated (F: (m, 3)),\n"
+        "read_mesh(path, validate=True) -> (V, F): OBJ, OFF, PLY or STL; validated and triangulated (F: (m, 3);\n"
+        "open surfaces and several components one after the other),\n"
         "repairs and skipped lines as warnings; validate=False: the file's polygons as a list of lists.");
-  m.def("generate", &generate, "genus"_a, "faces"_a = 2000, "seed"_a = 1,
-        "generate(genus, faces=2000, seed=1) -> (V, F): a generated closed mesh of that genus.");
+  m.def("generate", &generate, "genus"_a, "faces"_a = 2000, "seed"_a = 1, "boundaries"_a = 0,
+        "generate(genus, faces=2000, seed=1, boundaries=0) -> (V, F): a generated mesh of that genus, closed\n"
+        "or with that many boundary loops.");
 }

@@ -54,7 +54,8 @@ int usage(const std::string& message, bool help = false) {
                "                  geometry (tutte, default) or through the disk's map (affine, the paper's)\n"
                "  --no-smooth     keep the layout's map (default: smoothed, every iterate a certified IGM)\n"
                "  --smooth-iterations N, --smooth-seconds S  the smoothing's budgets (default 100 iterations,\n"
-               "                  10 s per 100k IGM triangles within 5..60 s; 0 s: no time limit)\n"
+               "                  as long as the stages before it took, within 5..60 s, and none past 600k IGM\n"
+               "                  triangles; a budget given in seconds smooths any size; 0 s: no time limit)\n"
                "  --split-nonmanifold  cut non-manifold vertices and edges apart (each cut named in a warning)\n"
                "                  and map the resulting open surfaces\n"
                "  --cones A,B,C,D genus 0: the four cone vertices (0-based input ids) in path order\n"
@@ -201,7 +202,9 @@ int run_pipeline(const igm::ValidMesh& mesh, const std::string& name, const std:
       << ", \"layout_quads\": " << st.layout_quads << ", \"chords\": " << st.chords << ", \"quads\": " << st.quads
       << ", \"edge_length\": " << st.edge_length
       << ", \"max_uv_bits\": " << st.max_uv_bits << ", \"tutte_iterations\": " << st.tutte.iterations
-      << ", \"tutte_flips_double\": " << st.tutte.flips_double << ", \"seconds\": " << total << "},\n"
+      << ", \"tutte_flips_double\": " << st.tutte.flips_double << ", \"smooth_iterations\": " << st.smooth.iterations
+      << ", \"smooth_stop\": \"" << (options.smooth && !st.smooth_skipped ? igm::to_string(st.smooth.stop) : "off") << "\""
+      << ", \"smooth_skipped\": " << (st.smooth_skipped ? "true" : "false") << ", \"seconds\": " << total << "},\n"
       << (st.genus == 0 ? "\"genus0\": {\"cones\": [" + std::to_string(st.cones[0]) + ", " + std::to_string(st.cones[1]) +
                               ", " + std::to_string(st.cones[2]) + ", " + std::to_string(st.cones[3]) +
                               "], \"path_edges\": " + std::to_string(st.sphere_cut.path_edges) +

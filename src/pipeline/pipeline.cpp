@@ -139,12 +139,18 @@ void smooth_extract_certify(PipelineResult& result, const PipelineOptions& optio
   PipelineStats& stats = result.stats;
   auto t0 = Clock::now();
   std::string how;
-  if (options.smooth) {
+  stats.smooth_skipped = options.smooth && options.smooth_seconds < 0 &&
+                         igm.triangles.size() > options.smooth_auto_max_triangles;
+  if (stats.smooth_skipped)
+    stage.done("smooth", t0,
+               format("skipped: %.0f triangles, more than %.0f for the automatic budget (give one in seconds to smooth)",
+                      double(igm.triangles.size()), double(options.smooth_auto_max_triangles)));
+  if (options.smooth && !stats.smooth_skipped) {
     SmoothOptions so;
     so.max_iterations = options.smooth_iterations;
-    so.time_budget_seconds = options.smooth_seconds >= 0
-                                 ? options.smooth_seconds
-                                 : std::clamp(1e-4 * static_cast<double>(igm.triangles.size()), 5.0, 60.0);
+    double before = 0;  // the stages so far: the automatic budget at most doubles the run past 5 s
+    for (const StageEvent& e : stats.stages) before += e.seconds;
+    so.time_budget_seconds = options.smooth_seconds >= 0 ? options.smooth_seconds : std::clamp(before, 5.0, 60.0);
     so.certify = false;  // the isolines' extraction runs the certifier on the result below
     so.progress = options.smooth_progress;
     SmoothResult smoothed = smooth_igm(igm, so);
@@ -163,7 +169,7 @@ void smooth_extract_certify(PipelineResult& result, const PipelineOptions& optio
     stats.dyadic = std::move(rounded.stats);
     stats.uv_doubles = stats.dyadic.on_grid;
   }
-  const bool isolines = options.smooth || !options.structured_extraction;
+  const bool isolines = (options.smooth && !stats.smooth_skipped) || !options.structured_extraction;
   if (isolines) {
     IsolineInput in;
     in.triangles = igm.triangles;

@@ -231,6 +231,28 @@ TEST_CASE("smoothing (the default): the same cones and quad count, a certified d
   }
 }
 
+TEST_CASE("past smooth_auto_max_triangles the automatic budget skips smoothing and says so; a budget in seconds smooths") {
+  const ValidMesh mesh = igm_test::generated_mesh(2, 2000, 5);
+  PipelineOptions o;
+  o.quads = 1000;
+  o.smooth_iterations = 10;
+  o.smooth_auto_max_triangles = 100;  // fewer than the IGM has
+  const PipelineResult skipped = compute_igm(mesh, o);
+  CHECK(skipped.certified());
+  CHECK(skipped.stats.smooth_skipped);
+  CHECK(skipped.stats.smooth.iterations == 0);
+  const auto it = std::find_if(skipped.stats.stages.begin(), skipped.stats.stages.end(),
+                               [](const StageEvent& e) { return e.stage == "smooth"; });
+  REQUIRE(it != skipped.stats.stages.end());
+  CHECK(it->detail.find("skipped") != std::string::npos);
+  o.smooth_seconds = 0;  // a budget given (0: none): any size is smoothed
+  const PipelineResult smoothed = compute_igm(mesh, o);
+  CHECK(smoothed.certified());
+  CHECK_FALSE(smoothed.stats.smooth_skipped);
+  CHECK(smoothed.stats.smooth.iterations > 0);
+  CHECK(smoothed.quads.quads.size() == skipped.quads.quads.size());
+}
+
 TEST_CASE("the unsmoothed map is put on a double grid where that keeps it valid, and its doubles file certifies") {
   for (int g : {0, 2}) {
     const ValidMesh mesh = igm_test::generated_mesh(g, 1200, 4);

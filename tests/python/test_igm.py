@@ -78,11 +78,12 @@ def test_options_map_and_unknown_or_mistyped_ones_raise_type_error():
 
 
 def test_bad_meshes_raise_igm_error_with_kind_and_elements():
-    V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], dtype=float)
-    with pytest.raises(igm.Error) as e:
-        igm.compute(V, np.array([[0, 1, 2]]))
-    assert e.value.kind == "boundary"
-    assert e.value.elements == [0]  # one face per boundary loop
+    V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [0, -1, 0]], dtype=float)
+    with pytest.raises(igm.Error) as e:  # three faces on edge (0, 1)
+        igm.compute(V, np.array([[0, 1, 2], [1, 0, 3], [0, 1, 4]]))
+    assert e.value.kind == "non_manifold_edge"
+    assert e.value.elements == [0, 1, 2]  # the edge's faces
+    V = V[:3]
     with pytest.raises(igm.Error) as e:
         igm.compute(V, np.array([[0, 1, 7]]))
     assert e.value.kind == "index_out_of_range" and e.value.elements == [0]
@@ -127,9 +128,13 @@ def test_read_mesh(tmp_path):
     quad.write_text("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n")
     V, F = igm.read_mesh(str(quad), validate=False)
     assert F == [[0, 1, 2, 3]]
+    V, F = igm.read_mesh(str(quad))  # an open surface: triangulated
+    assert V.shape == (4, 3) and F.shape == (2, 3)
+    fin = tmp_path / "fin.obj"  # three faces on one edge: refused, the file named
+    fin.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0 -1 0\nf 1 2 3\nf 2 1 4\nf 1 2 5\n")
     with pytest.raises(igm.Error) as e:
-        igm.read_mesh(str(quad))
-    assert e.value.kind == "boundary" and str(quad) in str(e.value)
+        igm.read_mesh(str(fin))
+    assert e.value.kind == "non_manifold_edge" and str(fin) in str(e.value)
     bad = tmp_path / "bad.off"
     bad.write_text("OFF\n3 1 0\n0 0 0\n1 x 0\n0 1 0\n3 0 1 2\n")
     with pytest.raises(igm.Error) as e:
@@ -176,3 +181,40 @@ def test_sizes_layouts_and_the_quality_report():
     assert e.value.kind == "invalid_argument"
     with pytest.raises(TypeError):
         igm.compute(V, F, quads="many")
+
+
+def test_open_surfaces_and_several_components():
+    # one triangle: a disk (its boundary split so that it has four corners), certified
+    V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], dtype=float)
+    r = igm.compute(V, np.array([[0, 1, 2]]), quads=50)
+    assert r["certified"] is True
+    assert r["certificate"]["quad"]["mesh"]["boundary_loops"] == 1
+    # a generated genus-1 surface with two holes beside a torus: two surfaces, one output
+    Va, Fa = igm.generate(1, 1500, seed=3, boundaries=2)
+    Vb, Fb = igm.generate(1, 800)
+    V = np.vstack([Va, Vb + [10.0, 0, 0]])
+    F = np.vstack([Fa, Fb + len(Va)])
+    r = igm.compute(V, F, quads=1200, smooth_iterations=5)
+    assert r["certified"] is True
+    assert [(s["genus"], s["boundary_loops"]) for s in r["stats"]["surfaces"]] == [(1, 2), (1, 0)]
+    assert r["stats"]["quads"] == len(r["quads"]["quads"])
+    mesh = r["certificate"]["quad"]["mesh"]
+    assert mesh["boundary_loops"] == 2 and mesh["connected_components"] == 2
+    # the certifier judges the merged IGM in boundary and components mode only
+    T = len(r["igm"]["faces"])
+    args = (r["igm"]["vertices"], r["igm"]["faces"], r["igm"]["uv"].reshape(-1, 2), np.arange(3 * T).reshape(-1, 3))
+    assert igm.certify(*args, boundary=True, components=True)["valid"]
+    assert not igm.certify(*args)["valid"]
+    assert not igm.certify(*args, boundary=True)["valid"]
+
+
+def test_smoothing_options():
+    V, F = igm.generate(2, 1500)
+    plain = igm.compute(V, F, quads=800, smooth=False)
+    smoothed = igm.compute(V, F, quads=800, smooth_iterations=10, smooth_seconds=0)
+    assert plain["certified"] and smoothed["certified"]
+    assert plain["stats"]["smooth_iterations"] == 0
+    assert 0 < smoothed["stats"]["smooth_iterations"] <= 10
+    assert smoothed["quality"]["igm"]["symmetric_dirichlet"] < plain["quality"]["igm"]["symmetric_dirichlet"]
+    skipped = igm.compute(V, F, quads=800, smooth_auto_max_triangles=10)
+    assert skipped["certified"] and skipped["stats"]["smooth_skipped"] is True

@@ -98,9 +98,15 @@ struct PipelineOptions {
   /// double grid where that keeps it valid (smooth/dyadic.h), and its rectangles' grids.
   bool smooth = true;
   /// The smoothing's budgets: Newton iterations, and wall seconds since it began (0: none; < 0:
-  /// automatic, 10 s per 100k IGM triangles, at least 5 s and at most 60 s).
+  /// automatic: as long as the stages before it took, at least 5 s and at most 60 s, so that it
+  /// never more than doubles a run that takes over 5 s).
   int smooth_iterations = 100;
   double smooth_seconds = -1;
+  /// With the automatic time budget (smooth_seconds < 0), an IGM of more triangles is not smoothed
+  /// (PipelineStats::smooth_skipped; the unsmoothed path instead): one Newton iteration alone costs
+  /// more than the budget there (1.27M triangles of genus 20: 86 s for the first, against 11 s for
+  /// all the stages before it). A budget given in seconds smooths any size.
+  std::size_t smooth_auto_max_triangles = 600000;
   /// Without smoothing: take the quads from the map's own structure (the layout's rectangles,
   /// extract/patch_grid.h; genus 0: the pillowcase's cells, extract/orbifold_quads.h) instead of
   /// its integer isolines. The same quads (the tests compare them): kept as the isolines' oracle.
@@ -129,6 +135,7 @@ struct PipelineStats {
   std::size_t max_uv_bits = 0;  // largest bit_size of an exact UV coordinate
   PatchMapStats patch_maps;
   SmoothStats smooth;           // with PipelineOptions::smooth (iterations 0 otherwise)
+  bool smooth_skipped = false;  // smooth asked for, but past smooth_auto_max_triangles
   DyadicStats dyadic;           // without it: the map put on a double grid (or why not)
   bool uv_doubles = false;      // every written UV coordinate is exactly a double
   CutStats cut;
