@@ -231,7 +231,7 @@ TEST_CASE("smoothing (the default): the same cones and quad count, a certified d
   }
 }
 
-TEST_CASE("past smooth_auto_max_triangles the automatic budget skips smoothing and says so; a budget in seconds smooths") {
+TEST_CASE("past smooth_auto_max_triangles the automatic budget skips smoothing and says so, a budget in seconds smooths") {
   const ValidMesh mesh = igm_test::generated_mesh(2, 2000, 5);
   PipelineOptions o;
   o.quads = 1000;
