@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -121,6 +122,19 @@ void create_folder(const std::filesystem::path& dir) {
   if (ec) throw igm::Error(igm::ErrorKind::Io, "cannot create output folder " + dir.string() + ": " + ec.message());
 }
 
+// Creates DIR and writes NAME.igm.obj (doubles), NAME.igm.exact, NAME.quad.obj and NAME.quad.svg;
+// returns the path maker DIR/NAME + suffix for the run's other files.
+std::function<std::filesystem::path(const char*)> write_outputs(const std::filesystem::path& dir, const std::string& name,
+                                                               const igm::IgmMesh& igm, const igm::QuadMesh& quads) {
+  create_folder(dir);
+  auto out = [dir, name](const char* suffix) { return dir / (name + suffix); };
+  write_file(out(".igm.obj"), [&](std::ostream& s) { igm::write_igm_obj(s, igm, false); });
+  write_file(out(".igm.exact"), [&](std::ostream& s) { igm::write_igm_obj(s, igm, true); });
+  write_file(out(".quad.obj"), [&](std::ostream& s) { igm::write_quad_obj(s, quads); });
+  write_file(out(".quad.svg"), [&](std::ostream& s) { igm::write_quad_svg(s, quads); });
+  return out;
+}
+
 // Several surfaces or open ones (igm::compute_igms): one output with all of them, the certificate
 // listing each surface.
 int run_surfaces(const igm::SurfaceSet& set, const std::string& name, const std::filesystem::path& dir,
@@ -138,12 +152,7 @@ int run_surfaces(const igm::SurfaceSet& set, const std::string& name, const std:
   const auto t0 = std::chrono::steady_clock::now();
   const igm::SurfacesResult r = igm::compute_igms(set, options);
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  create_folder(dir);
-  const auto out = [&](const char* suffix) { return dir / (name + suffix); };
-  write_file(out(".igm.obj"), [&](std::ostream& s) { igm::write_igm_obj(s, r.igm, false); });
-  write_file(out(".igm.exact"), [&](std::ostream& s) { igm::write_igm_obj(s, r.igm, true); });
-  write_file(out(".quad.obj"), [&](std::ostream& s) { igm::write_quad_obj(s, r.quads); });
-  write_file(out(".quad.svg"), [&](std::ostream& s) { igm::write_quad_svg(s, r.quads); });
+  const auto out = write_outputs(dir, name, r.igm, r.quads);
   write_file(out(".cert.json"), [&](std::ostream& s) {
     s << "{\n\"input\": {\"name\": \"" << json_escape(name) << "\", \"surfaces\": " << set.components.size() << "},\n"
       << "\"certified\": " << (r.certified() ? "true" : "false") << ",\n\"surfaces\": [";
@@ -184,13 +193,8 @@ int run_pipeline(const igm::ValidMesh& mesh, const std::string& name, const std:
   igm::PipelineResult r = igm::compute_igm(mesh, options);
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-  create_folder(dir);
-  const auto out = [&](const char* suffix) { return dir / (name + suffix); };
-  write_file(out(".igm.obj"), [&](std::ostream& s) { igm::write_igm_obj(s, r.igm, false); });
-  write_file(out(".igm.exact"), [&](std::ostream& s) { igm::write_igm_obj(s, r.igm, true); });
-  write_file(out(".quad.obj"), [&](std::ostream& s) { igm::write_quad_obj(s, r.quads); });
+  const auto out = write_outputs(dir, name, r.igm, r.quads);
   write_file(out(".schema.svg"), [&](std::ostream& s) { igm::write_schema_svg(s, r.schema); });
-  write_file(out(".quad.svg"), [&](std::ostream& s) { igm::write_quad_svg(s, r.quads); });
   write_file(out(".cert.json"), [&](std::ostream& s) {
     const igm::PipelineStats& st = r.stats;
     s << "{\n\"input\": {\"name\": \"" << json_escape(name) << "\", \"vertices\": " << st.input_vertices
