@@ -73,6 +73,7 @@ const std::map<std::string, Setter>& option_setters() {
       {"smooth_iterations", field(&igm::PipelineOptions::smooth_iterations)},
       {"smooth_seconds", field(&igm::PipelineOptions::smooth_seconds)},
       {"smooth_auto_max_triangles", field(&igm::PipelineOptions::smooth_auto_max_triangles)},
+      {"smooth_stall_step", field(&igm::PipelineOptions::smooth_stall_step)},
       {"quality_distance", field(&igm::PipelineOptions::quality_distance)},
   };
   return setters;
@@ -381,8 +382,8 @@ PYBIND11_MODULE(_igm, m) {
         "F: (m, k) vertex ids, k >= 3), closed or open (boundaries on integer isolines), one or several\n"
         "components (one IGM each, merged; stats['surfaces'] per surface). Options: quads, edge_length,\n"
         "resolution, layout ('spread', 'kite', 'paper'), map ('tutte', 'affine'), smooth, smooth_iterations,\n"
-        "smooth_seconds, smooth_auto_max_triangles, quality, quality_distance, root, normal_form, restarts,\n"
-        "cones, memory_limit_bytes, max_witnesses (igm::PipelineOptions), split_nonmanifold (cut\n"
+        "smooth_seconds, smooth_auto_max_triangles, smooth_stall_step, quality, quality_distance, root,\n"
+        "normal_form, restarts, cones, memory_limit_bytes, max_witnesses (igm::PipelineOptions), split_nonmanifold (cut\n"
         "non-manifold elements apart first), exact (also the UVs as 'p/q' strings).\n"
         "Returns {'igm': {'vertices', 'faces', 'uv' (t, 3, 2) [, 'uv_exact']}, 'quads': {'vertices', 'quads'},\n"
         "'certificate': {'igm', 'quad'} (the certifier's JSON), 'certified', 'stats', 'warnings'}.\n"

@@ -148,9 +148,10 @@ void smooth_extract_certify(PipelineResult& result, const PipelineOptions& optio
   if (options.smooth && !stats.smooth_skipped) {
     SmoothOptions so;
     so.max_iterations = options.smooth_iterations;
-    double before = 0;  // the stages so far: the automatic budget at most doubles the run past 5 s
-    for (const StageEvent& e : stats.stages) before += e.seconds;
-    so.time_budget_seconds = options.smooth_seconds >= 0 ? options.smooth_seconds : std::clamp(before, 5.0, 60.0);
+    so.time_budget_seconds = options.smooth_seconds >= 0
+                                 ? options.smooth_seconds
+                                 : std::clamp(1e-4 * static_cast<double>(igm.triangles.size()), 5.0, 60.0);
+    so.stall_step = options.smooth_stall_step;
     so.certify = false;  // the isolines' extraction runs the certifier on the result below
     so.progress = options.smooth_progress;
     SmoothResult smoothed = smooth_igm(igm, so);

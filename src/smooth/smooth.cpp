@@ -40,6 +40,8 @@ void check_options(const SmoothOptions& o) {
   if (!(o.time_budget_seconds >= 0)) bad("time_budget_seconds must be >= 0");
   if (!(o.tolerance >= 0)) bad("tolerance must be >= 0");
   if (!(o.step_fraction > 0 && o.step_fraction < 1)) bad("step_fraction must be in (0, 1)");
+  if (!(o.stall_step >= 0 && o.stall_step < 1)) bad("stall_step must be in [0, 1)");
+  if (o.stall_iterations < 1) bad("stall_iterations must be >= 1");
   if (!(o.min_reference_size > 0 && o.min_reference_size < 1))
     bad("min_reference_size must be in (0, 1)");
   if (!(o.min_reference_aspect > 0 && o.min_reference_aspect <= 1))
@@ -166,6 +168,7 @@ class Smoother {
     if (n_ == 0) return SmoothStop::NothingToMove;
     build_pattern();
     stats_.setup_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    int small_steps = 0;  // consecutive accepted steps below options_.stall_step
     for (int it = 1; it <= options_.max_iterations; ++it) {
       assemble();
       Eigen::VectorXd d;
@@ -182,6 +185,8 @@ class Smoother {
       if (options_.progress) options_.progress({it, e, step, seconds});
       if (options_.time_budget_seconds > 0 && seconds >= options_.time_budget_seconds)
         return SmoothStop::TimeBudget;
+      small_steps = step < options_.stall_step ? small_steps + 1 : 0;
+      if (small_steps >= options_.stall_iterations) return SmoothStop::Stalled;
     }
     return SmoothStop::IterationBudget;
   }
@@ -371,6 +376,8 @@ const char* to_string(SmoothStop stop) {
       return "no_descent";
     case SmoothStop::LineSearch:
       return "line_search";
+    case SmoothStop::Stalled:
+      return "stalled";
     case SmoothStop::NothingToMove:
       return "nothing_to_move";
     case SmoothStop::NotStarted:

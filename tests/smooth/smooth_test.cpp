@@ -283,6 +283,37 @@ TEST_CASE("options, budgets and callbacks") {
     CHECK(r.stats.energy.size() == 1);
     CHECK(r.stats.certified);
   }
+  SUBCASE("stall: stops after stall_iterations accepted steps in a row below stall_step, the same iterates") {
+    SmoothOptions o;
+    o.max_iterations = 30;
+    std::vector<SmoothProgress> free_run;
+    o.progress = [&free_run](const SmoothProgress& p) { free_run.push_back(p); };
+    const SmoothResult a = smooth_igm(igm, o);
+    REQUIRE(free_run.size() >= 3);
+    // a threshold between the steps: the first two in a row below it end the stalled run there
+    std::vector<double> steps;
+    for (const SmoothProgress& p : free_run) steps.push_back(p.step);
+    std::vector<double> sorted = steps;
+    std::sort(sorted.begin(), sorted.end());
+    const double threshold = std::min(0.999, std::nextafter(sorted[sorted.size() / 2], 2.0));
+    std::size_t end = 0;  // iterations until two in a row below the threshold
+    for (std::size_t k = 1; k < steps.size() && end == 0; ++k)
+      if (steps[k - 1] < threshold && steps[k] < threshold) end = k + 1;
+    REQUIRE(end > 0);
+    o.stall_step = threshold;
+    o.stall_iterations = 2;
+    o.progress = nullptr;
+    const SmoothResult b = smooth_igm(igm, o);
+    CHECK(b.stats.stop == SmoothStop::Stalled);
+    CHECK(b.stats.iterations == static_cast<int>(end));
+    for (std::size_t i = 0; i < b.stats.energy.size(); ++i) CHECK(b.stats.energy[i] == a.stats.energy[i]);
+    CHECK(b.stats.certified);
+    o.stall_step = 1;
+    CHECK_THROWS_AS(smooth_igm(igm, o), Error);
+    o.stall_step = 0.5;
+    o.stall_iterations = 0;
+    CHECK_THROWS_AS(smooth_igm(igm, o), Error);
+  }
   SUBCASE("a time budget stops after the iteration that passes it; progress sees every iteration") {
     SmoothOptions o;
     o.time_budget_seconds = 1e-12;

@@ -98,10 +98,13 @@ struct PipelineOptions {
   /// double grid where that keeps it valid (smooth/dyadic.h), and its rectangles' grids.
   bool smooth = true;
   /// The smoothing's budgets: Newton iterations, and wall seconds since it began (0: none; < 0:
-  /// automatic: as long as the stages before it took, at least 5 s and at most 60 s, so that it
-  /// never more than doubles a run that takes over 5 s).
+  /// automatic, 10 s per 100k IGM triangles, at least 5 s and at most 60 s).
   int smooth_iterations = 100;
   double smooth_seconds = -1;
+  /// SmoothOptions::stall_step: stop after two accepted steps in a row below this fraction of the
+  /// Newton step (the map pressed against its barrier: cheese's steps are 3e-4..3e-3 and lower
+  /// the energy by 0.1 % an iteration at 5 s each; a generated genus 20's first is 0.03).
+  double smooth_stall_step = 0.005;
   /// With the automatic time budget (smooth_seconds < 0), an IGM of more triangles is not smoothed
   /// (PipelineStats::smooth_skipped; the unsmoothed path instead): one Newton iteration alone costs
   /// more than the budget there (1.27M triangles of genus 20: 86 s for the first, against 11 s for

@@ -48,6 +48,12 @@ struct SmoothOptions {
   double min_reference_aspect = 1e-3;
   /// The first step is this fraction (< 1) of the step at which the first triangle degenerates.
   double step_fraction = 0.8;
+  /// Stop (Stalled) after stall_iterations consecutive iterations whose accepted step along the
+  /// Newton direction is below stall_step: the map is pressed against its barrier and each
+  /// iteration buys almost nothing (0: never). Steps are 1 near convergence, so this does not cut
+  /// a converging run short.
+  double stall_step = 0;
+  int stall_iterations = 2;
   /// Run the independent certifier (certify_igm) on the returned map.
   bool certify = true;
   std::function<void(const SmoothProgress&)> progress;   // optional
@@ -60,6 +66,7 @@ enum class SmoothStop {
   TimeBudget,       // time_budget_seconds passed
   NoDescent,        // the (regularized) Newton system gave no descent direction
   LineSearch,       // no step along the direction lowered the energy and passed the exact checks
+  Stalled,          // stall_iterations steps in a row below stall_step (SmoothOptions)
   NothingToMove,    // every vertex is a cone or a boundary corner
   NotStarted,       // the input does not round onto a double grid (see SmoothStats::dyadic), or
                     // its energy is not finite in doubles
