@@ -313,24 +313,21 @@ py::dict certify(const DoubleArray& v, const IndexArray& f, const py::object& uv
 // --- meshes ---
 py::tuple read_mesh(const std::string& path, bool validate) {
   igm::PolygonSoup soup;
-  struct {
-    std::vector<igm::Vec3d> positions;
-    std::vector<std::string> warnings;
-  } mesh;
+  std::vector<igm::Vec3d> positions;  // validated: the surfaces' vertices and triangles, one after the other
   std::vector<std::array<int, 3>> tris;
+  std::vector<std::string> warnings;
   {
     py::gil_scoped_release release;
     soup = igm::read_soup(std::filesystem::path(path));
     if (validate) {
       try {
-        // open surfaces and several components too: their triangles one after the other
         const igm::SurfaceSet set = igm::validate_surfaces(soup);
         for (const igm::SurfaceComponent& c : set.components) {
-          const int base = static_cast<int>(mesh.positions.size());
-          mesh.positions.insert(mesh.positions.end(), c.positions.begin(), c.positions.end());
+          const int base = static_cast<int>(positions.size());
+          positions.insert(positions.end(), c.positions.begin(), c.positions.end());
           for (const auto& t : c.triangles) tris.push_back({t[0] + base, t[1] + base, t[2] + base});
         }
-        mesh.warnings = set.warnings;
+        warnings = set.warnings;
       } catch (const igm::Error& e) {
         throw igm::with_path(e, path);
       }
@@ -344,8 +341,8 @@ py::tuple read_mesh(const std::string& path, bool validate) {
       faces.append(py::cast(std::vector<std::int64_t>(corner(soup.face_begin[i]), corner(soup.face_begin[i + 1]))));
     return py::make_tuple(points_array(soup.positions), faces);
   }
-  warn_all(mesh.warnings);
-  return py::make_tuple(points_array(mesh.positions), array_of(tris));
+  warn_all(warnings);
+  return py::make_tuple(points_array(positions), array_of(tris));
 }
 
 py::tuple generate(int genus, std::int64_t faces, std::uint64_t seed, int boundaries) {

@@ -123,6 +123,17 @@ void create_folder(const std::filesystem::path& dir) {
   if (ec) throw igm::Error(igm::ErrorKind::Io, "cannot create output folder " + dir.string() + ": " + ec.message());
 }
 
+// The last line of a run: both certifier verdicts; the exit code.
+int print_verdict(const igm::certify::Report& igm_report, const igm::certify::Report& quad_report) {
+  if (!igm_report.valid() || !quad_report.valid()) {
+    std::printf("NOT CERTIFIED: %s | %s\n", igm::certify::summary(igm_report).c_str(),
+                igm::certify::summary(quad_report).c_str());
+    return kExitRejected;
+  }
+  std::printf("certified: %s\n", igm::certify::summary(igm_report).c_str());
+  return kExitCertified;
+}
+
 // Creates DIR and writes NAME.igm.obj (doubles), NAME.igm.exact, NAME.quad.obj and NAME.quad.svg;
 // returns the path maker DIR/NAME + suffix for the run's other files.
 std::function<std::filesystem::path(const char*)> write_outputs(const std::filesystem::path& dir, const std::string& name,
@@ -174,13 +185,7 @@ int run_surfaces(const igm::SurfaceSet& set, const std::string& name, const std:
   if (base.quality) std::printf("[quality ] all surfaces: %s\n", igm::summary_line(r.igm_quality, r.quad_quality).c_str());
   std::printf("[total]    %8.3f s  peak memory %.0f MB\n", total, peak_rss_mb());
   std::printf("wrote %s/%s.{igm.obj,igm.exact,quad.obj,cert.json,quad.svg}\n", dir.string().c_str(), name.c_str());
-  if (!r.certified()) {
-    std::printf("NOT CERTIFIED: %s | %s\n", igm::certify::summary(r.igm_report).c_str(),
-                igm::certify::summary(r.quad_report).c_str());
-    return kExitRejected;
-  }
-  std::printf("certified: %s\n", igm::certify::summary(r.igm_report).c_str());
-  return kExitCertified;
+  return print_verdict(r.igm_report, r.quad_report);
 }
 
 int run_pipeline(const igm::ValidMesh& mesh, const std::string& name, const std::filesystem::path& dir,
@@ -226,13 +231,7 @@ int run_pipeline(const igm::ValidMesh& mesh, const std::string& name, const std:
   std::printf("[total]    %8.3f s  peak memory %.0f MB\n", total, peak_rss_mb());
   std::printf("wrote %s/%s.{igm.obj,igm.exact,quad.obj,cert.json,schema.svg,quad.svg}\n", dir.string().c_str(),
               name.c_str());
-  if (!r.certified()) {
-    std::printf("NOT CERTIFIED: %s | %s\n", igm::certify::summary(r.igm_report).c_str(),
-                igm::certify::summary(r.quad_report).c_str());
-    return kExitRejected;
-  }
-  std::printf("certified: %s\n", igm::certify::summary(r.igm_report).c_str());
-  return kExitCertified;
+  return print_verdict(r.igm_report, r.quad_report);
 }
 
 }  // namespace

@@ -45,6 +45,18 @@ bool is_strictly_convex_ccw(const std::vector<Point2q>& c) {
   return wraps == 1;
 }
 
+namespace {
+
+// The point of the unit circle whose half-angle tangent is tan(theta / 2) rounded to a multiple of
+// 1/N: ((N^2 - p^2), 2 p N) / (N^2 + p^2) with p = round(N tan(theta / 2)), exactly on the circle.
+Point2q circle_point(double theta, long N) {
+  const long p = std::lround(std::tan(theta / 2.0) * static_cast<double>(N));
+  const Integer NN = Integer(N) * N, pp = Integer(p) * p, den = NN + pp;
+  return {make_rational(NN - pp, den), make_rational(Integer(2) * p * N, den)};
+}
+
+}  // namespace
+
 std::vector<Point2q> canonical_polygon(int genus) {
   if (genus < 1 || genus > 100000)
     throw Error(ErrorKind::InvalidArgument,
@@ -60,17 +72,9 @@ std::vector<Point2q> canonical_polygon(int genus) {
     // units of 1/N: rounding to multiples of 1/N keeps them strictly increasing.
     long N = 1;
     while (N < 64L * g) N *= 2;
-    const Integer NN = Integer(N) * N;
     std::vector<Point2q> quarter(g);
     const double pi = std::acos(-1.0);
-    for (int k = 0; k < g; ++k) {
-      const double theta = pi * k / (2.0 * g);  // in [0, pi/2)
-      const long p = std::lround(std::tan(theta / 2.0) * static_cast<double>(N));
-      const Integer pp = Integer(p) * p;
-      const Integer den = NN + pp;
-      quarter[k].x = make_rational(NN - pp, den);
-      quarter[k].y = make_rational(Integer(2) * p * N, den);
-    }
+    for (int k = 0; k < g; ++k) quarter[k] = circle_point(pi * k / (2.0 * g), N);  // theta in [0, pi/2)
     corners.resize(4 * static_cast<std::size_t>(g));
     for (int k = 0; k < g; ++k) {
       const Point2q& q = quarter[k];
@@ -99,15 +103,11 @@ std::vector<Point2q> schema_polygon(int n) {
     // stay those of canonical_polygon (small denominators N^2 + p^2), not those of a full circle.
     long N = 1;
     while (N < 16L * n) N *= 2;
-    const Integer NN = Integer(N) * N;
     const int h = n / 2;
     const double pi = std::acos(-1.0);
     std::vector<Point2q> corners(static_cast<std::size_t>(n));
     for (int k = 0; k < h; ++k) {
-      const double theta = -pi / 2 + pi * (k + 0.5) / h;  // in (-pi/2, pi/2)
-      const long p = std::lround(std::tan(theta / 2.0) * static_cast<double>(N));
-      const Integer pp = Integer(p) * p, den = NN + pp;
-      corners[k] = {make_rational(NN - pp, den), make_rational(Integer(2) * p * N, den)};
+      corners[k] = circle_point(-pi / 2 + pi * (k + 0.5) / h, N);  // theta in (-pi/2, pi/2)
       corners[k + h] = {Rational(-corners[k].x), Rational(-corners[k].y)};
     }
     if (!is_strictly_convex_ccw(corners))

@@ -141,11 +141,12 @@ void smooth_extract_certify(PipelineResult& result, const PipelineOptions& optio
   std::string how;
   stats.smooth_skipped = options.smooth && options.smooth_seconds < 0 &&
                          igm.triangles.size() > options.smooth_auto_max_triangles;
+  const bool smoothing = options.smooth && !stats.smooth_skipped;
   if (stats.smooth_skipped)
     stage.done("smooth", t0,
                format("skipped: %.0f triangles, more than %.0f for the automatic budget (give one in seconds to smooth)",
                       double(igm.triangles.size()), double(options.smooth_auto_max_triangles)));
-  if (options.smooth && !stats.smooth_skipped) {
+  if (smoothing) {
     SmoothOptions so;
     so.max_iterations = options.smooth_iterations;
     so.time_budget_seconds = options.smooth_seconds >= 0
@@ -170,15 +171,17 @@ void smooth_extract_certify(PipelineResult& result, const PipelineOptions& optio
     stats.dyadic = std::move(rounded.stats);
     stats.uv_doubles = stats.dyadic.on_grid;
   }
-  const bool isolines = (options.smooth && !stats.smooth_skipped) || !options.structured_extraction;
+  const bool isolines = smoothing || !options.structured_extraction;
   if (isolines) {
-    IsolineInput in;
-    in.triangles = igm.triangles;
-    in.corner_uv = igm.corner_uv;
+    IsolineInput in;  // the map lent to the extraction (it reads it only), not copied
+    in.triangles = std::move(igm.triangles);
+    in.corner_uv = std::move(igm.corner_uv);
     IsolineOptions io;
     io.max_witnesses = options.max_witnesses;
     io.allow_boundary = stats.boundary_loops > 0;
     IsolineResult x = extract_isolines(in, io);
+    igm.triangles = std::move(in.triangles);
+    igm.corner_uv = std::move(in.corner_uv);
     result.igm_report = std::move(x.report);
     if (x.quads) {
       QuadMesh& quads = result.quads;

@@ -23,9 +23,11 @@
 #include "igm/pipeline/pipeline.h"
 #include "refinement_check.h"
 #include "test_data.h"
+#include "uv_area.h"
 
 using namespace igm;
 using igm_test::refinement_violation;
+using igm_test::uv_area2;
 
 namespace {
 
@@ -126,13 +128,6 @@ std::string boundary_trace_violation(const std::vector<std::vector<int>>& loops,
   for (const auto& [a, b] : boundary)
     if (next[a] != b) return "boundary quad edge " + std::to_string(a) + " -> " + std::to_string(b) + " skips or reverses along the input's loop";
   return "";
-}
-
-// Twice the exact UV area of an IGM (one unit per quad when it is on its quad mesh's grid).
-Rational uv_area2(const IgmMesh& igm) {
-  Rational sum = 0;
-  for (const auto& t : igm.corner_uv) sum += (t[1].x - t[0].x) * (t[2].y - t[0].y) - (t[1].y - t[0].y) * (t[2].x - t[0].x);
-  return sum;
 }
 
 certify::Options boundary_options(std::int64_t genus, std::int64_t loops) {

@@ -16,9 +16,11 @@
 #include "generated_mesh.h"
 #include "refinement_check.h"
 #include "test_data.h"
+#include "uv_area.h"
 
 using namespace igm;
 using igm_test::refinement_violation;
+using igm_test::uv_area2;
 
 namespace {
 
@@ -37,14 +39,6 @@ std::map<std::int64_t, std::int64_t> expected_cones(LayoutKind kind, int g) {
   if (kind == LayoutKind::Paper) return {{8 * g, 1}, {3 * g, 1}, {3, 3 * g}};
   if (kind == LayoutKind::Kite) return {{4 * g, 2}};
   return {{4 * g, 1}, {5, 4 * g - 4}};
-}
-
-// Twice the exact UV area of the IGM: every layout quad fills its a x b rectangle, so this is
-// twice the number of quads when the IGM is on the quad mesh's grid.
-Rational uv_area2(const IgmMesh& igm) {
-  Rational sum = 0;
-  for (const auto& t : igm.corner_uv) sum += (t[1].x - t[0].x) * (t[2].y - t[0].y) - (t[1].y - t[0].y) * (t[2].x - t[0].x);
-  return sum;
 }
 
 // Independent re-check of what a run promises, ending with the certifier on the written files.
