@@ -24,4 +24,5 @@ write_basic_package_version_file(${PROJECT_BINARY_DIR}/igmConfigVersion.cmake
   VERSION ${PROJECT_VERSION} COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/igmConfig.cmake ${PROJECT_BINARY_DIR}/igmConfigVersion.cmake
               ${PROJECT_SOURCE_DIR}/cmake/igm_gmp.cmake
+              ${PROJECT_SOURCE_DIR}/cmake/igm_solvers.cmake
         DESTINATION ${IGM_CMAKE_DIR})
