@@ -1,0 +1,59 @@
+#pragma once
+// The field-driven quad layout (docs/field.md): the motorcycle graph of a cross field's
+// separatrices (field/motorcycle.h) inserted exactly into the input mesh, cut into arcs at its
+// nodes, and the patches it bounds, each checked to be a topological disk with four corners (the
+// points where its boundary turns a quarter in the field), as a SurfaceLayout for the back end
+// (layout/surface_layout.h). A patch that is not a disk gets a seed vertex inside it whose four
+// field directions are traced too, and the graph is traced again, a bounded number of rounds.
+#include <string>
+#include <vector>
+
+#include "igm/field/motorcycle.h"
+#include "igm/layout/surface_layout.h"
+#include "igm/mesh/trimesh.h"
+
+namespace igm {
+
+struct FieldLayoutOptions {
+  TraceOptions trace;
+  /// Rounds of seeding patches that are not disks (each round traces the whole graph again).
+  int max_seed_rounds = 4;
+  /// Rounds of leaving out the rays of curves that could not end well (each round traces the whole
+  /// graph again), as long as every vertex keeps its angles at most two quarter turns.
+  int max_ban_rounds = 8;
+};
+
+struct FieldLayoutStats {
+  TraceStats trace;
+  int rounds = 0;           // tracing rounds run (1 + seeding rounds)
+  int seeds = 0;            // seed vertices added
+  int banned_rays = 0;      // rays left out
+  int nodes = 0, arcs = 0, patches = 0;
+  int t_junctions = 0;      // arc ends inside another patch's side
+  int non_disk_patches = 0;       // in the last round
+  int bad_corner_patches = 0;     // disks whose corners are not four quarter turns (last round)
+  int refined_vertices = 0, refined_triangles = 0;
+  double seconds = 0;
+};
+
+struct FieldLayoutResult {
+  bool ok = false;
+  std::string failure;   // why there is no layout (ok == false): a sentence naming the element
+  SurfaceLayout layout;  // with ok
+  TraceGraph graph;      // the last round's curves
+  FieldLayoutStats stats;
+};
+
+/// The layout of the cross field given by one direction per face (motorcycle.h) on a connected
+/// orientable surface (`mesh` built with allow_boundary where it has boundary loops), whose
+/// vertex positions are `positions`. Every decision on the layout's topology (which segments
+/// meet, the cells of each face, patch connectivity, corners) is exact; the result passes the
+/// independent check_surface_layout. Never throws for a layout it cannot build: returns ok ==
+/// false with the reason (a curve that ends dangling, a patch that stays a non-disk or whose
+/// corners are not four quarter turns, a vertex whose rays are undefined). Throws
+/// igm::Error(InvalidArgument) for sizes that do not match. Cost: rounds x (tracing + O(F)
+/// insertion + O(k^3) per face with k points on it).
+FieldLayoutResult build_field_layout(const TriMesh& mesh, const std::vector<Vec3d>& positions,
+                                     const std::vector<Vec3d>& face_direction, const FieldLayoutOptions& options = {});
+
+}  // namespace igm

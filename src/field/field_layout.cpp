@@ -1,0 +1,723 @@
+#include "igm/field/field_layout.h"
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <numeric>
+#include <optional>
+#include <string>
+#include <unordered_map>
+
+#include "igm/core/error.h"
+#include "igm/core/union_find.h"
+#include "igm/exact/intersect.h"
+#include "motorcycle_internal.h"
+
+namespace igm {
+
+namespace {
+
+using field_detail::FieldFrames;
+
+std::string str(std::int64_t x) { return std::to_string(x); }
+
+Point2q corner_q(int c) {
+  if (c == 1) return {Rational(1), Rational(0)};
+  if (c == 2) return {Rational(0), Rational(1)};
+  return {Rational(0), Rational(0)};
+}
+
+// A trace point in the barycentric plane (w1, w2) of face f (it must lie in f's closure).
+Point2q plane_point(const TriMesh& mesh, const TracePoint& q, int f) {
+  const auto fv = mesh.face_vertices(f);
+  switch (q.kind) {
+    case TracePoint::Kind::Vertex:
+      for (int c = 0; c < 3; ++c)
+        if (fv[c] == q.element) return corner_q(c);
+      break;
+    case TracePoint::Kind::Edge: {
+      int h = q.element;
+      Rational t = q.t;
+      if (TriMesh::face(h) != f) {
+        h = mesh.twin(h);
+        t = 1 - t;
+      }
+      if (h < 0 || TriMesh::face(h) != f) break;
+      std::array<Rational, 3> w{Rational(0), Rational(0), Rational(0)};
+      w[h % 3] = 1 - t;
+      w[(h % 3 + 1) % 3] = t;
+      return {w[1], w[2]};
+    }
+    case TracePoint::Kind::Face:
+      if (q.element == f) return {q.w[1], q.w[2]};
+      break;
+  }
+  throw Error(ErrorKind::Internal, "field layout: a point is not in its face", {f});
+}
+
+struct ArcEnd {
+  int node = -1;  // refined vertex
+  int ray = -1;   // in the node's numbering
+};
+
+struct Arc {
+  std::vector<int> vertices;
+  ArcEnd start, end;
+  int curve = -1;  // the traced curve it is a piece of (-1: a piece of a boundary loop)
+};
+
+// The layout under construction for one trace graph.
+class Builder {
+ public:
+  Builder(const TriMesh& mesh, const std::vector<Vec3d>& positions, const FieldFrames& frames, const TraceGraph& g)
+      : mesh_(mesh), positions_(positions), frames_(frames), g_(g) {}
+
+  // Builds everything; "" or the reason it failed. non_disk: a seed vertex per patch that is not
+  // a disk (when that is the only problem).
+  std::string build(SurfaceLayout& out, FieldLayoutStats& stats, std::vector<int>& seeds) {
+    std::string stuck;
+    for (int c = 0; c < static_cast<int>(g_.curves.size()); ++c) {
+      const TraceCurve& cur = g_.curves[c];
+      if (cur.end != CurveEnd::Bound && cur.end != CurveEnd::Stuck) continue;
+      blame(c);
+      if (stuck.empty())
+        stuck = "curve " + str(c) + " ended without meeting another curve (" + to_string(cur.end) + ") at point " +
+                str(cur.points.back());
+    }
+    if (!stuck.empty()) return stuck;
+    if (std::string e = make_vertices(); !e.empty()) return e;
+    if (std::string e = triangulate(); !e.empty()) return e;
+    if (std::string e = make_arcs(); !e.empty()) return e;
+    if (std::string e = make_patches(out, stats, seeds); !e.empty()) return e;
+    return "";
+  }
+
+  // The rays whose curves made the layout fail: (start vertex, ray).
+  const std::vector<std::pair<int, int>>& culprits() const { return culprits_; }
+
+ private:
+  void blame(int c) {
+    const TraceCurve& cur = g_.curves[c];
+    const TracePoint& q = g_.points[cur.points.front()];
+    if (q.kind == TracePoint::Kind::Vertex && cur.ray_forward.front() >= 0)
+      culprits_.push_back({q.element, cur.ray_forward.front()});
+  }
+
+  // ---- refined vertices ----
+  std::string make_vertices() {
+    const int nv = mesh_.num_vertices();
+    point_vertex_.assign(g_.points.size(), -1);
+    locations_.reserve(nv + g_.points.size());
+    for (int v = 0; v < nv; ++v) locations_.push_back(SurfacePoint::vertex(v));
+    for (std::size_t p = 0; p < g_.points.size(); ++p) {
+      const TracePoint& q = g_.points[p];
+      if (q.kind == TracePoint::Kind::Vertex) {
+        point_vertex_[p] = q.element;
+        continue;
+      }
+      point_vertex_[p] = static_cast<int>(locations_.size());
+      if (q.kind == TracePoint::Kind::Edge) {
+        locations_.push_back(lerp(SurfacePoint::vertex(mesh_.origin(q.element)), SurfacePoint::vertex(mesh_.target(q.element)), q.t));
+        edge_points_[q.element].push_back(static_cast<int>(p));
+      } else {
+        const auto fv = mesh_.face_vertices(q.element);
+        locations_.push_back(barycentric_point(SurfacePoint::vertex(fv[0]), SurfacePoint::vertex(fv[1]),
+                                               SurfacePoint::vertex(fv[2]), q.w));
+        face_points_[q.element].push_back(static_cast<int>(p));
+      }
+    }
+    for (auto& [ce, pts] : edge_points_)
+      std::sort(pts.begin(), pts.end(), [&](int a, int b) { return g_.points[a].t < g_.points[b].t; });
+    return "";
+  }
+
+  // ---- per input face: the chords of its segments, the convex cells, their triangles ----
+  std::string triangulate() {
+    // Chords per face: maximal runs of a curve's segments inside one face (one straight piece
+    // with the T-junctions on it).
+    std::unordered_map<int, std::vector<std::vector<int>>> chords;
+    for (const TraceCurve& cur : g_.curves) {
+      const int ns = static_cast<int>(cur.segment_face.size());
+      for (int i = 0; i < ns;) {
+        const int f = cur.segment_face[i];
+        int j = i;
+        while (j < ns && cur.segment_face[j] == f) ++j;
+        if (f >= 0) chords[f].emplace_back(cur.points.begin() + i, cur.points.begin() + j + 1);
+        i = j;
+      }
+    }
+    const int nf = mesh_.num_faces();
+    for (int f = 0; f < nf; ++f) {
+      const auto fv = mesh_.face_vertices(f);
+      bool busy = chords.count(f) > 0 || face_points_.count(f) > 0;
+      for (int i = 0; i < 3 && !busy; ++i) busy = edge_points_.count(canonical(3 * f + i)) > 0;
+      if (!busy) {
+        triangles_.push_back(fv);
+        continue;
+      }
+      std::vector<std::vector<int>> none;
+      if (std::string e = triangulate_face(f, chords.count(f) ? chords[f] : none); !e.empty()) return e;
+    }
+    return "";
+  }
+
+  int canonical(int h) const {
+    const int t = mesh_.twin(h);
+    return t >= 0 && t < h ? t : h;
+  }
+
+  std::string triangulate_face(int f, const std::vector<std::vector<int>>& face_chords) {
+    const auto fv = mesh_.face_vertices(f);
+    // Local vertices: refined ids and plane positions.
+    std::vector<int> rid;
+    std::vector<Point2q> pos;
+    std::unordered_map<int, int> local;  // refined id -> local
+    auto add = [&](int refined, const Point2q& p) {
+      auto [it, fresh] = local.emplace(refined, static_cast<int>(rid.size()));
+      if (fresh) rid.push_back(refined), pos.push_back(p);
+      return it->second;
+    };
+    std::vector<int> boundary;
+    for (int i = 0; i < 3; ++i) {
+      boundary.push_back(add(fv[i], corner_q(i)));
+      const int h = 3 * f + i, ce = canonical(h);
+      auto it = edge_points_.find(ce);
+      if (it == edge_points_.end()) continue;
+      std::vector<int> pts = it->second;
+      if (ce != h) std::reverse(pts.begin(), pts.end());
+      for (int p : pts) boundary.push_back(add(point_vertex_[p], plane_point(mesh_, g_.points[p], f)));
+    }
+    std::vector<std::vector<int>> cells{boundary};
+    std::vector<std::vector<int>> pending;
+    for (const auto& ch : face_chords) {
+      std::vector<int> lc;
+      for (int p : ch) lc.push_back(add(point_vertex_[p], plane_point(mesh_, g_.points[p], f)));
+      pending.push_back(std::move(lc));
+    }
+    // Two curves that end at one point inside the face and run on from it in opposite directions
+    // (merged head-on) are one chord through it.
+    const int n_boundary_local = static_cast<int>(boundary.size());
+    for (bool joined = true; joined;) {
+      joined = false;
+      for (std::size_t a = 0; a < pending.size() && !joined; ++a)
+        for (std::size_t b = a + 1; b < pending.size() && !joined; ++b) {
+          auto& A = pending[a];
+          auto& B = pending[b];
+          for (int ea : {0, 1})
+            for (int eb : {0, 1}) {
+              if (joined) continue;
+              const int pa = ea ? A.back() : A.front(), pb = eb ? B.back() : B.front();
+              if (pa != pb || pa < n_boundary_local) continue;
+              bool through = false;  // a chord passing through the point: a T-junction, not a merge
+              for (const auto& C : pending)
+                for (std::size_t k = 1; k + 1 < C.size(); ++k) through = through || C[k] == pa;
+              if (through) continue;
+              std::vector<int> J(A);
+              if (!ea) std::reverse(J.begin(), J.end());
+              std::vector<int> Bv(B);
+              if (eb) std::reverse(Bv.begin(), Bv.end());
+              J.insert(J.end(), Bv.begin() + 1, Bv.end());
+              pending[a] = std::move(J);
+              pending.erase(pending.begin() + static_cast<long>(b));
+              joined = true;
+            }
+        }
+    }
+    // Insert chords whose two ends lie on one cell with the chord inside it, until none is left.
+    for (std::size_t guard = 0; !pending.empty() && guard <= face_chords.size(); ++guard) {
+      bool progress = false;
+      for (std::size_t k = 0; k < pending.size();) {
+        if (insert_chord(cells, pending[k], pos)) {
+          pending.erase(pending.begin() + static_cast<long>(k));
+          progress = true;
+        } else {
+          ++k;
+        }
+      }
+      if (!progress) break;
+    }
+    if (!pending.empty()) return "face " + str(f) + ": curve pieces that do not cut it into cells";
+    for (const auto& cell : cells)
+      if (!clip_cell(cell, pos, rid)) return "face " + str(f) + ": a cell that cannot be triangulated";
+    return "";
+  }
+
+  static bool insert_chord(std::vector<std::vector<int>>& cells, const std::vector<int>& chord,
+                           const std::vector<Point2q>& pos) {
+    const int u = chord.front(), w = chord.back();
+    const Point2q mid{(pos[u].x + pos[w].x) / 2, (pos[u].y + pos[w].y) / 2};
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      const auto& cell = cells[c];
+      const auto iu = std::find(cell.begin(), cell.end(), u), iw = std::find(cell.begin(), cell.end(), w);
+      if (iu == cell.end() || iw == cell.end()) continue;
+      bool inside = true;
+      for (std::size_t k = 0; k < cell.size() && inside; ++k)
+        inside = orient2d(pos[cell[k]], pos[cell[(k + 1) % cell.size()]], mid) == Sign::Positive;
+      if (!inside) continue;
+      const std::size_t n = cell.size(), i = iu - cell.begin(), j = iw - cell.begin();
+      std::vector<int> a, b;
+      for (std::size_t k = i;; k = (k + 1) % n) {
+        a.push_back(cell[k]);
+        if (k == j) break;
+      }
+      for (std::size_t k = chord.size() - 2; k >= 1; --k) a.push_back(chord[k]);
+      for (std::size_t k = j;; k = (k + 1) % n) {
+        b.push_back(cell[k]);
+        if (k == i) break;
+      }
+      for (std::size_t k = 1; k + 1 < chord.size(); ++k) b.push_back(chord[k]);
+      cells[c] = std::move(a);
+      cells.push_back(std::move(b));
+      return true;
+    }
+    return false;
+  }
+
+  // Triangulates a convex cell (collinear vertices allowed) by clipping strictly convex corners
+  // whose cut-off chord passes through no other vertex.
+  bool clip_cell(std::vector<int> cell, const std::vector<Point2q>& pos, const std::vector<int>& rid) {
+    for (std::size_t guard = 0; cell.size() > 3 && guard < 4 * pos.size() + 8; ++guard) {
+      const std::size_t n = cell.size();
+      bool clipped = false;
+      for (std::size_t i = 0; i < n && !clipped; ++i) {
+        const int a = cell[(i + n - 1) % n], b = cell[i], c = cell[(i + 1) % n];
+        if (orient2d(pos[a], pos[b], pos[c]) != Sign::Positive) continue;
+        bool clear = true;
+        for (std::size_t k = 0; k < n && clear; ++k) {
+          const int x = cell[k];
+          if (x == a || x == b || x == c) continue;
+          clear = !on_segment(pos[x], pos[a], pos[c]);
+        }
+        if (!clear) continue;
+        triangles_.push_back({rid[a], rid[b], rid[c]});
+        cell.erase(cell.begin() + static_cast<long>(i));
+        clipped = true;
+      }
+      if (!clipped) return false;
+    }
+    if (cell.size() != 3 || orient2d(pos[cell[0]], pos[cell[1]], pos[cell[2]]) != Sign::Positive) return false;
+    triangles_.push_back({rid[cell[0]], rid[cell[1]], rid[cell[2]]});
+    return true;
+  }
+
+  // ---- arcs ----
+  int boundary_direction(int ce) const {
+    const int f = TriMesh::face(ce);
+    return frames_.nearest_direction(f, frames_.edge_vector(ce));
+  }
+  // A ray of a curve at trace point p in the node numbering used for arcs: boundary edge points
+  // become linear (0 ahead along the boundary, 1 inwards, 2 behind).
+  int node_ray(int p, int ray) const {
+    const TracePoint& q = g_.points[p];
+    if (ray < 0) return ray;
+    if (q.kind == TracePoint::Kind::Edge && mesh_.twin(q.element) < 0) return ((ray - boundary_direction(q.element)) % 4 + 4) % 4;
+    return ray;
+  }
+
+  std::string make_arcs() {
+    const int nv = static_cast<int>(locations_.size());
+    refined_ = TriMesh::from_triangles(nv, triangles_, /*allow_boundary=*/true);
+    if (std::string e = refined_.check_invariants(); !e.empty()) return "the refined mesh is broken: " + e;
+    // Nodes: curve ends, and boundary vertices whose angle is not straight.
+    node_rays_.assign(nv, 0);
+    node_cyclic_.assign(nv, 1);
+    is_node_.assign(nv, 0);
+    for (const TraceCurve& cur : g_.curves)
+      for (int p : {cur.points.front(), cur.points.back()}) mark_node(p);
+    for (int v = 0; v < mesh_.num_vertices(); ++v) {
+      if (g_.valence[v] < 0) continue;
+      const int h = mesh_.vertex_halfedge(v);
+      const bool boundary = h >= 0 && mesh_.twin(h) < 0;
+      if (boundary && g_.valence[v] != 2) {
+        is_node_[v] = 1;
+        node_rays_[v] = g_.valence[v] + 1;
+        node_cyclic_[v] = 0;
+      }
+    }
+    // Curves cut at their nodes.
+    for (int ci = 0; ci < static_cast<int>(g_.curves.size()); ++ci) {
+      const TraceCurve& cur = g_.curves[ci];
+      const int n = static_cast<int>(cur.points.size());
+      int start = 0;
+      for (int i = 1; i < n; ++i) {
+        const int v = point_vertex_[cur.points[i]];
+        if (!is_node_[v] && i + 1 < n) continue;
+        Arc a;
+        for (int k = start; k <= i; ++k) a.vertices.push_back(point_vertex_[cur.points[k]]);
+        a.start = {point_vertex_[cur.points[start]], node_ray(cur.points[start], cur.ray_forward[start])};
+        a.end = {v, node_ray(cur.points[i], cur.ray_back[i])};
+        a.curve = ci;
+        arcs_.push_back(std::move(a));
+        start = i;
+      }
+    }
+    // Boundary loops cut at their nodes (a loop without any gets its first vertex as one).
+    std::vector<char> seen(refined_.num_halfedges(), 0);
+    for (int h0 = 0; h0 < refined_.num_halfedges(); ++h0) {
+      if (refined_.twin(h0) >= 0 || seen[h0]) continue;
+      std::vector<int> loop;  // boundary half-edges in order
+      for (int h = h0, guard = 0; guard <= refined_.num_halfedges(); ++guard) {
+        seen[h] = 1;
+        loop.push_back(h);
+        // The next boundary half-edge leaves target(h): rotate around it.
+        int x = TriMesh::next(h);
+        for (int r = 0; r <= refined_.num_halfedges() && refined_.twin(x) >= 0; ++r) x = TriMesh::next(refined_.twin(x));
+        if (x == h0) break;
+        h = x;
+      }
+      std::size_t first = loop.size();
+      for (std::size_t k = 0; k < loop.size() && first == loop.size(); ++k)
+        if (is_node_[refined_.origin(loop[k])]) first = k;
+      if (first == loop.size()) {
+        first = 0;
+        const int v = refined_.origin(loop[0]);
+        is_node_[v] = 1;
+        node_rays_[v] = 3;
+        node_cyclic_[v] = 0;
+      }
+      std::rotate(loop.begin(), loop.begin() + static_cast<long>(first), loop.end());
+      Arc a;
+      for (std::size_t k = 0; k < loop.size(); ++k) {
+        const int h = loop[k];
+        if (a.vertices.empty()) {
+          a.vertices.push_back(refined_.origin(h));
+          a.start = {refined_.origin(h), 0};
+        }
+        const int t = refined_.target(h);
+        a.vertices.push_back(t);
+        if (is_node_[t]) {
+          a.end = {t, node_rays_[t] - 1};
+          arcs_.push_back(std::move(a));
+          a = Arc{};
+        }
+      }
+    }
+    // Every refined edge on at most one arc.
+    for (int a = 0; a < static_cast<int>(arcs_.size()); ++a) {
+      const auto& vs = arcs_[a].vertices;
+      for (std::size_t k = 0; k + 1 < vs.size(); ++k) {
+        const int h = refined_.find_halfedge(vs[k], vs[k + 1]);
+        const int hb = refined_.find_halfedge(vs[k + 1], vs[k]);
+        if (h < 0 && hb < 0) return "arc " + str(a) + ": consecutive vertices not joined by an edge";
+        const auto key = edge_key(vs[k], vs[k + 1]);
+        if (!arc_of_edge_.emplace(key, a).second) return "arc " + str(a) + ": an edge on two arcs";
+      }
+    }
+    return "";
+  }
+
+  void mark_node(int p) {
+    const int v = point_vertex_[p];
+    is_node_[v] = 1;
+    node_rays_[v] = g_.ray_count[p];
+    node_cyclic_[v] = g_.ray_cyclic[p];
+    const TracePoint& q = g_.points[p];
+    if (q.kind == TracePoint::Kind::Edge && mesh_.twin(q.element) < 0) node_rays_[v] = 3;
+  }
+
+  static std::uint64_t edge_key(int a, int b) {
+    if (a > b) std::swap(a, b);
+    return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
+  }
+
+  // ---- patches ----
+  std::string make_patches(SurfaceLayout& out, FieldLayoutStats& stats, std::vector<int>& seeds) {
+    const int nt = refined_.num_faces();
+    auto on_arc = [&](int h) {
+      return arc_of_edge_.count(edge_key(refined_.origin(h), refined_.target(h))) > 0;
+    };
+    std::vector<int> patch(nt, -1);
+    int np = 0;
+    for (int t0 = 0; t0 < nt; ++t0) {
+      if (patch[t0] >= 0) continue;
+      std::vector<int> stack{t0};
+      patch[t0] = np;
+      while (!stack.empty()) {
+        const int t = stack.back();
+        stack.pop_back();
+        for (int i = 0; i < 3; ++i) {
+          const int h = 3 * t + i, tw = refined_.twin(h);
+          if (tw < 0 || on_arc(h)) continue;
+          const int u = TriMesh::face(tw);
+          if (patch[u] < 0) patch[u] = np, stack.push_back(u);
+        }
+      }
+      ++np;
+    }
+    std::vector<std::vector<int>> tris(np);
+    for (int t = 0; t < nt; ++t) tris[patch[t]].push_back(t);
+    std::vector<LayoutPatch> patches(np);
+    std::string first_problem;
+    int non_disk = 0, bad_corners = 0;
+    for (int p = 0; p < np; ++p) {
+      std::string problem = patch_sides(p, tris[p], patch, on_arc, patches[p]);
+      if (problem.empty()) continue;
+      if (problem[0] == 'N') {
+        ++non_disk;
+        // A seed: the smallest input vertex inside the patch, away from every arc.
+        int best = -1;
+        for (int t : tris[p])
+          for (int v : refined_.face_vertices(t))
+            if (v < mesh_.num_vertices() && !is_node_[v] && !vertex_on_arc(v) && (best < 0 || v < best)) best = v;
+        if (best >= 0) seeds.push_back(best);
+      } else {
+        ++bad_corners;
+      }
+      if (first_problem.empty()) first_problem = "patch " + str(p) + ": " + problem.substr(2);
+    }
+    stats.non_disk_patches = non_disk;
+    stats.bad_corner_patches = bad_corners;
+    stats.patches = np;
+    stats.arcs = static_cast<int>(arcs_.size());
+    stats.nodes = static_cast<int>(std::count(is_node_.begin(), is_node_.end(), 1));
+    stats.refined_vertices = static_cast<int>(locations_.size());
+    stats.refined_triangles = nt;
+    if (!first_problem.empty()) return first_problem;
+    // The layout.
+    out.locations = std::move(locations_);
+    out.positions.resize(out.locations.size());
+    std::vector<Vec3d> input_positions = positions_;
+    for (std::size_t v = 0; v < out.locations.size(); ++v) out.positions[v] = evaluate(out.locations[v], input_positions);
+    out.triangles = triangles_;
+    out.triangle_patch = patch;
+    out.arcs.clear();
+    for (const Arc& a : arcs_) {
+      LayoutArc la;
+      la.vertices = a.vertices;
+      const int h = refined_.find_halfedge(a.vertices[0], a.vertices[1]);
+      const int hb = refined_.find_halfedge(a.vertices[1], a.vertices[0]);
+      la.patch[0] = h >= 0 ? patch[TriMesh::face(h)] : -1;
+      la.patch[1] = hb >= 0 ? patch[TriMesh::face(hb)] : -1;
+      out.arcs.push_back(std::move(la));
+    }
+    out.patches = std::move(patches);
+    int tj = 0;
+    for (std::size_t p = 0; p < g_.points.size(); ++p)
+      if (g_.points[p].kind != TracePoint::Kind::Vertex && is_node_[point_vertex_[p]]) ++tj;
+    stats.t_junctions = tj;
+    return "";
+  }
+
+  bool vertex_on_arc(int v) const {
+    const int h0 = refined_.vertex_halfedge(v);
+    if (h0 < 0) return false;
+    if (refined_.twin(h0) < 0) return true;
+    int h = h0;
+    for (int guard = 0; guard <= refined_.num_halfedges(); ++guard) {
+      if (arc_of_edge_.count(edge_key(v, refined_.target(h)))) return true;
+      h = refined_.next_around_origin(h);
+      if (h < 0 || h == h0) break;
+    }
+    return false;
+  }
+
+  // The sides of patch p, or "N ..." (not a disk) / "C ..." (corners) with the reason.
+  template <class OnArc>
+  std::string patch_sides(int p, const std::vector<int>& tris, const std::vector<int>& patch, const OnArc& on_arc,
+                          LayoutPatch& out) {
+    // Boundary half-edges of the patch (the patch on their left).
+    std::vector<int> bnd;
+    for (int t : tris)
+      for (int i = 0; i < 3; ++i) {
+        const int h = 3 * t + i;
+        if (refined_.twin(h) < 0 || on_arc(h)) bnd.push_back(h);
+      }
+    if (bnd.empty()) return "N: it has no boundary (a closed surface without curves)";
+    // Euler characteristic of the patch cut along its boundary: wedges - edges + faces.
+    UnionFind wedges(static_cast<int>(3 * tris.size()));
+    std::unordered_map<int, int> corner_index;  // half-edge (its origin's corner) -> local corner id
+    for (std::size_t k = 0; k < tris.size(); ++k)
+      for (int i = 0; i < 3; ++i) corner_index[3 * tris[k] + i] = static_cast<int>(3 * k + i);
+    for (int t : tris)
+      for (int i = 0; i < 3; ++i) {
+        const int h = 3 * t + i, tw = refined_.twin(h);
+        if (tw < 0 || on_arc(h)) continue;
+        // Across h: corner at origin(h) in t joins the corner at origin(h) = target(tw) in tw's face.
+        wedges.unite(corner_index[h], corner_index[TriMesh::next(tw)]);
+        wedges.unite(corner_index[TriMesh::next(h)], corner_index[tw]);
+      }
+    std::int64_t V = 0;
+    for (int k = 0; k < static_cast<int>(3 * tris.size()); ++k)
+      if (wedges.find(k) == k) ++V;
+    const std::int64_t F = static_cast<std::int64_t>(tris.size()), B = static_cast<std::int64_t>(bnd.size());
+    const std::int64_t E = (3 * F + B) / 2;
+    // Loops of boundary half-edges.
+    std::unordered_map<int, int> bnd_index;
+    for (std::size_t k = 0; k < bnd.size(); ++k) bnd_index[bnd[k]] = static_cast<int>(k);
+    std::vector<int> next(bnd.size(), -1);
+    for (std::size_t k = 0; k < bnd.size(); ++k) {
+      int x = TriMesh::next(bnd[k]);
+      for (int r = 0; r <= refined_.num_halfedges() && !bnd_index.count(x); ++r) {
+        const int tw = refined_.twin(x);
+        if (tw < 0) break;
+        x = TriMesh::next(tw);
+      }
+      if (!bnd_index.count(x)) return "N: its boundary does not close";
+      next[k] = bnd_index[x];
+    }
+    int loops = 0;
+    std::vector<char> seen(bnd.size(), 0);
+    for (std::size_t k = 0; k < bnd.size(); ++k) {
+      if (seen[k]) continue;
+      ++loops;
+      for (int x = static_cast<int>(k); !seen[x]; x = next[x]) seen[x] = 1;
+    }
+    if (V - E + F != 1 || loops != 1)
+      return "N: not a disk (Euler characteristic " + str(V - E + F) + ", " + str(loops) + " boundary loops)";
+    // The loop as arc uses, from a node.
+    std::vector<int> loop;
+    int k0 = -1;
+    for (std::size_t k = 0; k < bnd.size() && k0 < 0; ++k)
+      if (is_node_[refined_.origin(bnd[k])]) k0 = static_cast<int>(k);
+    if (k0 < 0) return "C: no node on its boundary";
+    for (int x = k0;;) {
+      loop.push_back(bnd[x]);
+      x = next[x];
+      if (x == k0) break;
+    }
+    std::vector<ArcUse> uses;
+    for (std::size_t k = 0; k < loop.size();) {
+      const int h = loop[k];
+      const int a = arc_of_edge_.at(edge_key(refined_.origin(h), refined_.target(h)));
+      const auto& vs = arcs_[a].vertices;
+      const bool forward = vs.size() >= 2 && vs[0] == refined_.origin(h) && vs[1] == refined_.target(h) &&
+                           !(vs.front() == vs.back() && vs.size() == 2 && false);
+      const std::size_t len = vs.size() - 1;
+      // The use must run over the whole arc.
+      for (std::size_t i = 0; i < len; ++i) {
+        if (k + i >= loop.size()) return "C: the boundary ends inside an arc";
+        const int x = loop[k + i];
+        const int e0 = forward ? vs[i] : vs[len - i], e1 = forward ? vs[i + 1] : vs[len - i - 1];
+        if (refined_.origin(x) != e0 || refined_.target(x) != e1) return "C: the boundary leaves arc " + str(a);
+      }
+      uses.push_back({a, forward});
+      k += len;
+    }
+    (void)patch;
+    (void)p;
+    // Quarter turns at each node between consecutive uses.
+    const int nu = static_cast<int>(uses.size());
+    std::vector<int> corners;
+    for (int k = 0; k < nu; ++k) {
+      const ArcUse& in = uses[k];
+      const ArcUse& outu = uses[(k + 1) % nu];
+      const ArcEnd& ea = in.forward ? arcs_[in.arc].end : arcs_[in.arc].start;
+      const ArcEnd& eb = outu.forward ? arcs_[outu.arc].start : arcs_[outu.arc].end;
+      if (ea.node != eb.node) return "C: consecutive arcs do not meet at a node";
+      const int n = node_rays_[ea.node];
+      if (ea.ray < 0 || eb.ray < 0 || n <= 0) return "C: an arc end without a direction at vertex " + str(ea.node);
+      int q = ea.ray - eb.ray;
+      if (node_cyclic_[ea.node]) q = ((q % n) + n) % n;
+      if (q == 0) {
+        // Two arcs by one ray: the one that arrived there is to blame.
+        const Arc& aa = arcs_[in.arc];
+        const Arc& ab = arcs_[outu.arc];
+        const bool a_arrives = in.forward ? true : false;   // arc `in` ends at the node when used forward
+        const bool b_arrives = outu.forward ? false : true;  // arc `out` ends at the node when used backward
+        if (a_arrives && aa.curve >= 0) blame(aa.curve);
+        else if (b_arrives && ab.curve >= 0) blame(ab.curve);
+        else if (aa.curve >= 0) blame(aa.curve);
+      }
+      if (q == 1) corners.push_back((k + 1) % nu);
+      else if (q != 2) return "C: an angle of " + str(q) + " quarter turns at vertex " + str(ea.node);
+    }
+    if (corners.size() != 4) return "C: " + str(static_cast<std::int64_t>(corners.size())) + " corners";
+    for (int s = 0; s < 4; ++s) {
+      out.sides[s].clear();
+      for (int k = corners[s]; k != corners[(s + 1) % 4]; k = (k + 1) % nu) out.sides[s].push_back(uses[k]);
+    }
+    return "";
+  }
+
+  const TriMesh& mesh_;
+  const std::vector<Vec3d>& positions_;
+  const FieldFrames& frames_;
+  const TraceGraph& g_;
+  std::vector<int> point_vertex_;
+  std::vector<SurfacePoint> locations_;
+  std::map<int, std::vector<int>> edge_points_;  // canonical half-edge -> points by t
+  std::map<int, std::vector<int>> face_points_;
+  std::vector<std::array<int, 3>> triangles_;
+  TriMesh refined_;
+  std::vector<int> node_rays_;
+  std::vector<char> node_cyclic_, is_node_;
+  std::vector<Arc> arcs_;
+  std::unordered_map<std::uint64_t, int> arc_of_edge_;
+  std::vector<std::pair<int, int>> culprits_;
+};
+
+// Whether vertex v, with the rays in `banned` left out, keeps every angle between consecutive
+// traced rays at most two quarter turns (boundary rays 0 and k always count as traced).
+bool keeps_small_angles(const TraceGraph& g, int v, const std::vector<std::pair<int, int>>& banned) {
+  const int k = g.valence[v];
+  if (k <= 0) return false;
+  bool boundary = false;
+  for (std::size_t p = 0; p < g.points.size(); ++p)
+    if (g.points[p].kind == TracePoint::Kind::Vertex && g.points[p].element == v) boundary = !g.ray_cyclic[p];
+  const int n = boundary ? k + 1 : k;
+  std::vector<char> on(n, 1);
+  for (const auto& [u, r] : banned)
+    if (u == v && r >= 0 && r < n) on[r] = 0;
+  if (boundary) on[0] = on[n - 1] = 1;
+  std::vector<int> present;
+  for (int r = 0; r < n; ++r)
+    if (on[r]) present.push_back(r);
+  if (present.empty()) return false;
+  for (std::size_t i = 0; i + 1 < present.size(); ++i)
+    if (present[i + 1] - present[i] > 2) return false;
+  if (!boundary && present.front() + n - present.back() > 2) return false;
+  return true;
+}
+
+}  // namespace
+
+FieldLayoutResult build_field_layout(const TriMesh& mesh, const std::vector<Vec3d>& positions,
+                                     const std::vector<Vec3d>& face_direction, const FieldLayoutOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (static_cast<int>(positions.size()) != mesh.num_vertices() ||
+      static_cast<int>(face_direction.size()) != mesh.num_faces())
+    throw Error(ErrorKind::InvalidArgument, "build_field_layout: positions or face directions do not match the mesh");
+  FieldLayoutResult r;
+  const FieldFrames frames(mesh, positions, face_direction);
+  TraceOptions trace = options.trace;
+  const int max_rounds = std::max(0, options.max_seed_rounds) + std::max(0, options.max_ban_rounds);
+  for (int round = 0; round <= max_rounds; ++round) {
+    r.graph = trace_motorcycles(mesh, positions, face_direction, trace);
+    r.stats.trace = r.graph.stats;
+    r.stats.rounds = round + 1;
+    std::vector<int> seeds;
+    r.layout = SurfaceLayout{};
+    r.stats.non_disk_patches = r.stats.bad_corner_patches = 0;
+    Builder b(mesh, positions, frames, r.graph);
+    r.failure = b.build(r.layout, r.stats, seeds);
+    if (r.failure.empty()) {
+      r.ok = true;
+      break;
+    }
+    // Rays whose curves could not end well are left untraced, where their vertex keeps every
+    // angle at most two quarter turns; then the graph is traced again.
+    std::vector<std::pair<int, int>> bans;
+    for (const auto& [v, k] : b.culprits()) {
+      std::vector<std::pair<int, int>> trial = trace.banned_rays;
+      trial.insert(trial.end(), bans.begin(), bans.end());
+      trial.push_back({v, k});
+      if (keeps_small_angles(r.graph, v, trial) && std::find(trial.begin(), trial.end() - 1, std::make_pair(v, k)) == trial.end() - 1)
+        bans.push_back({v, k});
+    }
+    if (!bans.empty() && round < options.max_ban_rounds) {
+      trace.banned_rays.insert(trace.banned_rays.end(), bans.begin(), bans.end());
+      r.stats.banned_rays += static_cast<int>(bans.size());
+      continue;
+    }
+    if (r.stats.bad_corner_patches > 0 || seeds.empty() || round >= options.max_seed_rounds) break;
+    std::sort(seeds.begin(), seeds.end());
+    seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
+    for (int s : seeds) trace.seeds.push_back(s);
+    r.stats.seeds += static_cast<int>(seeds.size());
+  }
+  if (!r.ok) r.layout = SurfaceLayout{};
+  r.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+}  // namespace igm

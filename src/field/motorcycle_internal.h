@@ -1,0 +1,53 @@
+#pragma once
+// Internal to the field layout (motorcycle.cpp, field_layout.cpp): the per-face frames of a cross
+// field given by one direction per face, its nearest matchings, and the separatrix rays of a vertex.
+#include <array>
+#include <vector>
+
+#include "igm/exact/predicates.h"
+#include "igm/mesh/trimesh.h"
+
+namespace igm::field_detail {
+
+/// v rotated by k quarter turns counter-clockwise.
+Vec2d rot90(const Vec2d& v, int k);
+
+/// A separatrix ray of a vertex v: inside face `face` along field direction `dir` of that face
+/// (edge == -1); or along the mesh edge `edge` (a half-edge leaving v; the field direction `dir`
+/// of face(edge) points along it); edge == -2 marks the boundary edge behind v on an open fan.
+struct VertexRay {
+  int face = -1, dir = 0, edge = -1;
+};
+
+/// A vertex's rays in counter-clockwise order. Interior: `valence` rays a quarter turn apart in
+/// the field. Boundary: rays[0] along the boundary edge leaving v, then the valence - 1 interior
+/// rays, then the boundary edge arriving at v (valence = the boundary angle in quarter turns).
+/// valence -1 (no rays): a degenerate face around v, or crossings that do not cancel.
+struct VertexRays {
+  std::vector<VertexRay> rays;
+  int valence = -1;
+  bool boundary = false;
+};
+
+/// Per face: corners in a local orthonormal frame (corner 0 at the origin, corner 1 on +x, corner 2
+/// above), the field's unit direction in it; per half-edge h of an interior edge the matching:
+/// direction j of face(h) is direction (j + shift[h]) % 4 of face(twin(h)).
+struct FieldFrames {
+  const TriMesh& mesh;
+  std::vector<std::array<Vec2d, 3>> corner;
+  std::vector<Vec2d> dir;
+  std::vector<char> good;  // the face has positive area and a direction with a tangent component
+  std::vector<int> shift;
+
+  FieldFrames(const TriMesh& mesh, const std::vector<Vec3d>& positions, const std::vector<Vec3d>& face_direction);
+  /// Field direction j of face f (unit, in f's frame).
+  Vec2d direction(int f, int j) const;
+  /// Half-edge h as a vector in its face's frame.
+  Vec2d edge_vector(int h) const;
+  /// The direction index of face f nearest to v (ties: the lower index).
+  int nearest_direction(int f, const Vec2d& v) const;
+  /// The separatrix rays of vertex v (VertexRays). Cost O(valence).
+  VertexRays vertex_rays(int v) const;
+};
+
+}  // namespace igm::field_detail
