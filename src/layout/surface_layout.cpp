@@ -293,6 +293,10 @@ std::string check_surface_layout(const SurfaceLayout& L) {
   if (!e.empty()) return e;
   const LayoutAdjacency A = layout_adjacency(L);
   if (!A.error.empty()) return A.error;
+  for (int p = 0; p < static_cast<int>(L.patches.size()); ++p) {
+    PatchDisk d = patch_disk(L, A, p);
+    if (!d.error.empty()) return d.error;
+  }
   const int na = static_cast<int>(L.arcs.size());
   std::vector<int> forward(na, 0), backward(na, 0);
   for (const LayoutPatch& P : L.patches)
@@ -305,10 +309,6 @@ std::string check_surface_layout(const SurfaceLayout& L) {
         return "arc " + str(a) + " is used " + str(uses) + " times " + (s == 0 ? "forward" : "backward") + ", expected " +
                str(want) + " (by its " + (s == 0 ? "left" : "right") + " patch " + str(L.arcs[a].patch[s]) + ")";
     }
-  for (int p = 0; p < static_cast<int>(L.patches.size()); ++p) {
-    PatchDisk d = patch_disk(L, A, p);
-    if (!d.error.empty()) return d.error;
-  }
   return "";
 }
 
