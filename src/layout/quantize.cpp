@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <map>
 #include <string>
 
 #include <CbcModel.hpp>
 #include <CbcSolver.hpp>
 #include <CoinPackedMatrix.hpp>
-#include <CoinPackedVector.hpp>
 #include <OsiClpSolverInterface.hpp>
 
 #include "igm/core/error.h"
@@ -51,38 +51,89 @@ struct Solve {
   std::string why;  // why there is no solution, if not CBC's own verdict
 };
 
-// The integer program (rows fixed; targets and weights per solve).
+// The patches' rows over the arcs' lengths x_a (fixed; targets and weights change per solve).
 struct Program {
   int arcs = 0;
-  CoinPackedMatrix rows{false, 0, 0};  // over columns x_0 .. x_(n-1), e_0 .. e_(n-1)
-  std::vector<double> row_lower, row_upper;
+  struct Row {
+    std::vector<int> arc;
+    std::vector<double> coef;
+    double lower = 0, upper = 0;
+  };
+  std::vector<Row> rows;
   int equality_rows = 0;
   std::vector<int> minimum;
 };
 
+// Solves min sum_a w_a |x_a - t_a| over the rows. The deviation is modelled exactly on integers by
+// its convex piecewise-linear interpolation with integer breakpoints: x_a = b_a + u_a + v_a - d_a
+// with the base b_a = floor(t_a) clamped into [minimum, 2^20], u_a in [0, 1] at cost
+// w_a (1 - 2 (t_a - b_a)) (w_a if b_a > t_a), v_a >= 0 and d_a in [0, b_a - minimum] at cost w_a.
+// It equals w_a |x_a - t_a| at every integer x_a, so the integer optimum is the same; as the
+// breakpoints are integers, the relaxation's optimal vertices are integral wherever the rows allow
+// it (a T-mesh whose patch frames agree across every arc has a network matrix: always). So the
+// relaxation is solved first (Clp's dual simplex); if its optimum is integral it is the answer,
+// else CBC's branch and cut (CbcMain: presolve, cuts, heuristics) runs on it, at most `max_nodes`
+// nodes, one thread, no time limit.
 Solve solve(const Program& prog, const std::vector<double>& target, const std::vector<double>& weight, int max_nodes) {
   const int n = prog.arcs;
-  CoinPackedMatrix matrix = prog.rows;
-  std::vector<double> row_lower = prog.row_lower, row_upper = prog.row_upper;
-  // Deviation rows: e_a - x_a >= -t_a and e_a + x_a >= t_a.
-  for (int a = 0; a < n; ++a)
-    for (int sign : {-1, 1}) {
-      const int idx[2] = {a, n + a};
-      const double val[2] = {static_cast<double>(sign), 1.0};
-      matrix.appendRow(CoinPackedVector(2, idx, val));
-      row_lower.push_back(sign * target[a]);
-      row_upper.push_back(COIN_DBL_MAX);
-    }
-  std::vector<double> col_lower(2 * n, 0.0), col_upper(2 * n, COIN_DBL_MAX), objective(2 * n, 0.0);
+  std::vector<double> base(n), col_lower(3 * n, 0.0), col_upper(3 * n), objective(3 * n);
+  double constant = 0;
   for (int a = 0; a < n; ++a) {
-    col_lower[a] = prog.minimum[a];
-    col_upper[a] = kMaxLength;
-    objective[n + a] = weight[a];
+    const double t = target[a];
+    base[a] = std::clamp(std::floor(t), static_cast<double>(prog.minimum[a]), static_cast<double>(kMaxLength));
+    const double room = kMaxLength - base[a];
+    col_upper[a] = std::min(1.0, room);
+    col_upper[n + a] = std::max(0.0, room - 1);
+    col_upper[2 * n + a] = base[a] - prog.minimum[a];
+    objective[a] = weight[a] * (base[a] > t ? 1.0 : 1 - 2 * (t - base[a]));
+    objective[n + a] = objective[2 * n + a] = weight[a];
+    constant += weight[a] * std::abs(base[a] - t);
   }
+  std::vector<int> row_index, column_index;
+  std::vector<double> element, row_lower, row_upper;
+  for (std::size_t r = 0; r < prog.rows.size(); ++r) {
+    const Program::Row& R = prog.rows[r];
+    double shift = 0;
+    for (std::size_t i = 0; i < R.arc.size(); ++i) {
+      const int a = R.arc[i];
+      shift += R.coef[i] * base[a];
+      for (int c : {0, 1, 2}) {
+        row_index.push_back(static_cast<int>(r));
+        column_index.push_back(c * n + a);
+        element.push_back(c == 2 ? -R.coef[i] : R.coef[i]);
+      }
+    }
+    row_lower.push_back(R.lower - shift);
+    row_upper.push_back(R.upper == COIN_DBL_MAX ? COIN_DBL_MAX : R.upper - shift);
+  }
+  CoinPackedMatrix matrix(false, row_index.data(), column_index.data(), element.data(),
+                          static_cast<CoinBigIndex>(element.size()));
+  matrix.setDimensions(static_cast<int>(prog.rows.size()), 3 * n);
   OsiClpSolverInterface solver;
   solver.messageHandler()->setLogLevel(0);
   solver.loadProblem(matrix, col_lower.data(), col_upper.data(), objective.data(), row_lower.data(), row_upper.data());
-  for (int a = 0; a < n; ++a) solver.setInteger(a);
+  for (int c = 0; c < 3 * n; ++c) solver.setInteger(c);
+  Solve s;
+  auto take = [&](const double* v, double value) {
+    s.x.resize(n);
+    for (int a = 0; a < n; ++a) s.x[a] = static_cast<int>(base[a] + std::llround(v[a] + v[n + a] - v[2 * n + a]));
+    s.objective = value + constant;
+  };
+  solver.initialSolve();
+  if (solver.isProvenPrimalInfeasible()) {
+    s.status = QuantizeStatus::Infeasible;
+    return s;
+  }
+  if (solver.isProvenOptimal()) {
+    const double* v = solver.getColSolution();
+    bool integral = true;
+    for (int c = 0; c < 3 * n && integral; ++c) integral = std::abs(v[c] - std::nearbyint(v[c])) < 1e-9;
+    if (integral) {
+      take(v, solver.getObjValue());
+      s.status = QuantizeStatus::Optimal;
+      return s;
+    }
+  }
   CbcModel model(solver);
   model.setLogLevel(0);
   model.messageHandler()->setLogLevel(0);
@@ -92,13 +143,9 @@ Solve solve(const Program& prog, const std::vector<double>& target, const std::v
   const std::string nodes = std::to_string(max_nodes);
   const char* argv[] = {"igm", "-log", "0", "-slog", "0", "-threads", "0", "-maxNodes", nodes.c_str(), "-solve", "-quit"};
   CbcMain1(static_cast<int>(sizeof argv / sizeof argv[0]), argv, model, [](CbcModel*, int) { return 0; }, data);
-  Solve s;
   s.nodes = model.getNodeCount();
-  const double* best = model.bestSolution();
-  if (best) {
-    s.x.resize(n);
-    for (int a = 0; a < n; ++a) s.x[a] = static_cast<int>(std::llround(best[a]));
-    s.objective = model.getObjValue();
+  if (const double* best = model.bestSolution()) {
+    take(best, model.getObjValue());
     s.status = model.isProvenOptimal() ? QuantizeStatus::Optimal : QuantizeStatus::Feasible;
   } else {
     s.status = model.isProvenInfeasible() ? QuantizeStatus::Infeasible : QuantizeStatus::NoSolution;
@@ -178,7 +225,6 @@ Quantization quantize_layout(const SurfaceLayout& L, const QuantizeOptions& o) {
   for (int a = 0; a < na; ++a)
     if (prog.minimum[a] < 1 || prog.minimum[a] > kMaxLength)
       throw Error(ErrorKind::InvalidArgument, "quantize_layout: arc " + str(a) + "'s minimum is not in 1..2^20", {a});
-  prog.rows.setDimensions(0, 2 * na);
   for (int p = 0; p < np; ++p) {
     const LayoutPatch& P = L.patches[p];
     const std::array<int, 2> side_min = side_minimum(L, p);
@@ -191,9 +237,7 @@ Quantization quantize_layout(const SurfaceLayout& L, const QuantizeOptions& o) {
       for (const auto& [a, c] : coef)
         if (c != 0) idx.push_back(a), val.push_back(c);
       if (!idx.empty()) {
-        prog.rows.appendRow(CoinPackedVector(static_cast<int>(idx.size()), idx.data(), val.data()));
-        prog.row_lower.push_back(0);
-        prog.row_upper.push_back(0);
+        prog.rows.push_back({idx, val, 0, 0});
         ++prog.equality_rows;
       }
       int least = 0;
@@ -202,9 +246,7 @@ Quantization quantize_layout(const SurfaceLayout& L, const QuantizeOptions& o) {
         idx.clear();
         val.clear();
         for (const ArcUse& u : P.sides[k]) idx.push_back(u.arc), val.push_back(1);
-        prog.rows.appendRow(CoinPackedVector(static_cast<int>(idx.size()), idx.data(), val.data()));
-        prog.row_lower.push_back(side_min[k]);
-        prog.row_upper.push_back(COIN_DBL_MAX);
+        prog.rows.push_back({idx, val, static_cast<double>(side_min[k]), COIN_DBL_MAX});
       }
     }
   }
@@ -282,7 +324,7 @@ Quantization quantize_layout(const SurfaceLayout& L, const QuantizeOptions& o) {
   if (kept.x.empty()) {
     out.reason = !kept.why.empty() ? kept.why
                  : kept.status == QuantizeStatus::Infeasible
-                     ? "no arc lengths >= their minima give every patch equal opposite sides (CBC proved it infeasible)"
+                     ? "no arc lengths >= their minima give every patch equal opposite sides (infeasible: proved by Clp/CBC)"
                      : "CBC found no solution within " + str(o.max_nodes) + " branch-and-bound nodes";
   } else {
     out.arc_length = std::move(kept.x);

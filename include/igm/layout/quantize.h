@@ -13,10 +13,13 @@
 
 namespace igm {
 
-/// The weight w_a of an arc's deviation |x_a - t_a| in the objective.
+/// The weight w_a of an arc's deviation |x_a - t_a| in the objective (measured in docs/layouts.md:
+/// on arcs that the patches force to one length, as the canonical layouts' chords, the absolute
+/// deviation keeps that length at their median and the relative one drags it toward the shortest;
+/// on random T-meshes the two are within 15 %).
 enum class QuantizeWeight {
-  Relative,  // 1 / max(t_a, 1): the relative deviation (the default; docs/layouts.md)
-  Absolute,  // 1: the deviation in edges
+  Absolute,  // 1: the deviation in edges (the default)
+  Relative,  // 1 / max(t_a, 1): the relative deviation
 };
 
 struct QuantizeOptions {
@@ -40,7 +43,7 @@ struct QuantizeOptions {
   /// CBC's branch-and-bound node bound (per solve; one thread, no time limit, so the result does
   /// not depend on the machine or its load).
   int max_nodes = 2000;
-  QuantizeWeight weight = QuantizeWeight::Relative;
+  QuantizeWeight weight = QuantizeWeight::Absolute;
 };
 
 enum class QuantizeStatus {
