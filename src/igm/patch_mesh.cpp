@@ -227,6 +227,48 @@ PatchMesh build_patch_mesh(PatchMeshInput in, bool split_chords) {
   return m;
 }
 
+SurfaceLayout to_surface_layout(const QuadLayout& L, PatchMesh& m, int num_input_vertices) {
+  SurfaceLayout out;
+  std::vector<int> id(m.locations.size(), -1);
+  for (const auto& t : m.triangles)
+    for (int v : t) id[m.vertex_of[v]] = 0;
+  int next = 0;
+  for (int& x : id)
+    if (x == 0) x = next++;
+  out.num_input_vertices = num_input_vertices;
+  out.locations.resize(next);
+  out.positions.resize(next);
+  for (std::size_t v = 0; v < id.size(); ++v)
+    if (id[v] >= 0) out.locations[id[v]] = std::move(m.locations[v]), out.positions[id[v]] = m.positions[v];
+  m.locations = {};
+  m.positions = {};
+  out.triangles.reserve(m.triangles.size());
+  for (const auto& t : m.triangles) out.triangles.push_back({id[m.vertex_of[t[0]]], id[m.vertex_of[t[1]]], id[m.vertex_of[t[2]]]});
+  out.triangle_patch = m.triangle_quad;
+  out.arcs.resize(L.num_surface_edges);
+  std::vector<char> has_chain(L.num_surface_edges, 0);
+  for (std::size_t e = 0; e < L.edges.size(); ++e) {
+    const int s = L.surface_edge[e];
+    const bool along = L.surface_edge_forward[e] != 0;
+    LayoutArc& arc = out.arcs[s];
+    for (int side : {0, 1}) {
+      const int q = L.edges[e].quad[side];
+      if (q >= 0) arc.patch[along ? side : 1 - side] = q;
+    }
+    if (along && !has_chain[s]) {
+      has_chain[s] = 1;
+      for (int v : m.edge_chain[e]) arc.vertices.push_back(id[m.vertex_of[v]]);
+    }
+  }
+  out.patches.resize(L.quads.size());
+  for (std::size_t q = 0; q < L.quads.size(); ++q)
+    for (int k = 0; k < 4; ++k) {
+      const int e = L.quad_edge[q][k];
+      out.patches[q].sides[k].push_back({L.surface_edge[e], (L.quad_edge_forward[q][k] != 0) == (L.surface_edge_forward[e] != 0)});
+    }
+  return out;
+}
+
 std::vector<double> layout_edge_lengths(const QuadLayout& L, const PatchMesh& m, double scale) {
   std::vector<double> len(L.num_surface_edges, 0.0);
   std::vector<char> done(L.num_surface_edges, 0);

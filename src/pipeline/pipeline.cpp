@@ -14,6 +14,7 @@
 #include "igm/embed/polygon.h"
 #include "igm/extract/isolines.h"
 #include "igm/extract/patch_grid.h"
+#include "igm/igm/layout_map.h"
 #include "igm/igm/patch_mesh.h"
 #include "igm/mesh/scale.h"
 #include "igm/mesh/surface_point.h"
@@ -330,33 +331,34 @@ void map_disk(PipelineResult& result, CutDisk& cut, const PipelineOptions& optio
   const std::vector<double> lengths = layout_edge_lengths(layout, patches, scale);
   const Sizing sizing = size_layout(layout, lengths, sizing_options(options, scale));
   stats.edge_length = sizing.edge_length / scale;
-  PatchMapOptions map_options;
-  map_options.kind = options.patch_map;
-  map_options.weights = options.patch_weights;
-  map_options.tutte = options.tutte;
-  map_options.length_scale = scale;
-  PatchMaps maps = map_patches(layout, patches, sizing, overlay.mesh.positions, map_options);
-  stats.patch_maps = maps.stats;
-  stats.max_uv_bits = maps.stats.max_uv_bits;
   IgmMesh& igm = result.igm;
-  igm.triangles.reserve(patches.triangles.size());
-  for (const auto& t : patches.triangles)
-    igm.triangles.push_back({patches.vertex_of[t[0]], patches.vertex_of[t[1]], patches.vertex_of[t[2]]});
-  stats.output_vertices = static_cast<int>(patches.locations.size());
-  stats.output_triangles = static_cast<int>(igm.triangles.size());
-  stage.done("igm", t0,
-             format("%.0f triangles (%.2fx input), %.0f quads ", stats.output_triangles,
-                    double(stats.output_triangles) / std::max(1, stats.input_faces), double(sizing.quads)) +
-                 (options.resolution > 0 ? format("at resolution %.0f", double(options.resolution))
-                                         : format("of edge length %.3g", stats.edge_length)) +
-                 ", " + to_string(options.patch_map) + " maps" +
-                 format(", %.0f patches refined, UV bits max %.0f", double(maps.stats.patches_refined),
-                        double(stats.max_uv_bits)));
-
-  igm.positions = std::move(patches.positions);
-  igm.locations = std::move(patches.locations);
-  igm.corner_uv = std::move(maps.corner_uv);
-  {
+  PatchMapStats map_stats;
+  if (!affine) {
+    // Every layout takes the one back end: the patch mesh as a surface layout, its arcs sized by the
+    // chords' counts, mapped by map_layout (its triangles and vertices are the patch mesh's: the
+    // patch mesh already meets the Tutte maps' pre-conditions, so nothing is split again).
+    LayoutMapOptions map_options;
+    map_options.weights = options.patch_weights;
+    map_options.tutte = options.tutte;
+    map_options.length_scale = scale;
+    LayoutMap map = map_layout(to_surface_layout(layout, patches, static_cast<int>(input_positions.size())),
+                               sizing.edge_count, map_options);
+    map_stats = map.stats;
+    igm = std::move(map.igm);
+  } else {
+    PatchMapOptions map_options;
+    map_options.kind = options.patch_map;
+    map_options.weights = options.patch_weights;
+    map_options.tutte = options.tutte;
+    map_options.length_scale = scale;
+    PatchMaps maps = map_patches(layout, patches, sizing, overlay.mesh.positions, map_options);
+    map_stats = maps.stats;
+    igm.triangles.reserve(patches.triangles.size());
+    for (const auto& t : patches.triangles)
+      igm.triangles.push_back({patches.vertex_of[t[0]], patches.vertex_of[t[1]], patches.vertex_of[t[2]]});
+    igm.positions = std::move(patches.positions);
+    igm.locations = std::move(patches.locations);
+    igm.corner_uv = std::move(maps.corner_uv);
     // Vertices no triangle uses (an open surface's filling: its hole vertices and the points inside
     // its fans, topology/open_cut.h) are dropped; the others keep their order (the input vertices
     // first). A closed surface uses every vertex.
@@ -375,9 +377,20 @@ void map_disk(PipelineResult& result, CutDisk& cut, const PipelineOptions& optio
         if (id[v] >= 0) positions[id[v]] = igm.positions[v], locations[id[v]] = std::move(igm.locations[v]);
       igm.positions = std::move(positions);
       igm.locations = std::move(locations);
-      stats.output_vertices = next;
     }
   }
+  stats.patch_maps = map_stats;
+  stats.max_uv_bits = map_stats.max_uv_bits;
+  stats.output_vertices = static_cast<int>(igm.positions.size());
+  stats.output_triangles = static_cast<int>(igm.triangles.size());
+  stage.done("igm", t0,
+             format("%.0f triangles (%.2fx input), %.0f quads ", stats.output_triangles,
+                    double(stats.output_triangles) / std::max(1, stats.input_faces), double(sizing.quads)) +
+                 (options.resolution > 0 ? format("at resolution %.0f", double(options.resolution))
+                                         : format("of edge length %.3g", stats.edge_length)) +
+                 ", " + to_string(options.patch_map) + " maps" +
+                 format(", %.0f patches refined, UV bits max %.0f", double(map_stats.patches_refined),
+                        double(stats.max_uv_bits)));
 
   // --- the picture ---
   SchemaDrawing& d = result.schema;

@@ -25,9 +25,9 @@ struct PatchSetup {
   std::vector<igm::Vec3d> input_positions;
 };
 
-/// Runs the stages up to the patch mesh; `affine` adds the layout's diagonals to the overlay and
-/// leaves same-side chords unsplit (PatchMapKind::Affine), else they are split (Tutte).
-inline PatchSetup patch_setup(const igm::ValidMesh& mesh, igm::LayoutKind kind, bool affine) {
+/// Runs the stages up to the patch mesh; `affine` adds the layout's diagonals to the overlay;
+/// same-side chords are split with `split_chords` (the Tutte maps' pre-condition).
+inline PatchSetup patch_setup(const igm::ValidMesh& mesh, igm::LayoutKind kind, bool affine, bool split_chords) {
   using namespace igm;
   PatchSetup s;
   CutOptions co;
@@ -63,8 +63,13 @@ inline PatchSetup patch_setup(const igm::ValidMesh& mesh, igm::LayoutKind kind, 
   for (const SurfacePoint& p : cut.surface.constructed) in.surface_locations.push_back(p);
   s.input_positions = cut.surface.input_positions;
   in.input_positions = &s.input_positions;
-  s.mesh = build_patch_mesh(std::move(in), !affine);
+  s.mesh = build_patch_mesh(std::move(in), split_chords);
   return s;
+}
+
+/// The same, chords split unless `affine` (PatchMapKind::Affine leaves them; Tutte needs them split).
+inline PatchSetup patch_setup(const igm::ValidMesh& mesh, igm::LayoutKind kind, bool affine) {
+  return patch_setup(mesh, kind, affine, !affine);
 }
 
 /// The certifier's report on the patch mesh with these corner UVs (checks 1-4).

@@ -45,6 +45,7 @@ struct PatchMapStats {
   int max_refinement_steps = 0;
   std::int64_t flips_double = 0;     // non-positive triangles over all patches' double solutions
   std::size_t max_uv_bits = 0;       // largest bit_size of a UV coordinate
+  int splits = 0;                    // edges split for the Tutte maps' pre-conditions (map_layout)
   double seconds = 0;
 };
 

@@ -8,6 +8,7 @@
 
 #include "igm/arrange/overlay.h"
 #include "igm/layout/quad_layout.h"
+#include "igm/layout/surface_layout.h"
 #include "igm/mesh/surface_point.h"
 
 namespace igm {
@@ -56,6 +57,17 @@ struct PatchMeshInput {
 /// overlay does not match the layout, Internal if an invariant breaks. Cost O(F log F) plus the
 /// exact locations (O(1) GMP operations per new vertex).
 PatchMesh build_patch_mesh(PatchMeshInput input, bool split_chords);
+
+/// The patch mesh of a canonical layout as a surface layout (the one input of map_layout,
+/// igm/layout_map.h): the same triangles in the same order over surface ids, the vertices no
+/// triangle uses dropped (an open surface's filling; the others keep their order, the first
+/// `num_input_vertices` being the input's), patch q = layout quad q with its sides k = its edges
+/// k, arc s = surface edge s (QuadLayout::surface_edge: a glued pair of polygon side pieces is one
+/// arc; its vertices in the direction of the surface edge), so that a Sizing's edge_count is the
+/// arcs' lengths. Moves mesh.locations and mesh.positions into the result (left empty); the rest
+/// of `mesh` stays as it was (extract_patch_grids reads its triangles). Pre: build_patch_mesh's
+/// output for `layout`. Cost O(F + V).
+SurfaceLayout to_surface_layout(const QuadLayout& layout, PatchMesh& mesh, int num_input_vertices);
 
 /// The 3D length of every surface edge of the layout (QuadLayout::surface_edge): the length of the
 /// polyline of its chain's positions, multiplied by `scale` (mesh/scale.h). O(vertices on layout

@@ -1,0 +1,295 @@
+// Close pairs of opposite cones (close_cone_pairs, cross_field.h) and their cancellation
+// (cancel_close_pairs, field_internal.h).
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <queue>
+#include <utility>
+
+#include "field_internal.h"
+#include "../quality/vec3.h"
+
+namespace igm {
+
+namespace {
+
+using quality_internal::norm;
+using quality_internal::sub;
+
+constexpr double kQuarter = std::numbers::pi / 2;
+
+// Dijkstra along the edges from `sources` (distance 0) up to `radius`, interior edges only if
+// `interior_only`, never through a vertex marked in `blocked` (one may be reached). dist / via must be INFINITY / -1 everywhere on entry; every vertex reached is
+// listed in `touched` (to reset them: reset()). via[v]: the half-edge by which v was reached.
+// Ties by (distance, vertex id): deterministic. Stops early once `stop` is settled (-1: never).
+// Each vertex is settled once: O(k log k) for the k vertices within the radius.
+void dijkstra(const TriMesh& mesh, const std::vector<Vec3d>& p, const std::vector<int>& sources, double radius,
+              bool interior_only, int stop, const std::vector<char>* blocked, std::vector<double>& dist,
+              std::vector<int>& via, std::vector<int>& touched) {
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
+  for (int s : sources)
+    if (dist[s] != 0) {
+      if (dist[s] == INFINITY) touched.push_back(s);
+      dist[s] = 0;
+      heap.push({0.0, s});
+    }
+  const int nh = mesh.num_halfedges();
+  while (!heap.empty()) {
+    const auto [d, v] = heap.top();
+    heap.pop();
+    if (d > dist[v]) continue;
+    if (v == stop) return;
+    if (blocked && (*blocked)[v] && d > 0) continue;  // reached, not passed through
+    // The edges at v: each fan half-edge h leaving v (to target(h)) and prev(h) entering v (from
+    // its origin); the latter is met again as the next fan half-edge's twin, except at the end
+    // of an open fan, where it is the incoming boundary edge.
+    const int first = mesh.vertex_halfedge(v);
+    int h = first;
+    for (int step = 0; step < nh && h >= 0; ++step) {
+      const int in = TriMesh::prev(h);
+      for (const auto [e, w] : {std::pair{h, mesh.target(h)}, std::pair{in, mesh.origin(in)}}) {
+        if (interior_only && mesh.twin(e) < 0) continue;
+        const double nd = d + norm(sub(p[w], p[v]));
+        if (nd <= radius && nd < dist[w]) {
+          if (dist[w] == INFINITY) touched.push_back(w);
+          dist[w] = nd;
+          via[w] = e;
+          heap.push({nd, w});
+        }
+      }
+      h = mesh.next_around_origin(h);
+      if (h == first) break;
+    }
+  }
+}
+
+void reset(std::vector<double>& dist, std::vector<int>& via, std::vector<int>& touched) {
+  for (int v : touched) {
+    dist[v] = INFINITY;
+    via[v] = -1;
+  }
+  touched.clear();
+}
+
+}  // namespace
+
+std::vector<ConePair> close_cone_pairs(const TriMesh& mesh, const std::vector<Vec3d>& positions,
+                                       const CrossField& field, double max_distance) {
+  const int nv = mesh.num_vertices();
+  const double mean = field_internal::mean_edge_length(mesh, positions);
+  std::vector<ConePair> candidates;
+  if (!(mean > 0) || !(max_distance >= 0)) return candidates;
+  std::vector<double> dist(nv, INFINITY);
+  std::vector<int> via(nv, -1), touched;
+  for (const Cone& c : field.cones) {
+    if (c.valence >= 4) continue;
+    dijkstra(mesh, positions, {c.vertex}, max_distance * mean, false, -1, nullptr, dist, via, touched);
+    for (int w : touched)
+      if (!field.on_boundary[w] && field.valence[w] > 4 && field.valence[w] + c.valence == 8)
+        candidates.push_back({c.vertex, w, dist[w] / mean});
+    reset(dist, via, touched);
+  }
+  std::sort(candidates.begin(), candidates.end(), [](const ConePair& a, const ConePair& b) {
+    if (a.distance != b.distance) return a.distance < b.distance;
+    if (a.positive != b.positive) return a.positive < b.positive;
+    return a.negative < b.negative;
+  });
+  std::vector<char> used(nv, 0);
+  std::vector<ConePair> pairs;
+  for (const ConePair& c : candidates)
+    if (!used[c.positive] && !used[c.negative]) {
+      used[c.positive] = used[c.negative] = 1;
+      pairs.push_back(c);
+    }
+  return pairs;
+}
+
+namespace field_internal {
+
+namespace {
+
+// One close pair's cancellation: the period changes along its path and the faces to re-solve.
+struct PairPlan {
+  std::vector<int> plus;    // half-edges whose period gains 1 (their twins lose 1)
+  std::vector<int> region;  // faces with a corner within the radius of the path (unconstrained)
+};
+
+// The angles on the faces marked in `region` minimizing
+// sum_e w_e (theta_g - theta_f - rho_h - pi/2 p_h)^2 with every period p fixed and theta fixed
+// outside the region (Ray, Vallet, Li, Levy 2008, "N-symmetry direction field design", the
+// angle form); written into theta reduced to [0, pi/2).
+void solve_angles(const TriMesh& mesh, const System& sys, const FaceFrames& frames, const std::vector<int>& period,
+                  const std::vector<char>& region, std::vector<double>& theta, double& factor_seconds) {
+  const int nf = mesh.num_faces();
+  std::vector<int> free_faces, slot(nf, -1);
+  bool touches_outside = false;
+  for (int f = 0; f < nf; ++f)
+    if (region[f]) {
+      slot[f] = static_cast<int>(free_faces.size());
+      free_faces.push_back(f);
+      for (int i = 0; i < 3; ++i) {
+        const int t = mesh.twin(3 * f + i);
+        if (t >= 0 && !region[TriMesh::face(t)]) touches_outside = true;
+      }
+    }
+  if (!touches_outside && !free_faces.empty()) {  // the whole surface: pin its first face
+    slot[free_faces.front()] = -1;
+    free_faces.erase(free_faces.begin());
+    for (std::size_t i = 0; i < free_faces.size(); ++i) slot[free_faces[i]] = static_cast<int>(i);
+  }
+  const int n = static_cast<int>(free_faces.size());
+  if (n == 0) return;
+  std::vector<Eigen::Triplet<double>> trip;
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
+  for (int i = 0; i < n; ++i) {
+    const int f = free_faces[i];
+    double diag = 0;
+    for (int k = 0; k < 3; ++k) {
+      const int h = 3 * f + k, t = mesh.twin(h);
+      if (t < 0) continue;
+      const int g = TriMesh::face(t);
+      const double w = sys.weight[h];
+      diag += w;
+      b[i] -= w * (frames.transport[h] + kQuarter * period[h]);
+      if (slot[g] >= 0)
+        trip.emplace_back(slot[g], i, -w);
+      else
+        b[i] += w * theta[g];
+    }
+    trip.emplace_back(i, i, diag);
+  }
+  Eigen::SparseMatrix<double> m(n, n);
+  m.setFromTriplets(trip.begin(), trip.end());
+  Factor<double> factor;
+  factor.compute(m, factor_seconds);
+  const Eigen::VectorXd x = factor.solve(b);
+  for (int i = 0; i < n; ++i) {
+    const double t = x[i] - kQuarter * std::floor(x[i] / kQuarter);  // in [0, pi/2]
+    theta[free_faces[i]] = t < kQuarter ? t : 0.0;
+  }
+}
+
+}  // namespace
+
+void cancel_close_pairs(const TriMesh& mesh, const std::vector<Vec3d>& p, const System& sys,
+                        const std::vector<char>& fixed, const CrossFieldOptions& options, CrossField& field) {
+  const int nv = mesh.num_vertices(), nf = mesh.num_faces(), nh = mesh.num_halfedges();
+  const double mean = sys.mean_edge;
+  CrossFieldStats& st = field.stats;
+  std::vector<double> dist(nv, INFINITY);
+  std::vector<int> via(nv, -1), touched;
+  for (int round = 0; round < options.cleanup_rounds; ++round) {
+    // Paths avoid every other singular vertex: the field twists most near a cone, where a quarter
+    // turn more would not spread over a few faces.
+    std::vector<char> singular(nv, 0);
+    for (int v = 0; v < nv; ++v) singular[v] = field.valence[v] != (field.on_boundary[v] ? 2 : 4);
+    std::vector<PairPlan> plans;
+    std::vector<int> stamp(nf, -1);
+    for (const ConePair& pr : field.close_pairs) {
+      if (field.valence[pr.positive] != 3 || field.valence[pr.negative] != 5) continue;
+      // The shortest path of interior edges from the positive cone to the negative one.
+      dijkstra(mesh, p, {pr.positive}, (2 * pr.distance + 2) * mean, true, pr.negative, &singular, dist, via,
+               touched);
+      PairPlan plan;
+      std::vector<int> path;  // vertices, from the negative cone back to the positive one
+      if (via[pr.negative] >= 0) {
+        for (int v = pr.negative, step = 0; v != pr.positive && step < nv; ++step) {
+          path.push_back(v);
+          const int e = via[v];
+          v = mesh.origin(e) == v ? mesh.target(e) : mesh.origin(e);
+          // A quarter turn of period towards the positive cone: p += 1 on the half-edge from the
+          // path vertex nearer the negative cone to the one nearer the positive cone adds one to
+          // the latter's valence and takes one from the former's (cross_field.h, Valence); along
+          // the path the two ends change, 3 -> 4 and 5 -> 4.
+          plan.plus.push_back(mesh.origin(e) == path.back() ? e : mesh.twin(e));
+        }
+        path.push_back(pr.positive);
+      }
+      reset(dist, via, touched);
+      if (plan.plus.empty()) continue;
+      const double r = (round + 2) * std::max(pr.distance, 1.0) * mean;
+      dijkstra(mesh, p, path, r, false, -1, nullptr, dist, via, touched);
+      const int id = static_cast<int>(plans.size());
+      for (int v : touched) {
+        const int first = mesh.vertex_halfedge(v);
+        int h = first;
+        for (int step = 0; step < nh && h >= 0; ++step) {
+          const int f = TriMesh::face(h);
+          if (!fixed[f] && stamp[f] != id) {
+            stamp[f] = id;
+            plan.region.push_back(f);
+          }
+          h = mesh.next_around_origin(h);
+          if (h == first) break;
+        }
+      }
+      reset(dist, via, touched);
+      plans.push_back(std::move(plan));
+    }
+    // Apply the plans together; a vertex that ends outside valence 3..5 (or a boundary vertex
+    // whose k changes) where it was not before means the solve could not spread some quarter
+    // turn: the plans whose regions touch it are dropped and the rest tried again (at most
+    // plans + 1 attempts). The round is kept if it lowers the number of cones.
+    std::vector<char> dropped(plans.size(), 0);
+    bool kept = false;
+    for (std::size_t attempt = 0; attempt <= plans.size(); ++attempt) {
+      std::vector<int> period = field.period;
+      std::vector<char> region(nf, 0);
+      bool active = false;
+      for (std::size_t i = 0; i < plans.size(); ++i) {
+        if (dropped[i]) continue;
+        active = true;
+        for (int h : plans[i].plus) {
+          ++period[h];
+          --period[mesh.twin(h)];
+        }
+        for (int f : plans[i].region) region[f] = 1;
+      }
+      if (!active) break;
+      CrossField trial = field;
+      solve_angles(mesh, sys, field.frames, period, region, trial.theta, st.factor_seconds);
+      derive_singularities(mesh, trial);
+      std::vector<char> bad_face(nf, 0);
+      bool bad = false;
+      for (int v = 0; v < nv; ++v) {
+        if (trial.valence[v] == field.valence[v]) continue;
+        if (trial.on_boundary[v] ? true : trial.valence[v] < 3 || trial.valence[v] > 5) {
+          bad = true;
+          const int first = mesh.vertex_halfedge(v);
+          int h = first;
+          for (int step = 0; step < nh && h >= 0; ++step) {
+            bad_face[TriMesh::face(h)] = 1;
+            h = mesh.next_around_origin(h);
+            if (h == first) break;
+          }
+        }
+      }
+      if (!bad) {
+        if (trial.cones.size() < field.cones.size()) {
+          field = std::move(trial);
+          kept = true;
+        }
+        break;
+      }
+      bool excluded = false;
+      for (std::size_t i = 0; i < plans.size(); ++i)
+        if (!dropped[i])
+          for (int f : plans[i].region)
+            if (bad_face[f]) {
+              dropped[i] = 1;
+              excluded = true;
+              ++st.cleanup_rejected;
+              break;
+            }
+      if (!excluded) break;
+    }
+    if (!kept) break;
+    st.cleanup_rounds = round + 1;
+    field.close_pairs = close_cone_pairs(mesh, p, field, options.close_pair_distance);
+  }
+}
+
+}  // namespace field_internal
+
+}  // namespace igm

@@ -1,0 +1,96 @@
+#pragma once
+// Internal to the field stage (cross_field.cpp, cone_pairs.cpp): the connection Laplacian and
+// its factorization. Not installed, not part of the API.
+#include <Eigen/CholmodSupport>
+#include <Eigen/Sparse>
+
+#include <chrono>
+#include <complex>
+#include <vector>
+
+#include "igm/field/cross_field.h"
+
+namespace igm::field_internal {
+
+using Complex = std::complex<double>;
+using SpMat = Eigen::SparseMatrix<Complex>;
+using Vec = Eigen::VectorXcd;
+using Clock = std::chrono::steady_clock;
+
+inline double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// The smoothness energy on the dual graph (Knoeppel et al. 2013, face-based):
+/// E(u) = sum over interior edges of w_e |u_g - exp(4 i rho_h) u_f|^2 (h the edge's half-edge
+/// in f, g = face(twin h)), w_e = |e| / d_e, d_e the distance between the two faces' centroids
+/// (at least 1e-3 mean edge lengths), and the mass M = diag(face area, at least 1e-6 of the mean
+/// face area). Measured: cone counts do not depend on the weights (|e| / d_e, 1, or
+/// |e|^2 / (A_f + A_g) give the same counts within 10 %, docs/field.md).
+struct System {
+  SpMat A;                      // F x F, Hermitian, both triangles stored
+  std::vector<double> mass;     // per face
+  std::vector<double> weight;   // per half-edge: w_e (0 on a boundary half-edge)
+  double mean_edge = 0;         // mean edge length (every edge once)
+  double total_area = 0;
+};
+
+System build_system(const TriMesh& mesh, const std::vector<Vec3d>& positions, const FaceFrames& frames);
+
+/// Mean edge length, every edge (interior or boundary) once.
+double mean_edge_length(const TriMesh& mesh, const std::vector<Vec3d>& positions);
+
+/// Sparse LDL^T factorization of a symmetric / Hermitian positive definite matrix (the lower
+/// triangle is read) by CHOLMOD in its simplicial mode: no BLAS call, so the same bits on any
+/// machine, BLAS library and thread count (the supernodal mode's depend on the BLAS). Ordering:
+/// AMD, and METIS nested dissection above kMetisAbove unknowns (fewer flops on large surfaces;
+/// METIS seeds its own generator: deterministic), AMD again if METIS is unavailable. CHOLMOD
+/// prints nothing (print level 0).
+constexpr int kMetisAbove = 200000;
+
+template <class Scalar>
+class Factor {
+ public:
+  using Matrix = Eigen::SparseMatrix<Scalar>;
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  Factor() {
+    chol_.setMode(Eigen::CholmodLDLt);
+    chol_.cholmod().print = 0;
+  }
+  /// Factorizes m; adds the wall time to `seconds`. Throws igm::Error(Internal) if the matrix
+  /// is not numerically positive definite.
+  void compute(const Matrix& m, double& seconds) {
+    const auto t0 = Clock::now();
+    bool ok = false;
+    if (m.rows() > kMetisAbove) {
+      chol_.cholmod().nmethods = 1;
+      chol_.cholmod().method[0].ordering = CHOLMOD_METIS;
+      chol_.compute(m);
+      ok = chol_.info() == Eigen::Success;
+    }
+    if (!ok) {
+      chol_.cholmod().nmethods = 1;
+      chol_.cholmod().method[0].ordering = CHOLMOD_AMD;
+      chol_.compute(m);
+      ok = chol_.info() == Eigen::Success;
+    }
+    seconds += since(t0);
+    if (!ok) fail();
+  }
+  Vector solve(const Vector& b) const { return chol_.solve(b); }
+
+ private:
+  [[noreturn]] static void fail();
+  Eigen::CholmodDecomposition<Matrix, Eigen::Lower> chol_;
+};
+
+/// The submatrix of sys.A on `free_faces` (slot: face -> its row, or -1) plus shift * M.
+SpMat restricted(const System& sys, const std::vector<int>& free_faces, const std::vector<int>& slot, double shift);
+
+/// Removes the close +-1/4 pairs of field.close_pairs (CrossFieldOptions::remove_close_pairs;
+/// cone_pairs.cpp): for each, a quarter turn of period moved along the shortest path of interior
+/// edges between the two cones, then the field angles re-solved around the paths with every
+/// period fixed. `fixed` marks the boundary-constrained faces. Updates theta, periods,
+/// valences, cones, close_pairs and the cleanup stats.
+void cancel_close_pairs(const TriMesh& mesh, const std::vector<Vec3d>& positions, const System& sys,
+                        const std::vector<char>& fixed, const CrossFieldOptions& options, CrossField& field);
+
+}  // namespace igm::field_internal
