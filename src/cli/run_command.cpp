@@ -100,6 +100,26 @@ std::string json_escape(const std::string& s) {
   return r;
 }
 
+// The field layout's fallback as JSON: null when none, else its stage and reason.
+std::string fallback_json(const igm::PipelineStats& st) {
+  return st.layout_fallback.empty() ? "null" : "\"" + json_escape(st.layout_fallback) + "\"";
+}
+
+// The field layout's statistics as JSON (null when it was not tried).
+std::string field_json(const igm::PipelineStats& st) {
+  if (st.layout != "field" && st.layout_fallback.empty()) return "null";
+  const igm::CrossFieldStats& f = st.cross_field;
+  std::string v = "{";
+  for (int k = 0; k < 9; ++k)
+    if (k != 4 && f.valence_count[k] > 0) v += (v.size() > 1 ? ", \"" : "\"") + std::to_string(k) + "\": " + std::to_string(f.valence_count[k]);
+  v += "}";
+  const igm::FieldLayoutStats& l = st.field_layout;
+  return "{\"cone_valences\": " + v + ", \"curves\": " + std::to_string(l.trace.curves) + ", \"patches\": " +
+         std::to_string(l.patches) + ", \"t_junctions\": " + std::to_string(l.t_junctions) + ", \"rounds\": " +
+         std::to_string(l.rounds) + ", \"banned_rays\": " + std::to_string(l.banned_rays) + ", \"seeds\": " +
+         std::to_string(l.seeds) + ", \"quantize_deviation\": " + std::to_string(st.quantize.deviation) + "}";
+}
+
 // The options with a line per stage, and per smoothing iteration once it has run 2 s (at most one a
 // second), on the terminal.
 igm::PipelineOptions with_progress(igm::PipelineOptions options) {
@@ -174,9 +194,14 @@ int run_surfaces(const igm::SurfaceSet& set, const std::string& name, const std:
         << ", \"faces\": " << set.components[c].triangles.size() << ", \"genus\": " << set.components[c].genus
         << ", \"boundary_loops\": " << set.components[c].boundary_loops.size()
         << ", \"certified\": " << (rc.certified() ? "true" : "false") << ", \"quads\": " << rc.stats.quads
-        << ", \"layout_quads\": " << rc.stats.layout_quads << "}";
+        << ", \"layout_quads\": " << rc.stats.layout_quads << ", \"layout\": \"" << rc.stats.layout
+        << "\", \"layout_fallback\": " << fallback_json(rc.stats) << "}";
     }
-    s << "],\n\"stats\": {\"quads\": " << r.quads.quads.size() << ", \"seconds\": " << total << "},\n"
+    s << "],\n\"stats\": {\"quads\": " << r.quads.quads.size() << ", \"seconds\": " << total << ", \"surfaces\": [";
+    for (std::size_t c = 0; c < r.components.size(); ++c)
+      s << (c ? ", " : "") << "{\"layout\": \"" << r.components[c].stats.layout
+        << "\", \"layout_fallback\": " << fallback_json(r.components[c].stats) << ", \"field\": " << field_json(r.components[c].stats) << "}";
+    s << "]},\n"
       << "\"quality\": {\"igm\": " << igm::to_json(r.igm_quality) << ", \"quads\": " << igm::to_json(r.quad_quality)
       << "},\n"
       << "\"igm\": " << igm::certify::to_json(r.igm_report) << ",\n"
@@ -207,7 +232,8 @@ int run_pipeline(const igm::ValidMesh& mesh, const std::string& name, const std:
       << ", \"faces\": " << st.input_faces << ", \"genus\": " << st.genus << "},\n"
       << "\"certified\": " << (r.certified() ? "true" : "false") << ",\n"
       << "\"stats\": {\"refined_vertices\": " << st.refined_vertices << ", \"output_triangles\": " << st.output_triangles
-      << ", \"layout\": \"" << (st.genus == 0 ? "pillowcase" : igm::to_string(options.layout)) << "\""
+      << ", \"layout\": \"" << st.layout << "\", \"layout_fallback\": " << fallback_json(st)
+      << ", \"field\": " << field_json(st)
       << ", \"map\": \"" << igm::to_string(options.patch_map) << "\""
       << ", \"layout_quads\": " << st.layout_quads << ", \"chords\": " << st.chords << ", \"quads\": " << st.quads
       << ", \"edge_length\": " << st.edge_length
@@ -215,7 +241,7 @@ int run_pipeline(const igm::ValidMesh& mesh, const std::string& name, const std:
       << ", \"tutte_flips_double\": " << st.tutte.flips_double << ", \"smooth_iterations\": " << st.smooth.iterations
       << ", \"smooth_stop\": \"" << (options.smooth && !st.smooth_skipped ? igm::to_string(st.smooth.stop) : "off") << "\""
       << ", \"smooth_skipped\": " << (st.smooth_skipped ? "true" : "false") << ", \"seconds\": " << total << "},\n"
-      << (st.genus == 0 ? "\"genus0\": {\"cones\": [" + std::to_string(st.cones[0]) + ", " + std::to_string(st.cones[1]) +
+      << (st.layout == "orbifold" ? "\"genus0\": {\"cones\": [" + std::to_string(st.cones[0]) + ", " + std::to_string(st.cones[1]) +
                               ", " + std::to_string(st.cones[2]) + ", " + std::to_string(st.cones[3]) +
                               "], \"path_edges\": " + std::to_string(st.sphere_cut.path_edges) +
                               ", \"refinement_iterations\": " + std::to_string(st.orbifold.refinement.iterations) +
@@ -268,7 +294,8 @@ int run_command(const std::vector<std::string_view>& args) {
         if (v == "spread") options.layout = igm::LayoutKind::Spread;
         else if (v == "kite") options.layout = igm::LayoutKind::Kite;
         else if (v == "paper") options.layout = igm::LayoutKind::Paper;
-        else return usage("--layout must be spread, kite or paper, got '" + std::string(v) + "'");
+        else if (v == "field") options.layout = igm::LayoutKind::Field;
+        else return usage("--layout must be field, spread, kite or paper, got '" + std::string(v) + "'");
       } else if (a == "--map") {
         if (v == "tutte") options.patch_map = igm::PatchMapKind::Tutte;
         else if (v == "affine") options.patch_map = igm::PatchMapKind::Affine;

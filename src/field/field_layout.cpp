@@ -8,9 +8,13 @@
 #include <string>
 #include <unordered_map>
 
+#include <ClpSimplex.hpp>
+#include <CoinPackedMatrix.hpp>
+
 #include "igm/core/error.h"
 #include "igm/core/union_find.h"
 #include "igm/exact/intersect.h"
+#include "igm/layout/quantize.h"
 #include "motorcycle_internal.h"
 
 namespace igm {
@@ -94,6 +98,24 @@ class Builder {
 
   // The rays whose curves made the layout fail: (start vertex, ray).
   const std::vector<std::pair<int, int>>& culprits() const { return culprits_; }
+
+  // Blames the curves that end on the boundary of one of `patches` (T-junctions and corners
+  // made by a curve's end), the longest first, at most `limit` of them.
+  void blame_patches(const SurfaceLayout& layout, const std::vector<int>& patches, int limit) {
+    std::vector<char> node_on(layout.locations.size(), 0);
+    for (int p : patches)
+      for (const auto& side : layout.patches[p].sides)
+        for (const ArcUse& u : side)
+          for (int v : {layout.arcs[u.arc].vertices.front(), layout.arcs[u.arc].vertices.back()}) node_on[v] = 1;
+    std::vector<std::pair<double, int>> cand;
+    for (int c = 0; c < static_cast<int>(g_.curves.size()); ++c) {
+      const TraceCurve& cur = g_.curves[c];
+      if (cur.end != CurveEnd::Curve) continue;
+      if (node_on[point_vertex_[cur.points.back()]]) cand.push_back({-cur.length, c});
+    }
+    std::sort(cand.begin(), cand.end());
+    for (int k = 0; k < static_cast<int>(cand.size()) && k < limit; ++k) blame(cand[k].second);
+  }
 
  private:
   void blame(int c) {
@@ -474,6 +496,7 @@ class Builder {
     stats.refined_triangles = nt;
     if (!first_problem.empty()) return first_problem;
     // The layout.
+    out.num_input_vertices = mesh_.num_vertices();
     out.locations = std::move(locations_);
     out.positions.resize(out.locations.size());
     std::vector<Vec3d> input_positions = positions_;
@@ -646,6 +669,49 @@ class Builder {
   std::vector<std::pair<int, int>> culprits_;
 };
 
+// The patches whose side equations cannot all hold with arc lengths >= `minimum`: the rows with
+// slack in the optimum of the elastic linear program (minimize the total slack of
+// sum(side 0) - sum(side 2) = 0 and sum(side 1) - sum(side 3) = 0 over lengths >= minimum).
+// Empty when the lengths can be chosen (the relaxation is feasible). Cost: one LP (Clp).
+std::vector<int> contradicting_patches(const SurfaceLayout& L, const std::vector<int>& minimum) {
+  const int na = static_cast<int>(L.arcs.size()), np = static_cast<int>(L.patches.size());
+  const int nrows = 2 * np, ncols = na + 2 * nrows;
+  std::vector<int> rows, cols;
+  std::vector<double> vals;
+  for (int p = 0; p < np; ++p)
+    for (int axis = 0; axis < 2; ++axis) {
+      std::map<int, double> coef;
+      for (const ArcUse& u : L.patches[p].sides[axis]) coef[u.arc] += 1;
+      for (const ArcUse& u : L.patches[p].sides[axis + 2]) coef[u.arc] -= 1;
+      const int r = 2 * p + axis;
+      for (const auto& [a, c] : coef)
+        if (c != 0) rows.push_back(r), cols.push_back(a), vals.push_back(c);
+      rows.push_back(r), cols.push_back(na + 2 * r), vals.push_back(1);
+      rows.push_back(r), cols.push_back(na + 2 * r + 1), vals.push_back(-1);
+    }
+  CoinPackedMatrix m(true, rows.data(), cols.data(), vals.data(), static_cast<CoinBigIndex>(vals.size()));
+  m.setDimensions(nrows, ncols);
+  std::vector<double> collb(ncols, 0), colub(ncols, 1e30), obj(ncols, 0), rowlb(nrows, 0), rowub(nrows, 0);
+  for (int a = 0; a < na; ++a) collb[a] = minimum[a], obj[a] = 1e-6;
+  for (int k = na; k < ncols; ++k) obj[k] = 1;
+  ClpSimplex lp;
+  lp.setLogLevel(0);
+  lp.loadProblem(m, collb.data(), colub.data(), obj.data(), rowlb.data(), rowub.data());
+  lp.primal();
+  std::vector<int> out;
+  if (!lp.isProvenOptimal()) return out;
+  const double* x = lp.primalColumnSolution();
+  for (int p = 0; p < np; ++p)
+    for (int axis = 0; axis < 2; ++axis) {
+      const int r = 2 * p + axis;
+      if (x[na + 2 * r] + x[na + 2 * r + 1] > 1e-7) {
+        out.push_back(p);
+        break;
+      }
+    }
+  return out;
+}
+
 // Whether vertex v, with the rays in `banned` left out, keeps every angle between consecutive
 // traced rays at most two quarter turns (boundary rays 0 and k always count as traced).
 bool keeps_small_angles(const TraceGraph& g, int v, const std::vector<std::pair<int, int>>& banned) {
@@ -691,8 +757,18 @@ FieldLayoutResult build_field_layout(const TriMesh& mesh, const std::vector<Vec3
     Builder b(mesh, positions, frames, r.graph);
     r.failure = b.build(r.layout, r.stats, seeds);
     if (r.failure.empty()) {
-      r.ok = true;
-      break;
+      // Lengths >= the minima must be able to satisfy every patch; where they cannot (a strip of
+      // patches that would have to be longer than itself: spiralling curves), the curves ending on
+      // the contradicting patches are left out and the graph traced again.
+      const std::vector<int> bad = contradicting_patches(r.layout, minimum_arc_lengths(r.layout));
+      if (bad.empty()) {
+        r.ok = true;
+        break;
+      }
+      r.stats.contradicting_patches = static_cast<int>(bad.size());
+      r.failure = "the patches' side lengths contradict each other (" + std::to_string(bad.size()) + " patches, patch " +
+                  std::to_string(bad.front()) + ")";
+      b.blame_patches(r.layout, bad, 2);
     }
     // Rays whose curves could not end well are left untraced, where their vertex keeps every
     // angle at most two quarter turns; then the graph is traced again.

@@ -164,6 +164,8 @@ const char* to_string(LayoutKind kind) {
       return "kite";
     case LayoutKind::Spread:
       return "spread";
+    case LayoutKind::Field:
+      return "field";
   }
   return "?";
 }
@@ -188,6 +190,8 @@ int layout_quad_count(LayoutKind kind, int n, int rows) {
       const int m = rows > 0 ? rows : automatic_rows(n);
       return 2 * n + m * (n / 2 - m);
     }
+    case LayoutKind::Field:
+      throw Error(ErrorKind::InvalidArgument, "layout_quad_count: the field layout is not a layout of the schema");
   }
   return 0;
 }
@@ -454,6 +458,8 @@ QuadLayout make_layout(const std::vector<Point2q>& corners, const Point2q& centr
     case LayoutKind::Spread:
       build_spread(L, centre, options.rows, options.ring_depth);
       break;
+    case LayoutKind::Field:
+      throw Error(ErrorKind::InvalidArgument, "make_layout: the field layout is not a layout of the schema");
   }
   finish_layout(L);
   const std::string problem = check_layout(L);

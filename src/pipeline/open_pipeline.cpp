@@ -13,6 +13,16 @@ PipelineResult compute_igm_open(const SurfaceComponent& input, const PipelineOpt
   if (!options.cones.empty())
     throw Error(ErrorKind::InvalidArgument, "cones: only a closed genus-0 mesh takes a cone list (this one has " +
                                                 std::to_string(input.boundary_loops.size()) + " boundary loops)");
+  if (options.layout == LayoutKind::Field) {
+    const TriMesh mesh = TriMesh::from_triangles(static_cast<int>(input.positions.size()), input.triangles, true);
+    FieldSurface surface{&mesh, &input.positions, &input.triangles, input.genus,
+                         static_cast<int>(input.boundary_loops.size())};
+    PipelineStats attempt;
+    if (std::optional<PipelineResult> r = compute_igm_field(surface, options, attempt)) return std::move(*r);
+    PipelineOptions topological = options;
+    topological.layout = LayoutKind::Spread;
+    return with_fallback(std::move(attempt), compute_igm_open(input, topological));
+  }
   PipelineResult result;
   PipelineStats& stats = result.stats;
   StageReporter stage{stats, options};

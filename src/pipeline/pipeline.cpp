@@ -309,6 +309,7 @@ void map_disk(PipelineResult& result, CutDisk& cut, const PipelineOptions& optio
     memory_error(overlay_options.max_triangles, options);
   }
   stats.layout_quads = static_cast<int>(layout.quads.size());
+  stats.layout = to_string(options.layout);
   stats.chords = layout.num_chords;
   stats.layout_edges = layout.num_surface_edges;
   stage.done("arrange", t0,
@@ -430,6 +431,16 @@ void map_disk(PipelineResult& result, CutDisk& cut, const PipelineOptions& optio
 
 PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& options) {
   check_sizes(options);
+  if (options.layout == LayoutKind::Field && options.cones.empty()) {
+    std::vector<std::array<int, 3>> triangles(input.mesh.num_faces());
+    for (int f = 0; f < input.mesh.num_faces(); ++f) triangles[f] = input.mesh.face_vertices(f);
+    FieldSurface surface{&input.mesh, &input.positions, &triangles, input.genus, 0};
+    PipelineStats attempt;
+    if (std::optional<PipelineResult> r = compute_igm_field(surface, options, attempt)) return std::move(*r);
+    PipelineOptions topological = options;
+    topological.layout = LayoutKind::Spread;
+    return with_fallback(std::move(attempt), compute_igm(input, topological));
+  }
   if (input.genus == 0) return compute_igm_sphere(input, options);  // sphere_pipeline.cpp
   if (!options.cones.empty())
     throw Error(ErrorKind::InvalidArgument, "cones: only a genus-0 mesh takes a cone list (this one has genus " +

@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 #include <functional>
+#include <optional>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -57,6 +58,26 @@ struct CutDisk {
 /// and stats (layout, sizing, maps). Moves the surface's data out of `cut`.
 void map_disk(PipelineResult& result, CutDisk& cut, const PipelineOptions& options, StageReporter& stage,
               const std::vector<Vec3d>& input_positions);
+
+/// A surface as the field layout takes it: its mesh (with boundary half-edges where it is open),
+/// positions and triangles (the same as the mesh's faces), genus and boundary loops.
+struct FieldSurface {
+  const TriMesh* mesh = nullptr;
+  const std::vector<Vec3d>* positions = nullptr;
+  const std::vector<std::array<int, 3>>* triangles = nullptr;
+  int genus = 0, boundary_loops = 0;
+};
+
+/// The field layout's IGM of a surface (field_pipeline.cpp): field, trace, quantize, igm, then
+/// smooth_extract_certify and the quality. Nothing where a stage cannot finish or the certifier
+/// rejects the output: then `attempt` holds the attempt's statistics (its stages, the field's, the
+/// layout's) and attempt.layout_fallback "stage: reason". Options range-checked by the caller.
+std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const PipelineOptions& options,
+                                                PipelineStats& attempt);
+
+/// `result` (of a topological layout) after a failed field attempt: the attempt's stages first,
+/// its field statistics and its layout_fallback kept.
+PipelineResult with_fallback(PipelineStats attempt, PipelineResult result);
 
 /// compute_igm for input.genus == 0 (options already range-checked by compute_igm).
 PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions& options);

@@ -140,6 +140,7 @@ PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions&
   stats.output_vertices = nv;
   stats.output_triangles = nf;
   stats.layout_quads = 2;
+  stats.layout = "orbifold";
   std::snprintf(line, sizeof line, "%d triangles (%.2fx input), UV bits max %zu", nf,
                 double(nf) / std::max(1, stats.input_faces), stats.max_uv_bits);
   done("igm", line);

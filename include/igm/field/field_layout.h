@@ -32,6 +32,7 @@ struct FieldLayoutStats {
   int t_junctions = 0;      // arc ends inside another patch's side
   int non_disk_patches = 0;       // in the last round
   int bad_corner_patches = 0;     // disks whose corners are not four quarter turns (last round)
+  int contradicting_patches = 0;  // patches whose side lengths cannot all be equal (last failed round)
   int refined_vertices = 0, refined_triangles = 0;
   double seconds = 0;
 };

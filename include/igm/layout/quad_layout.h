@@ -20,9 +20,13 @@
 
 namespace igm {
 
-enum class LayoutKind { Paper, Kite, Spread };
+/// The layouts of the canonical schema (paper, kite, spread), and Field: the field-driven layout
+/// (field/field_layout.h), which the pipeline tries first and replaces by the spread layout (or the
+/// genus-0 orbifold, or the open cut's spread) where it cannot finish (pipeline.h). make_layout
+/// builds only the schema's layouts.
+enum class LayoutKind { Paper, Kite, Spread, Field };
 
-/// "paper", "kite", "spread".
+/// "paper", "kite", "spread", "field".
 const char* to_string(LayoutKind kind);
 
 struct LayoutOptions {

@@ -11,8 +11,11 @@
 #include "igm/embed/orbifold_tutte.h"
 #include "igm/embed/tutte.h"
 #include "igm/embed/weights.h"
+#include "igm/field/cross_field.h"
+#include "igm/field/field_layout.h"
 #include "igm/igm/patch_maps.h"
 #include "igm/layout/quad_layout.h"
+#include "igm/layout/quantize.h"
 #include "igm/layout/sizing.h"
 #include "igm/mesh/validate.h"
 #include "igm/mesh/validate_surfaces.h"
@@ -54,8 +57,14 @@ struct PipelineOptions {
   int resolution = 0;
   double edge_length = 0;
   std::int64_t quads = 0;
-  /// The quad layout of the polygonal schema (genus >= 1; layout/quad_layout.h) and, for the
-  /// spread layout, its inner grid's rows (0: automatic).
+  /// The quad layout. Field: the field-driven layout (field/field_layout.h: cones from a cross
+  /// field, separatrices traced into patches, integer quantization), on every surface (closed of
+  /// any genus, open, each component); where a stage of it cannot finish (the field, the layout,
+  /// the quantization, the map, or the certifier rejecting its output) the surface falls back to
+  /// the topological layout (spread; genus 0: the orbifold) and PipelineStats::layout_fallback
+  /// says which stage and why. Paper, Kite, Spread: the layouts of the polygonal schema (genus
+  /// >= 1 and open surfaces; layout/quad_layout.h) and, for the spread layout, its inner grid's
+  /// rows (0: automatic).
   LayoutKind layout = LayoutKind::Spread;
   int layout_rows = 0;
   double layout_ring_depth = 1;  // LayoutOptions::ring_depth
@@ -82,6 +91,9 @@ struct PipelineOptions {
   /// Genus 0 only: the four cone vertices (input vertex ids) in path order A, B, C, D; empty: the
   /// deterministic default (topology/sphere_cut.h). Bad lists give igm::Error(InvalidArgument).
   std::vector<int> cones;
+  /// The field layout's cross field and tracing (LayoutKind::Field).
+  CrossFieldOptions field;
+  FieldLayoutOptions field_layout;
   /// Refinement bounds of the embedding (Tutte for g >= 1, orbifold Tutte for g = 0).
   TutteOptions tutte;
   std::size_t max_witnesses = 20;
@@ -125,6 +137,14 @@ struct PipelineOptions {
 };
 
 struct PipelineStats {
+  /// The layout that produced the output: "field", "spread", "kite", "paper", or "orbifold" (the
+  /// genus-0 pillowcase); with LayoutKind::Field and a fallback, the fallback's, and
+  /// layout_fallback names the field path's stage that could not finish and why ("" when none).
+  std::string layout;
+  std::string layout_fallback;
+  CrossFieldStats cross_field;     // the field layout's stages (when tried)
+  FieldLayoutStats field_layout;
+  QuantizeStats quantize;
   int genus = 0;
   int boundary_loops = 0;  // of an open surface (0: closed)
   int input_vertices = 0, input_faces = 0;
