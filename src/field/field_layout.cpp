@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <numeric>
 #include <optional>
@@ -258,7 +261,19 @@ class Builder {
       }
       if (!progress) break;
     }
-    if (!pending.empty()) return "face " + str(f) + ": curve pieces that do not cut it into cells";
+    if (!pending.empty()) {
+      if (std::getenv("IGM_TRACE_DEBUG")) {
+        std::fprintf(stderr, "face %d: %zu pending chords; boundary:", f, pending.size());
+        for (int v : boundary) std::fprintf(stderr, " %d(%.6g,%.6g)", rid[v], to_double(pos[v].x), to_double(pos[v].y));
+        std::fprintf(stderr, "\n");
+        for (const auto& ch : face_chords) {
+          std::fprintf(stderr, "  chord:");
+          for (int p : ch) { const int l = local[point_vertex_[p]]; std::fprintf(stderr, " %d(%.6g,%.6g)", rid[l], to_double(pos[l].x), to_double(pos[l].y)); }
+          std::fprintf(stderr, "\n");
+        }
+      }
+      return "face " + str(f) + ": curve pieces that do not cut it into cells";
+    }
     for (const auto& cell : cells)
       if (!clip_cell(cell, pos, rid)) return "face " + str(f) + ": a cell that cannot be triangulated";
     return "";
@@ -338,8 +353,11 @@ class Builder {
 
   std::string make_arcs() {
     const int nv = static_cast<int>(locations_.size());
+    // from_triangles throws for a non-manifold edge; the checks after it are the layout's own.
     refined_ = TriMesh::from_triangles(nv, triangles_, /*allow_boundary=*/true);
-    if (std::string e = refined_.check_invariants(); !e.empty()) return "the refined mesh is broken: " + e;
+    directed_.reserve(static_cast<std::size_t>(refined_.num_halfedges()));
+    for (int h = 0; h < refined_.num_halfedges(); ++h)
+      directed_.emplace((static_cast<std::uint64_t>(refined_.origin(h)) << 32) | static_cast<std::uint32_t>(refined_.target(h)), h);
     // Nodes: curve ends, and boundary vertices whose angle is not straight.
     node_rays_.assign(nv, 0);
     node_cyclic_.assign(nv, 1);
@@ -418,8 +436,8 @@ class Builder {
     for (int a = 0; a < static_cast<int>(arcs_.size()); ++a) {
       const auto& vs = arcs_[a].vertices;
       for (std::size_t k = 0; k + 1 < vs.size(); ++k) {
-        const int h = refined_.find_halfedge(vs[k], vs[k + 1]);
-        const int hb = refined_.find_halfedge(vs[k + 1], vs[k]);
+        const int h = halfedge(vs[k], vs[k + 1]);
+        const int hb = halfedge(vs[k + 1], vs[k]);
         if (h < 0 && hb < 0) return "arc " + str(a) + ": consecutive vertices not joined by an edge";
         const auto key = edge_key(vs[k], vs[k + 1]);
         if (!arc_of_edge_.emplace(key, a).second) return "arc " + str(a) + ": an edge on two arcs";
@@ -435,6 +453,12 @@ class Builder {
     node_cyclic_[v] = g_.ray_cyclic[p];
     const TracePoint& q = g_.points[p];
     if (q.kind == TracePoint::Kind::Edge && mesh_.twin(q.element) < 0) node_rays_[v] = 3;
+  }
+
+  // The refined half-edge from a to b, or -1 (works across the boundary, unlike a rotation).
+  int halfedge(int a, int b) const {
+    auto it = directed_.find((static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b));
+    return it == directed_.end() ? -1 : it->second;
   }
 
   static std::uint64_t edge_key(int a, int b) {
@@ -507,8 +531,8 @@ class Builder {
     for (const Arc& a : arcs_) {
       LayoutArc la;
       la.vertices = a.vertices;
-      const int h = refined_.find_halfedge(a.vertices[0], a.vertices[1]);
-      const int hb = refined_.find_halfedge(a.vertices[1], a.vertices[0]);
+      const int h = halfedge(a.vertices[0], a.vertices[1]);
+      const int hb = halfedge(a.vertices[1], a.vertices[0]);
       la.patch[0] = h >= 0 ? patch[TriMesh::face(h)] : -1;
       la.patch[1] = hb >= 0 ? patch[TriMesh::face(hb)] : -1;
       out.arcs.push_back(std::move(la));
@@ -631,6 +655,9 @@ class Builder {
       if (ea.ray < 0 || eb.ray < 0 || n <= 0) return "C: an arc end without a direction at vertex " + str(ea.node);
       int q = ea.ray - eb.ray;
       if (node_cyclic_[ea.node]) q = ((q % n) + n) % n;
+      // The boundary comes back along the arc it arrived by (the node's only arc on this side: a
+      // slit into the patch): the whole angle around the node.
+      if (q == 0 && in.arc == outu.arc && in.forward != outu.forward && node_cyclic_[ea.node]) q = n;
       if (q == 0) {
         // Two arcs by one ray: the one that arrived there is to blame.
         const Arc& aa = arcs_[in.arc];
@@ -666,6 +693,7 @@ class Builder {
   std::vector<char> node_cyclic_, is_node_;
   std::vector<Arc> arcs_;
   std::unordered_map<std::uint64_t, int> arc_of_edge_;
+  std::unordered_map<std::uint64_t, int> directed_;  // (origin, target) -> refined half-edge
   std::vector<std::pair<int, int>> culprits_;
 };
 
@@ -766,6 +794,27 @@ FieldLayoutResult build_field_layout(const TriMesh& mesh, const std::vector<Vec3
         break;
       }
       r.stats.contradicting_patches = static_cast<int>(bad.size());
+      if (std::getenv("IGM_TRACE_DEBUG")) {
+        const std::vector<int> mins = minimum_arc_lengths(r.layout);
+        for (int p : bad) {
+          std::fprintf(stderr, "contradicting patch %d:", p);
+          for (int k = 0; k < 4; ++k) {
+            std::fprintf(stderr, " side%d[", k);
+            for (const ArcUse& u : r.layout.patches[p].sides[k]) {
+              const auto& vs = r.layout.arcs[u.arc].vertices;
+              double len = 0;
+              for (std::size_t i = 0; i + 1 < vs.size(); ++i) {
+                const Vec3d a = r.layout.positions[vs[i]], c = r.layout.positions[vs[i + 1]];
+                len += std::sqrt((a.x - c.x) * (a.x - c.x) + (a.y - c.y) * (a.y - c.y) + (a.z - c.z) * (a.z - c.z));
+              }
+              std::fprintf(stderr, " a%d(%s,len %.3g,min %d, nbr %d, ends %d-%d)", u.arc, u.forward ? "f" : "b", len, mins[u.arc],
+                           r.layout.arcs[u.arc].patch[u.forward ? 1 : 0], vs.front(), vs.back());
+            }
+            std::fprintf(stderr, " ]");
+          }
+          std::fprintf(stderr, "\n");
+        }
+      }
       r.failure = "the patches' side lengths contradict each other (" + std::to_string(bad.size()) + " patches, patch " +
                   std::to_string(bad.front()) + ")";
       b.blame_patches(r.layout, bad, 2);

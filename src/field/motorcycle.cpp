@@ -292,6 +292,12 @@ class Tracer {
     on_curve_vertex_.assign(nv, 0);
     traced_.assign(nv, 0);
     banned_.insert(options.banned_rays.begin(), options.banned_rays.end());
+    double sum = 0;
+    for (int h = 0; h < mesh.num_halfedges(); ++h) {
+      const Vec3d a = positions[mesh.origin(h)], b = positions[mesh.target(h)];
+      sum += std::sqrt((a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y) + (a.z - b.z) * (a.z - b.z));
+    }
+    mean_edge_ = mesh.num_halfedges() > 0 ? sum / mesh.num_halfedges() : 0;
   }
 
   const VertexRays& rays(int v) {
@@ -497,6 +503,17 @@ class Tracer {
     const int far = mesh_.face_vertices(f)[(i + 2) % 3];
     a.face = f;
     a.dir = w.dir;
+    // Passing close to an end of the entry edge whose rays are traced: taken into it along the edge.
+    for (const int k : {i, (i + 1) % 3}) {
+      const int x = mesh_.face_vertices(f)[k];
+      if (capture_ok(x) && captures(P, dir, frames_.corner[f][k])) {
+        a.kind = Advance::Kind::Slide;
+        a.he = w.he;
+        a.vertex = x;
+        a.capture = true;
+        return a;
+      }
+    }
     if (cross2(e, dir) <= 0) {
       // The direction does not enter the face: the curve runs along the entry edge, to the end it
       // points to.
@@ -793,6 +810,7 @@ class Tracer {
     TraceCurve c;
     c.points.push_back(vertex_point(v));
     ++point_uses_[c.points.back()];
+    point_curves_[c.points.back()].push_back(static_cast<int>(graph_.curves.size()));
     c.ray_back.push_back(-1);
     c.ray_forward.push_back(k);
     graph_.curves.push_back(std::move(c));
@@ -818,6 +836,7 @@ class Tracer {
     cur.length += std::sqrt((a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y) + (a.z - b.z) * (a.z - b.z));
     cur.points.push_back(to);
     ++point_uses_[to];
+    point_curves_[to].push_back(c);
     cur.segment_face.push_back(face);
     cur.ray_back.push_back(ray_back_at_to);
     cur.ray_forward.push_back(-1);
@@ -930,8 +949,18 @@ class Tracer {
     }
     int p = m.point;
     if (p < 0) {
-      p = face_point(f, m.at);
-      hits_.push_back({m.curve, m.segment, p});
+      // A node of the other curve close by on the same segment (where a curve from its other side
+      // ended): end there too, rather than a hair's breadth away.
+      p = nearby_node(c, f, dir, m);
+      if (p >= 0) {
+        ++graph_.stats.node_snaps;
+      } else if (snap_across(c, f, dir, m)) {
+        ++graph_.stats.node_snaps;
+        return;
+      } else {
+        p = face_point(f, m.at);
+        hits_.push_back({m.curve, m.segment, p});
+      }
     }
     const TracePoint& q = graph_.points[p];
     const int ray = q.kind == TracePoint::Kind::Vertex ? arrival_ray(q.element, f, dir) : ray_of(p, f, dir + 2);
@@ -939,6 +968,145 @@ class Tracer {
     record_face_segment(c, f, dir);
     if (q.kind == TracePoint::Kind::Vertex) use_ray(p, ray, c);
     finish(c, CurveEnd::Curve);
+  }
+
+  // Whether two points of a face's barycentric plane lie on one edge of the face.
+  static bool along_face_edge(const Point2q& a, const Point2q& b) {
+    const Point2q O{Rational(0), Rational(0)}, E1{Rational(1), Rational(0)}, E2{Rational(0), Rational(1)};
+    return (on_segment(a, O, E1) && on_segment(b, O, E1)) || (on_segment(a, E1, E2) && on_segment(b, E1, E2)) ||
+           (on_segment(a, E2, O) && on_segment(b, E2, O));
+  }
+
+  // The rays used at point p (not a vertex) by the curves through it or ending there.
+  std::vector<int> rays_at(int p) const {
+    std::vector<int> out;
+    auto it = point_curves_.find(p);
+    if (it == point_curves_.end()) return out;
+    for (int cc : it->second) {
+      const TraceCurve& cu = graph_.curves[cc];
+      for (std::size_t k = cu.points.size(); k-- > 0;)
+        if (cu.points[k] == p) {
+          if (cu.ray_back[k] >= 0) out.push_back(cu.ray_back[k]);
+          if (cu.ray_forward[k] >= 0) out.push_back(cu.ray_forward[k]);
+        }
+    }
+    return out;
+  }
+
+  // For curve c (direction dir in face f) meeting segment m.segment of curve m.curve at the new
+  // point m.at: a point already on that segment where another curve ended, within
+  // TraceOptions::snap_distance mean edge lengths (3D) of the meeting point, that c reaches in f
+  // without crossing anything and whose ray on c's side is free; -1 if none.
+  int nearby_node(int c, int f, int dir, const Meet& m) {
+    if (options_.snap_distance <= 0) return -1;
+    const TraceCurve& other = graph_.curves[m.curve];
+    std::vector<int> cand;
+    for (int k : {m.segment, m.segment + 1}) {
+      const int y = other.points[k];
+      if (graph_.points[y].kind != TracePoint::Kind::Vertex && point_uses_[y] > 1) cand.push_back(y);
+    }
+    for (const Hit& h : hits_)
+      if (h.curve == m.curve && h.segment == m.segment) cand.push_back(h.point);
+    if (cand.empty()) return -1;
+    // The meeting point in 3D.
+    const auto fv = mesh_.face_vertices(f);
+    Vec3d X{0, 0, 0};
+    const double w1 = to_double(m.at.x), w2 = to_double(m.at.y), w0 = 1 - w1 - w2;
+    for (int i = 0; i < 3; ++i) {
+      const double w = i == 0 ? w0 : i == 1 ? w1 : w2;
+      X.x += w * positions_[fv[i]].x, X.y += w * positions_[fv[i]].y, X.z += w * positions_[fv[i]].z;
+    }
+    const double limit = options_.snap_distance * mean_edge_;
+    int best = -1;
+    double best_d = limit;
+    const Point2q A = bary(graph_.curves[c].points.back(), f);
+    for (int y : cand) {
+      const Vec3d Y = point_position(y);
+      const double d = std::sqrt((X.x - Y.x) * (X.x - Y.x) + (X.y - Y.y) * (X.y - Y.y) + (X.z - Y.z) * (X.z - Y.z));
+      if (!(d <= best_d)) continue;
+      const int ray = ray_of(y, f, dir + 2);
+      const std::vector<int> used = rays_at(y);
+      if (std::find(used.begin(), used.end(), ray) != used.end()) continue;
+      const Point2q Yq = bary(y, f);
+      if (along_face_edge(A, Yq)) continue;  // the new piece must cut the face
+      if (const auto mm = first_meet(f, A, Yq); mm && mm->point != y && !same(mm->at, Yq)) continue;
+      best = y;
+      best_d = d;
+    }
+    return best;
+  }
+
+  // As nearby_node, for a node of the other curve in the next face along it: curve c goes to the
+  // shared edge next to where the other curve crosses it (on c's side, one grid step away) and
+  // from there to the node. True when done (c has ended there).
+  bool snap_across(int c, int f, int dir, const Meet& m) {
+    if (options_.snap_distance <= 0) return false;
+    const TraceCurve& other = graph_.curves[m.curve];
+    const int s = m.segment;
+    const Point2q A = bary(graph_.curves[c].points.back(), f);
+    const Point2q Ba = bary(other.points[s], f), Bb = bary(other.points[s + 1], f);
+    const Sign side = orient2d(Ba, Bb, A);
+    if (side == Sign::Zero) return false;
+    const auto fv = mesh_.face_vertices(f);
+    Vec3d X{0, 0, 0};
+    {
+      const double w1 = to_double(m.at.x), w2 = to_double(m.at.y), w0 = 1 - w1 - w2;
+      for (int i = 0; i < 3; ++i) {
+        const double w = i == 0 ? w0 : i == 1 ? w1 : w2;
+        X.x += w * positions_[fv[i]].x, X.y += w * positions_[fv[i]].y, X.z += w * positions_[fv[i]].z;
+      }
+    }
+    const double limit = options_.snap_distance * mean_edge_;
+    for (const int s2 : {s + 1, s - 1}) {
+      if (s2 < 0 || s2 >= static_cast<int>(other.segment_face.size())) continue;
+      const int f2 = other.segment_face[s2];
+      if (f2 < 0 || f2 == f) continue;
+      const int qb = s2 == s + 1 ? other.points[s + 1] : other.points[s];  // where the other curve crosses
+      const TracePoint& Q = graph_.points[qb];
+      if (Q.kind != TracePoint::Kind::Edge) continue;
+      const int ce = Q.element;
+      // The half-edge of f on that edge, and the direction of c in f2.
+      int he = ce;
+      if (TriMesh::face(he) != f) he = mesh_.twin(ce);
+      if (he < 0 || TriMesh::face(he) != f || mesh_.twin(he) < 0 || TriMesh::face(mesh_.twin(he)) != f2) continue;
+      const int dir2 = (dir + frames_.shift[he]) % 4;
+      // Candidates: points on segment s2 where another curve ended.
+      std::vector<int> cand;
+      const int far = s2 == s + 1 ? other.points[s2 + 1] : other.points[s2];
+      if (graph_.points[far].kind != TracePoint::Kind::Vertex && point_uses_[far] > 1) cand.push_back(far);
+      for (const Hit& h : hits_)
+        if (h.curve == m.curve && h.segment == s2) cand.push_back(h.point);
+      for (const int y : cand) {
+        const Vec3d Y = point_position(y);
+        const double d = std::sqrt((X.x - Y.x) * (X.x - Y.x) + (X.y - Y.y) * (X.y - Y.y) + (X.z - Y.z) * (X.z - Y.z));
+        if (!(d <= limit)) continue;
+        const int ray = ray_of(y, f2, dir2 + 2);
+        const std::vector<int> used = rays_at(y);
+        if (std::find(used.begin(), used.end(), ray) != used.end()) continue;
+        // The crossing point one grid step from the other curve's, on c's side.
+        const Rational step = make_rational(Integer(1), Integer(1) << bits_);
+        for (const Rational t : {Rational(Q.t + step), Rational(Q.t - step)}) {
+          if (!(t > 0 && t < 1) || find_edge_point(ce, t) >= 0 || walk_at(ce, t)) continue;
+          const Rational tl = he == ce ? t : Rational(1 - t);
+          const Point2q qf = edge_bary(he, tl);
+          if (orient2d(Ba, Bb, qf) != side) continue;
+          if (along_face_edge(A, qf)) continue;  // the piece must cut the face
+          if (first_meet(f, A, qf)) continue;
+          const Point2q q2 = edge_bary(mesh_.twin(he), Rational(1 - tl)), y2 = bary(y, f2);
+          if (along_face_edge(q2, y2)) continue;
+          if (const auto mm = first_meet(f2, q2, y2); mm && mm->point != y && !same(mm->at, y2)) continue;
+          const int q = edge_point(ce, t);
+          add_segment(c, q, f, ray_of(q, f, dir + 2));
+          record_face_segment(c, f, dir);
+          graph_.curves[c].ray_forward.back() = ray_of(q, f2, dir2);
+          add_segment(c, y, f2, ray);
+          record_face_segment(c, f2, dir2);
+          finish(c, CurveEnd::Curve);
+          return true;
+        }
+      }
+    }
+    return false;
   }
 
   // A parallel meeting with a segment that ends at a vertex of face f (a curve taken into a cone,
@@ -1447,6 +1615,8 @@ class Tracer {
   std::unordered_map<int, std::vector<std::pair<int, int>>> vertex_rays_used_;
   std::vector<Hit> hits_;
   std::vector<int> point_uses_;  // per point: occurrences in curves
+  std::unordered_map<int, std::vector<int>> point_curves_;  // point -> curves through it (may repeat)
+  double mean_edge_ = 0;
   std::vector<char> dead_;       // per point: cut away with a merged curve
   std::vector<int> finished_elsewhere_;   // curves finished by another's step (merges)
   std::set<std::pair<int, int>> reserved_;  // (vertex point, ray) kept for a paired curve's arrival
@@ -1573,7 +1743,9 @@ std::string check_trace_graph(const TriMesh& mesh, const TraceGraph& g) {
         if (qa.kind == TracePoint::Kind::Edge) cands.push_back(qa.element);
         else if (qb.kind == TracePoint::Kind::Edge) cands.push_back(qb.element);
         else if (qa.kind == TracePoint::Kind::Vertex && qb.kind == TracePoint::Kind::Vertex) {
-          const int h = mesh.find_halfedge(qa.element, qb.element);
+          int h = -1;
+          for (int x = 0; x < mesh.num_halfedges() && h < 0; ++x)
+            if (mesh.origin(x) == qa.element && mesh.target(x) == qb.element) h = x;
           if (h >= 0) cands.push_back(mesh.twin(h) >= 0 && mesh.twin(h) < h ? mesh.twin(h) : h);
         }
         for (int ce : cands)

@@ -69,7 +69,13 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
   t0 = Clock::now();
   std::vector<Vec3d> direction(input.mesh->num_faces());
   for (int f = 0; f < input.mesh->num_faces(); ++f) direction[f] = field_direction(field, f, 0);
-  FieldLayoutResult traced = build_field_layout(*input.mesh, positions, direction, options.field_layout);
+  FieldLayoutResult traced;
+  try {
+    traced = build_field_layout(*input.mesh, positions, direction, options.field_layout);
+  } catch (const std::exception& e) {
+    // A broken invariant of the tracing is a bug; the surface still gets a certified output.
+    return fail(std::string("trace: internal error: ") + e.what());
+  }
   stats.field_layout = traced.stats;
   if (!traced.ok) return fail("trace: " + traced.failure);
   stats.refined_vertices = traced.stats.refined_vertices;
@@ -89,7 +95,12 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
   qo.edge_length = sizing.edge_length;
   qo.quads = sizing.quads;
   qo.length_scale = scale;
-  const Quantization q = quantize_layout(traced.layout, qo);
+  Quantization q;
+  try {
+    q = quantize_layout(traced.layout, qo);
+  } catch (const std::exception& e) {
+    return fail(std::string("quantize: internal error: ") + e.what());
+  }
   stats.quantize = q.stats;
   if (q.status != QuantizeStatus::Optimal && q.status != QuantizeStatus::Feasible)
     return fail(std::string("quantize: ") + to_string(q.status) + (q.reason.empty() ? "" : ": " + q.reason));
@@ -108,9 +119,8 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
   LayoutMap map;
   try {
     map = map_layout(std::move(traced.layout), q.arc_length, mo);
-  } catch (const Error& e) {
-    if (e.kind() != ErrorKind::Internal) throw;
-    return fail(std::string("igm: ") + e.what());
+  } catch (const std::exception& e) {
+    return fail(std::string("igm: internal error: ") + e.what());
   }
   stats.patch_maps = map.stats;
   stats.max_uv_bits = map.stats.max_uv_bits;

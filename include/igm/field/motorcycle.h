@@ -71,6 +71,10 @@ struct TraceOptions {
   /// slope x distance along); when two rays take each other so, only one curve is traced, from the
   /// first, and it ends in the other's vertex by the other's ray. 0: no such pairs.
   double capture_slope = 0.35;
+  /// A curve ending on another one within this many mean edge lengths (3D) of a point where a
+  /// curve from the other side ended already ends at that point (one node instead of two a hair
+  /// apart, whose short arc between them no integer length could fit). 0: never.
+  double snap_distance = 0.5;
   /// Vertices whose every field direction is traced as well, even where the field is regular
   /// (build_field_layout seeds patches that are not disks this way).
   std::vector<int> seeds;
@@ -92,6 +96,7 @@ struct TraceStats {
   int same_direction_meets = 0;  // of those, the two curves running the same way
   int slides = 0;             // curves that ran along the edge they entered by
   int blocked_arrivals = 0;   // curves that reached a vertex by a ray already taken
+  int node_snaps = 0;         // curves ended at a node close by instead of a new T-junction
   int vertex_joins = 0;       // parallel meetings resolved by going on to the vertex ahead
   int dropped = 0;            // of those, curves removed whole (nothing rested on them)
   double seconds = 0;
