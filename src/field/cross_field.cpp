@@ -385,9 +385,16 @@ CrossField compute_cross_field(const TriMesh& mesh, const std::vector<Vec3d>& in
   std::vector<Complex> q;
   double c = 0;
   if (options.alignment > 0) {
+    // The guide scaled to unit mean square (M-weighted), so that it weighs the same as the unit
+    // boundary values whatever the surface's size (the curvature is in 1 / length).
     q = curvature_cross_guide(mesh, p, fr);
-    const bool any = std::any_of(q.begin(), q.end(), [](const Complex& z) { return z != Complex(0, 0); });
-    if (any && sys.total_area > 0) c = options.alignment / sys.total_area;
+    double square = 0;
+    for (int f = 0; f < nf; ++f) square += sys.mass[f] * std::norm(q[f]);
+    const double rms = std::sqrt(square / sys.total_area);
+    if (rms > 0 && std::isfinite(rms) && sys.total_area > 0) {
+      for (Complex& z : q) z /= rms;
+      c = options.alignment / sys.total_area;
+    }
   }
   Vec u;
   if (st.constrained_faces > 0 || c > 0) {
@@ -406,7 +413,7 @@ CrossField compute_cross_field(const TriMesh& mesh, const std::vector<Vec3d>& in
   st.cones_before_cleanup = static_cast<int>(field.cones.size());
   st.pairs_before_cleanup = static_cast<int>(field.close_pairs.size());
   if (options.remove_close_pairs) cancel_close_pairs(mesh, p, sys, fixed, options, field);
-  st.energy = unit_energy(sys, field.theta);
+  st.energy = unit_energy(sys, field.theta) * sys.total_area;
   st.seconds = since(t0);
   return field;
 }

@@ -62,18 +62,21 @@ const char* to_string(FieldSolver solver);
 struct CrossFieldOptions {
   /// Curvature alignment weight w >= 0. 0: the smoothest field (closed surface: the smallest
   /// eigenvector of A u = lambda M u; open surface: the smoothest field with the boundary
-  /// values). w > 0: the minimizer of E(u) + (w / S) |u - q|^2_M, S the surface area and q the
-  /// curvature guide (curvature.h), i.e. the linear system (A + c M) u = c M q, c = w / S: the
-  /// guide wins over the smoothness on regions larger than about sqrt(S / w). On a closed
-  /// surface whose guide is 0 everywhere the smoothest field is taken. Default: measured
+  /// values). w > 0: the minimizer of E(u) + (w / S) |u - q|^2_M (with the boundary values), S
+  /// the surface area and q the curvature guide (curvature.h) scaled to unit mean square, i.e.
+  /// the linear system (A + c M) u = c M q, c = w / S: the guide wins over the smoothness on
+  /// regions larger than about sqrt(S / w). Invariant under rigid motions and scaling. On a
+  /// surface whose guide is 0 everywhere the field is computed as for w = 0. Default: measured
   /// (docs/field.md).
   double alignment = 0.0;
   FieldSolver solver = FieldSolver::InverseIteration;
-  /// Inverse iteration: at most this many iterations (each one solve with the factor), stopping
-  /// earlier when successive M-normalized iterates differ by at most `tolerance` in M-norm.
-  /// Lanczos: Spectra's maximum of restarts and its tolerance.
+  /// Closed surfaces with w = 0. Inverse iteration: at most this many iterations (each one solve
+  /// with the factor) from u = 1 in every frame, stopping earlier when the energy (Rayleigh
+  /// quotient) changes by at most `tolerance` relative (measured: the cones no longer change
+  /// from about 1e-4 on; docs/field.md). Lanczos: Spectra's maximum of restarts, and its
+  /// tolerance on the Ritz values.
   int max_iterations = 100;
-  double tolerance = 1e-8;
+  double tolerance = 1e-5;
   /// Cones of opposite index (valence sum 8: 3 with 5, 2 with 6) closer than this many mean edge
   /// lengths (shortest path along the edges) are reported as close pairs.
   double close_pair_distance = 3.0;
@@ -102,7 +105,8 @@ struct CrossFieldStats {
   bool linear = false;         // the field came from one linear solve (boundary or alignment)
   int iterations = 0;          // inverse iterations / Lanczos operator applications
   bool converged = true;       // the iteration met its tolerance (always for a linear solve)
-  double energy = 0;           // u* A u / u* M u of the unit field u_f = exp(4 i theta_f) returned
+  double energy = 0;           // S u* A u / u* M u, u_f = exp(4 i theta_f) the field returned, S the
+                               // area: dimensionless, invariant under rigid motions and scaling
   double seconds = 0;          // wall time of compute_cross_field (reporting only)
   double factor_seconds = 0;   // of which the factorizations
   double mean_edge_length = 0;
