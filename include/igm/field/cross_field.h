@@ -68,7 +68,7 @@ struct CrossFieldOptions {
   /// regions larger than about sqrt(S / w). Invariant under rigid motions and scaling. On a
   /// surface whose guide is 0 everywhere the field is computed as for w = 0. Default: measured
   /// (docs/field.md).
-  double alignment = 0.0;
+  double alignment = 100.0;
   FieldSolver solver = FieldSolver::InverseIteration;
   /// Closed surfaces with w = 0. Inverse iteration: at most this many iterations (each one solve
   /// with the factor) from u = 1 in every frame, stopping earlier when the energy (Rayleigh
@@ -84,7 +84,7 @@ struct CrossFieldOptions {
   /// the curvature term) on the faces around each pair, the field around them fixed: the faces
   /// with a corner within r of either cone, r = (round + 1) * max(distance, mean edge), for
   /// `cleanup_rounds` rounds while such pairs remain.
-  bool remove_close_pairs = false;
+  bool remove_close_pairs = true;
   int cleanup_rounds = 3;
 };
 
