@@ -172,6 +172,23 @@ void solve_angles(const TriMesh& mesh, const System& sys, const FaceFrames& fram
 
 }  // namespace
 
+namespace {
+
+// Lexicographic score of a field's singularities, lower is better: the vertices no seamless map
+// allows (interior valence < 1, boundary k < 1), then the total deviation
+// sum |4 - valence| + sum |2 - k|.
+std::pair<long long, long long> singularity_score(const CrossField& field) {
+  long long illegal = 0, deviation = 0;
+  for (std::size_t v = 0; v < field.valence.size(); ++v) {
+    const int val = field.valence[v];
+    illegal += val < 1;
+    deviation += std::abs((field.on_boundary[v] ? 2 : 4) - val);
+  }
+  return {illegal, deviation};
+}
+
+}  // namespace
+
 void cancel_close_pairs(const TriMesh& mesh, const std::vector<Vec3d>& p, const System& sys,
                         const std::vector<char>& fixed, const CrossFieldOptions& options, CrossField& field) {
   const int nv = mesh.num_vertices(), nf = mesh.num_faces(), nh = mesh.num_halfedges();
@@ -180,35 +197,58 @@ void cancel_close_pairs(const TriMesh& mesh, const std::vector<Vec3d>& p, const 
   std::vector<double> dist(nv, INFINITY);
   std::vector<int> via(nv, -1), touched;
   for (int round = 0; round < options.cleanup_rounds; ++round) {
+    const auto regular = [&](int v) { return field.valence[v] == (field.on_boundary[v] ? 2 : 4); };
     // Paths avoid every other singular vertex: the field twists most near a cone, where a quarter
     // turn more would not spread over a few faces.
     std::vector<char> singular(nv, 0);
-    for (int v = 0; v < nv; ++v) singular[v] = field.valence[v] != (field.on_boundary[v] ? 2 : 4);
+    for (int v = 0; v < nv; ++v) singular[v] = !regular(v);
+    // Moves: a quarter turn of index from `minus` (valence - 1) to `plus` (valence + 1) along the
+    // shortest path of interior edges. The close +-1/4 pairs (3 and 5 -> 4 and 4), and every vertex
+    // no seamless map allows (interior valence < 1, boundary k < 1) with the nearest interior
+    // vertex of valence >= 5 within 8 mean edges, or else its nearest regular interior vertex
+    // (0 -> 1 and 5 -> 4, or 4 -> 3).
+    struct Move {
+      int plus, minus;
+      double distance;  // in mean edge lengths, for the region's radius
+    };
+    std::vector<Move> moves;
+    for (const ConePair& pr : field.close_pairs)
+      if (field.valence[pr.positive] == 3 && field.valence[pr.negative] == 5)
+        moves.push_back({pr.positive, pr.negative, pr.distance});
+    for (int v = 0; v < nv; ++v) {
+      if (field.valence[v] >= 1) continue;
+      dijkstra(mesh, p, {v}, 8 * mean, true, -1, &singular, dist, via, touched);
+      int best = -1, fallback = -1;
+      for (int w : touched) {  // settled in order of distance
+        if (w == v || field.on_boundary[w]) continue;
+        if (field.valence[w] >= 5 && (best < 0 || dist[w] < dist[best])) best = w;
+        if (regular(w) && (fallback < 0 || dist[w] < dist[fallback])) fallback = w;
+      }
+      const int partner = best >= 0 ? best : fallback;
+      if (partner >= 0) moves.push_back({v, partner, dist[partner] / mean});
+      reset(dist, via, touched);
+    }
     std::vector<PairPlan> plans;
     std::vector<int> stamp(nf, -1);
-    for (const ConePair& pr : field.close_pairs) {
-      if (field.valence[pr.positive] != 3 || field.valence[pr.negative] != 5) continue;
-      // The shortest path of interior edges from the positive cone to the negative one.
-      dijkstra(mesh, p, {pr.positive}, (2 * pr.distance + 2) * mean, true, pr.negative, &singular, dist, via,
-               touched);
+    for (const Move& mv : moves) {
+      dijkstra(mesh, p, {mv.plus}, (2 * mv.distance + 2) * mean, true, mv.minus, &singular, dist, via, touched);
       PairPlan plan;
-      std::vector<int> path;  // vertices, from the negative cone back to the positive one
-      if (via[pr.negative] >= 0) {
-        for (int v = pr.negative, step = 0; v != pr.positive && step < nv; ++step) {
+      std::vector<int> path;  // vertices, from `minus` back to `plus`
+      if (via[mv.minus] >= 0) {
+        for (int v = mv.minus, step = 0; v != mv.plus && step < nv; ++step) {
           path.push_back(v);
           const int e = via[v];
           v = mesh.origin(e) == v ? mesh.target(e) : mesh.origin(e);
-          // A quarter turn of period towards the positive cone: p += 1 on the half-edge from the
-          // path vertex nearer the negative cone to the one nearer the positive cone adds one to
-          // the latter's valence and takes one from the former's (cross_field.h, Valence); along
-          // the path the two ends change, 3 -> 4 and 5 -> 4.
+          // p += 1 on the half-edge from the path vertex nearer `minus` to the one nearer `plus`
+          // adds one to the latter's valence and takes one from the former's (cross_field.h,
+          // Valence): along the whole path only the two ends change.
           plan.plus.push_back(mesh.origin(e) == path.back() ? e : mesh.twin(e));
         }
-        path.push_back(pr.positive);
+        path.push_back(mv.plus);
       }
       reset(dist, via, touched);
       if (plan.plus.empty()) continue;
-      const double r = (round + 2) * std::max(pr.distance, 1.0) * mean;
+      const double r = (round + 2) * std::max(mv.distance, 1.0) * mean;
       dijkstra(mesh, p, path, r, false, -1, nullptr, dist, via, touched);
       const int id = static_cast<int>(plans.size());
       for (int v : touched) {
@@ -227,10 +267,11 @@ void cancel_close_pairs(const TriMesh& mesh, const std::vector<Vec3d>& p, const 
       reset(dist, via, touched);
       plans.push_back(std::move(plan));
     }
-    // Apply the plans together; a vertex that ends outside valence 3..5 (or a boundary vertex
-    // whose k changes) where it was not before means the solve could not spread some quarter
-    // turn: the plans whose regions touch it are dropped and the rest tried again (at most
-    // plans + 1 attempts). The round is kept if it lowers the number of cones.
+    // Apply the plans together. A vertex that moves further from regular and ends outside
+    // valence 3..5 (boundary: further from k = 2) means the solve could not spread some quarter
+    // turn (rounding put it on one edge): the plans whose regions touch it are dropped and the
+    // rest tried again (at most plans + 1 attempts). The round is kept if it lowers the
+    // singularity score (singularity_score).
     std::vector<char> dropped(plans.size(), 0);
     bool kept = false;
     for (std::size_t attempt = 0; attempt <= plans.size(); ++attempt) {
@@ -254,7 +295,9 @@ void cancel_close_pairs(const TriMesh& mesh, const std::vector<Vec3d>& p, const 
       bool bad = false;
       for (int v = 0; v < nv; ++v) {
         if (trial.valence[v] == field.valence[v]) continue;
-        if (trial.on_boundary[v] ? true : trial.valence[v] < 3 || trial.valence[v] > 5) {
+        const int regular_valence = trial.on_boundary[v] ? 2 : 4;
+        const bool worse = std::abs(trial.valence[v] - regular_valence) > std::abs(field.valence[v] - regular_valence);
+        if (worse && (trial.on_boundary[v] || trial.valence[v] < 3 || trial.valence[v] > 5)) {
           bad = true;
           const int first = mesh.vertex_halfedge(v);
           int h = first;
@@ -266,7 +309,7 @@ void cancel_close_pairs(const TriMesh& mesh, const std::vector<Vec3d>& p, const 
         }
       }
       if (!bad) {
-        if (trial.cones.size() < field.cones.size()) {
+        if (singularity_score(trial) < singularity_score(field)) {
           field = std::move(trial);
           kept = true;
         }

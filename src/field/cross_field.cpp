@@ -339,6 +339,32 @@ std::string check_poincare_hopf(const TriMesh& mesh, const CrossField& field) {
          ", sum (2 - k) over boundary vertices = " + std::to_string(boundary) + ", 4 chi = " + std::to_string(4 * chi);
 }
 
+std::string seamless_obstruction(const TriMesh& mesh, const CrossField& field) {
+  const int nv = mesh.num_vertices(), nh = mesh.num_halfedges();
+  if (static_cast<int>(field.valence.size()) != nv || static_cast<int>(field.on_boundary.size()) != nv)
+    return "the field has " + std::to_string(field.valence.size()) + " valences for " + std::to_string(nv) + " vertices";
+  bool boundary = false;
+  for (int v = 0; v < nv; ++v) {
+    boundary = boundary || field.on_boundary[v];
+    if (field.valence[v] < 1)
+      return std::string(field.on_boundary[v] ? "boundary " : "") + vname(v) + " has " +
+             (field.on_boundary[v] ? "k = " : "valence ") + std::to_string(field.valence[v]) +
+             " (a cone angle k pi/2 needs k >= 1)";
+  }
+  long long edges = 0;
+  for (int h = 0; h < nh; ++h)
+    if (mesh.twin(h) < h) ++edges;
+  const long long chi = static_cast<long long>(nv) - edges + mesh.num_faces();
+  if (!boundary && chi == 0 && field.cones.size() == 2) {
+    const Cone& a = field.cones[0];
+    const Cone& b = field.cones[1];
+    if (std::min(a.valence, b.valence) == 3 && std::max(a.valence, b.valence) == 5)
+      return "a torus whose only cones are one of valence 3 (" + vname(a.valence == 3 ? a.vertex : b.vertex) +
+             ") and one of valence 5 has no seamless map";
+  }
+  return "";
+}
+
 int field_rotation(const TriMesh& mesh, const CrossField& field, const std::vector<int>& crossed) {
   const int nh = mesh.num_halfedges();
   int sum = 0;

@@ -470,6 +470,23 @@ TEST_CASE("cross field: close pairs are cancelled without new cones outside vale
   }
 }
 
+TEST_CASE("cross field: a cone of angle 0 at a spike is raised to valence 1") {
+  IGM_REQUIRE_DATA(dir);
+  // mannequin-devil.off: vertex 11829 is a spike tip (corner angles summing to 116.5 degrees);
+  // the curvature-aligned field turns once more around it (valence 0: no seamless map).
+  const Surface s = load(dir / "meshes/open/mannequin-devil.off");
+  CrossFieldOptions o;
+  o.remove_close_pairs = false;
+  const CrossField before = compute_cross_field(s.mesh, s.positions, o);
+  REQUIRE(before.valence[11829] == 0);
+  CHECK(seamless_obstruction(s.mesh, before).find("vertex 11829") != std::string::npos);
+  o.remove_close_pairs = true;
+  const CrossField after = compute_cross_field(s.mesh, s.positions, o);
+  check_field(s, after, "mannequin-devil");
+  CHECK(after.valence[11829] == 1);
+  CHECK(seamless_obstruction(s.mesh, after) == "");
+}
+
 TEST_CASE("cross field: the rotation along a loop of faces") {
   const Surface s = generated(2, 2000, 0, 3);
   const CrossField f = compute_cross_field(s.mesh, s.positions);
@@ -487,6 +504,38 @@ TEST_CASE("cross field: the rotation along a loop of faces") {
   }
   const int h = s.mesh.vertex_halfedge(0);
   CHECK_THROWS_AS(field_rotation(s.mesh, f, {TriMesh::prev(h), TriMesh::next(h)}), Error);
+}
+
+TEST_CASE("cross field: the cone sets no seamless map has") {
+  const Surface t = torus(3, 1, 24, 8);
+  CrossFieldOptions o;
+  o.alignment = 0;
+  CrossField f = compute_cross_field(t.mesh, t.positions, o);
+  CHECK(seamless_obstruction(t.mesh, f) == "");
+  // One +-1/4 pair on the torus (valences set by hand: the check reads only the integers).
+  f.valence[3] = 3;
+  f.valence[40] = 5;
+  f.cones = {{3, 3}, {40, 5}};
+  CHECK(check_poincare_hopf(t.mesh, f) == "");
+  CHECK(seamless_obstruction(t.mesh, f).find("torus") != std::string::npos);
+  // Two pairs are fine.
+  f.valence[60] = 3;
+  f.valence[90] = 5;
+  f.cones = {{3, 3}, {40, 5}, {60, 3}, {90, 5}};
+  CHECK(seamless_obstruction(t.mesh, f) == "");
+  // A cone of valence 0 (angle 0).
+  const Surface c = subdivided_cube(2);
+  CrossField g = compute_cross_field(c.mesh, c.positions);
+  CHECK(seamless_obstruction(c.mesh, g) == "");
+  const int v = g.cones.front().vertex;
+  g.valence[v] = 0;
+  CHECK(seamless_obstruction(c.mesh, g).find("vertex " + std::to_string(v)) != std::string::npos);
+  // Every shared mesh's field passes.
+  IGM_REQUIRE_DATA(dir);
+  for (const char* name : {"clean/elephant", "clean/knot", "clean/pipe", "open/head", "open/plane"}) {
+    const Surface s = load(dir / "meshes" / (std::string(name) + ".off"));
+    CHECK_MESSAGE(seamless_obstruction(s.mesh, compute_cross_field(s.mesh, s.positions)) == "", name);
+  }
 }
 
 TEST_CASE("cross field: Poincare-Hopf check can fail") {

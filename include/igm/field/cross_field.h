@@ -80,10 +80,17 @@ struct CrossFieldOptions {
   /// Cones of opposite index (valence sum 8: 3 with 5, 2 with 6) closer than this many mean edge
   /// lengths (shortest path along the edges) are reported as close pairs.
   double close_pair_distance = 3.0;
-  /// Remove close +-1/4 pairs (3 with 5) by re-solving the field as the smoothest one (without
-  /// the curvature term) on the faces around each pair, the field around them fixed: the faces
-  /// with a corner within r of either cone, r = (round + 1) * max(distance, mean edge), for
-  /// `cleanup_rounds` rounds while such pairs remain.
+  /// Remove close +-1/4 pairs (3 with 5), and raise every vertex no seamless map allows
+  /// (interior valence < 1, boundary k < 1: a cone of angle 0, seen at spikes when the field is
+  /// aligned) by a quarter turn taken from the nearest interior cone of valence >= 5 within 8 mean
+  /// edges, or else from its nearest regular interior vertex. Each such move carries a quarter
+  /// turn of period along the shortest path of interior edges between its two vertices (only
+  /// the ends change valence), then the field angles are re-solved by least squares with every
+  /// period fixed on the faces within r of the paths, r = (round + 2) * max(distance, 1) mean
+  /// edges (Ray et al. 2008, the angle form). A move whose re-solve leaves a vertex further from
+  /// regular and outside valence 3..5 (rounding put the quarter turn elsewhere) is dropped; a
+  /// round is kept if it lowers (vertices of valence < 1, sum |4 - valence| + sum |2 - k|)
+  /// lexicographically; at most `cleanup_rounds` rounds. docs/field.md has the counts.
   bool remove_close_pairs = true;
   int cleanup_rounds = 3;
 };
@@ -119,7 +126,7 @@ struct CrossFieldStats {
   int cones_before_cleanup = 0;  // interior cones before remove_close_pairs (== cones without it)
   int pairs_before_cleanup = 0;  // close pairs before remove_close_pairs
   int cleanup_rounds = 0;        // rounds kept
-  int cleanup_rejected = 0;      // pairs left alone: their re-solve made a cone outside valence 3..5
+  int cleanup_rejected = 0;      // moves dropped: their re-solve made a vertex worse (see above)
 };
 
 struct CrossField {
@@ -155,6 +162,16 @@ void derive_singularities(const TriMesh& mesh, CrossField& field);
 /// "" if Poincare-Hopf holds exactly for the field's valences, else a description of the
 /// violation (the two sides). chi = V - E + F counts every vertex and edge of the mesh. O(F).
 std::string check_poincare_hopf(const TriMesh& mesh, const CrossField& field);
+
+/// "" if a seamless map whose cones are the field's can exist, else why (naming a vertex): every
+/// interior vertex of valence >= 1 (cone angle k pi/2 with k >= 1) and every boundary vertex of
+/// k >= 1, and not the one exception of Campen, Shen, Zhou, Zorin 2019 ("Seamless parametrization
+/// with arbitrary cones for arbitrary genus": with Poincare-Hopf, any such cone set of a closed
+/// surface has a seamless map except) a closed torus whose only cones are one of valence 3 and
+/// one of valence 5. Necessary conditions, checked in integers; the rotations along the homology
+/// loops (field_rotation) and the integer translations of an IGM are the layout's to satisfy
+/// (docs/field.md). O(V + E).
+std::string seamless_obstruction(const TriMesh& mesh, const CrossField& field);
 
 /// The close pairs of opposite-index interior cones (see CrossFieldOptions::close_pair_distance,
 /// in mean edge lengths): each cone in at most one pair, the closest first (greedy, ties by
