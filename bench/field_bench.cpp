@@ -1,7 +1,7 @@
 // Cross field benchmark (field/cross_field.h): per mesh the faces, the field's time (its
 // factorization), iterations, energy, the interior cones by valence (3/5/2/6/other), boundary
 // corners (k = 1 / 3 / 0 / other), close +-pairs, Poincare-Hopf.
-// usage: igm_bench_field [--alignment W] [--lanczos] [--iterations N] [--tolerance T] [--no-cleanup]
+// usage: igm_bench_field [--alignment W] [--lanczos] [--iterations N] [--tolerance T] [--no-cleanup] [--split6]
 //                        [--pair-distance D] [--cones] [--generated FACES] [--no-shared] [MESH ...]
 // Default: every mesh of $IGM_DATA_DIR/meshes/clean and /open (or ../shared), then a generated
 // genus-20 mesh of about 1M faces (--generated 0 skips it). --cones prints every cone's vertex,
@@ -113,7 +113,9 @@ int main(int argc, char** argv) {
       else if (a == "--cleanup")
         g_options.remove_close_pairs = true;
       else if (a == "--no-cleanup")
-        g_options.remove_close_pairs = false;
+        g_options.remove_close_pairs = g_options.split_valence2 = g_options.split_valence6 = false;
+      else if (a == "--split6")
+        g_options.split_valence6 = true;
       else if (a == "--pair-distance" && i + 1 < argc)
         g_options.close_pair_distance = std::atof(argv[++i]);
       else if (a == "--cones")

@@ -1,6 +1,7 @@
 // Close pairs of opposite cones (close_cone_pairs, cross_field.h) and their cancellation
-// (cancel_close_pairs, field_internal.h).
+// and the cone cleanup (clean_cones, field_internal.h).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <queue>
@@ -175,22 +176,23 @@ void solve_angles(const TriMesh& mesh, const System& sys, const FaceFrames& fram
 namespace {
 
 // Lexicographic score of a field's singularities, lower is better: the vertices no seamless map
-// allows (interior valence < 1, boundary k < 1), then the total deviation
-// sum |4 - valence| + sum |2 - k|.
-std::pair<long long, long long> singularity_score(const CrossField& field) {
-  long long illegal = 0, deviation = 0;
+// allows (interior valence < 1, boundary k < 1), the cones to split (interior valence 2 / 6 as
+// asked), then the total deviation sum |4 - valence| + sum |2 - k|.
+std::array<long long, 3> singularity_score(const CrossField& field, const CrossFieldOptions& o) {
+  long long illegal = 0, halves = 0, deviation = 0;
   for (std::size_t v = 0; v < field.valence.size(); ++v) {
     const int val = field.valence[v];
     illegal += val < 1;
+    if (!field.on_boundary[v]) halves += (o.split_valence2 && val == 2) + (o.split_valence6 && val == 6);
     deviation += std::abs((field.on_boundary[v] ? 2 : 4) - val);
   }
-  return {illegal, deviation};
+  return {illegal, halves, deviation};
 }
 
 }  // namespace
 
-void cancel_close_pairs(const TriMesh& mesh, const std::vector<Vec3d>& p, const System& sys,
-                        const std::vector<char>& fixed, const CrossFieldOptions& options, CrossField& field) {
+void clean_cones(const TriMesh& mesh, const std::vector<Vec3d>& p, const System& sys, const std::vector<char>& fixed,
+                 const CrossFieldOptions& options, CrossField& field) {
   const int nv = mesh.num_vertices(), nf = mesh.num_faces(), nh = mesh.num_halfedges();
   const double mean = sys.mean_edge;
   CrossFieldStats& st = field.stats;
@@ -202,30 +204,45 @@ void cancel_close_pairs(const TriMesh& mesh, const std::vector<Vec3d>& p, const 
     // turn more would not spread over a few faces.
     std::vector<char> singular(nv, 0);
     for (int v = 0; v < nv; ++v) singular[v] = !regular(v);
-    // Moves: a quarter turn of index from `minus` (valence - 1) to `plus` (valence + 1) along the
-    // shortest path of interior edges. The close +-1/4 pairs (3 and 5 -> 4 and 4), and every vertex
-    // no seamless map allows (interior valence < 1, boundary k < 1) with the nearest interior
-    // vertex of valence >= 5 within 8 mean edges, or else its nearest regular interior vertex
-    // (0 -> 1 and 5 -> 4, or 4 -> 3).
+    // Moves (CrossFieldOptions): a quarter turn of index from `minus` (valence - 1) to `plus`
+    // (valence + 1) along the shortest path of interior edges.
     struct Move {
       int plus, minus;
       double distance;  // in mean edge lengths, for the region's radius
     };
     std::vector<Move> moves;
-    for (const ConePair& pr : field.close_pairs)
-      if (field.valence[pr.positive] == 3 && field.valence[pr.negative] == 5)
-        moves.push_back({pr.positive, pr.negative, pr.distance});
+    if (options.remove_close_pairs)
+      for (const ConePair& pr : field.close_pairs)
+        if (field.valence[pr.positive] == 3 && field.valence[pr.negative] == 5)
+          moves.push_back({pr.positive, pr.negative, pr.distance});
     for (int v = 0; v < nv; ++v) {
-      if (field.valence[v] >= 1) continue;
+      const int val = field.valence[v];
+      const bool raise = options.remove_close_pairs && val < 1;
+      const bool split2 = options.split_valence2 && val == 2 && !field.on_boundary[v];
+      const bool split6 = options.split_valence6 && val == 6 && !field.on_boundary[v];
+      if (!raise && !split2 && !split6) continue;
+      // Candidates within 8 mean edges; ties by vertex id (sorted by (distance, id)).
       dijkstra(mesh, p, {v}, 8 * mean, true, -1, &singular, dist, via, touched);
-      int best = -1, fallback = -1;
-      for (int w : touched) {  // settled in order of distance
-        if (w == v || field.on_boundary[w]) continue;
-        if (field.valence[w] >= 5 && (best < 0 || dist[w] < dist[best])) best = w;
-        if (regular(w) && (fallback < 0 || dist[w] < dist[fallback])) fallback = w;
+      std::vector<int> near(touched);
+      std::sort(near.begin(), near.end(), [&](int a, int b) { return dist[a] != dist[b] ? dist[a] < dist[b] : a < b; });
+      int partner = -1;
+      if (raise)  // the nearest interior cone of valence >= 5, else the nearest regular vertex
+        for (int pass = 0; pass < 2 && partner < 0; ++pass)
+          for (int w : near)
+            if (w != v && !field.on_boundary[w] && (pass == 0 ? field.valence[w] >= 5 : regular(w))) {
+              partner = w;
+              break;
+            }
+      if (split2 || split6)  // the nearest regular interior vertex at least split_distance away
+        for (int w : near)
+          if (w != v && !field.on_boundary[w] && regular(w) && dist[w] >= options.split_distance * mean) {
+            partner = w;
+            break;
+          }
+      if (partner >= 0) {
+        const double d = dist[partner] / mean;
+        moves.push_back(split6 ? Move{partner, v, d} : Move{v, partner, d});
       }
-      const int partner = best >= 0 ? best : fallback;
-      if (partner >= 0) moves.push_back({v, partner, dist[partner] / mean});
       reset(dist, via, touched);
     }
     std::vector<PairPlan> plans;
@@ -309,7 +326,7 @@ void cancel_close_pairs(const TriMesh& mesh, const std::vector<Vec3d>& p, const 
         }
       }
       if (!bad) {
-        if (singularity_score(trial) < singularity_score(field)) {
+        if (singularity_score(trial, options) < singularity_score(field, options)) {
           field = std::move(trial);
           kept = true;
         }

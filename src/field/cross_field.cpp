@@ -38,9 +38,11 @@ std::string vname(int v) { return "vertex " + std::to_string(v); }
 void check_input(const TriMesh& mesh, const std::vector<Vec3d>& positions, const CrossFieldOptions& o) {
   if (!(o.alignment >= 0) || !std::isfinite(o.alignment))
     throw Error(ErrorKind::InvalidArgument, "cross field: alignment must be finite and >= 0");
-  if (o.max_iterations < 1 || !(o.tolerance >= 0) || !(o.close_pair_distance >= 0) || o.cleanup_rounds < 0)
+  if (o.max_iterations < 1 || !(o.tolerance >= 0) || !(o.close_pair_distance >= 0) || o.cleanup_rounds < 0 ||
+      !(o.split_distance >= 0 && o.split_distance <= 8))
     throw Error(ErrorKind::InvalidArgument,
-                "cross field: max_iterations >= 1, tolerance >= 0, close_pair_distance >= 0, cleanup_rounds >= 0");
+                "cross field: max_iterations >= 1, tolerance >= 0, close_pair_distance >= 0, cleanup_rounds >= 0, "
+                "split_distance in [0, 8]");
   const int nv = mesh.num_vertices(), nf = mesh.num_faces(), nh = mesh.num_halfedges();
   if (static_cast<int>(positions.size()) != nv)
     throw Error(ErrorKind::InvalidArgument, "cross field: " + std::to_string(positions.size()) +
@@ -438,7 +440,8 @@ CrossField compute_cross_field(const TriMesh& mesh, const std::vector<Vec3d>& in
   field.close_pairs = close_cone_pairs(mesh, p, field, options.close_pair_distance);
   st.cones_before_cleanup = static_cast<int>(field.cones.size());
   st.pairs_before_cleanup = static_cast<int>(field.close_pairs.size());
-  if (options.remove_close_pairs) cancel_close_pairs(mesh, p, sys, fixed, options, field);
+  if (options.remove_close_pairs || options.split_valence2 || options.split_valence6)
+    clean_cones(mesh, p, sys, fixed, options, field);
   st.energy = unit_energy(sys, field.theta) * sys.total_area;
   st.seconds = since(t0);
   return field;

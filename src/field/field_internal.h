@@ -85,11 +85,10 @@ class Factor {
 /// The submatrix of sys.A on `free_faces` (slot: face -> its row, or -1) plus shift * M.
 SpMat restricted(const System& sys, const std::vector<int>& free_faces, const std::vector<int>& slot, double shift);
 
-/// CrossFieldOptions::remove_close_pairs (cone_pairs.cpp): cancels the close +-1/4 pairs of
-/// field.close_pairs and raises the vertices of valence < 1 by moving quarter turns of period
-/// along paths, then re-solving the angles around them. `fixed` marks the boundary-constrained
-/// faces. Updates theta, periods, valences, cones, close_pairs and the cleanup stats.
-void cancel_close_pairs(const TriMesh& mesh, const std::vector<Vec3d>& positions, const System& sys,
-                        const std::vector<char>& fixed, const CrossFieldOptions& options, CrossField& field);
+/// The cone cleanup of CrossFieldOptions (remove_close_pairs, split_valence2, split_valence6;
+/// cone_pairs.cpp). `fixed` marks the boundary-constrained faces. Updates theta, periods,
+/// valences, cones, close_pairs and the cleanup stats.
+void clean_cones(const TriMesh& mesh, const std::vector<Vec3d>& positions, const System& sys,
+                 const std::vector<char>& fixed, const CrossFieldOptions& options, CrossField& field);
 
 }  // namespace igm::field_internal

@@ -447,6 +447,7 @@ TEST_CASE("cross field: close pairs are cancelled without new cones outside vale
     const Surface s = load(dir / "meshes/clean" / (std::string(name) + ".off"));
     CrossFieldOptions o;
     o.remove_close_pairs = false;
+    o.split_valence2 = false;
     const CrossField before = compute_cross_field(s.mesh, s.positions, o);
     o.remove_close_pairs = true;
     const CrossField after = compute_cross_field(s.mesh, s.positions, o);
@@ -470,6 +471,37 @@ TEST_CASE("cross field: close pairs are cancelled without new cones outside vale
   }
 }
 
+TEST_CASE("cross field: cones of valence 2 and 6 are split in two") {
+  // The generator doubles a flat region: the outer square's corners are vertices of angle pi
+  // (index 1/2, valence 2), the square holes' corners of angle 3 pi (valence 6).
+  for (int genus : {0, 2}) {
+    const Surface s = generated(genus, 4000, 0, 21);
+    CrossFieldOptions o;
+    o.remove_close_pairs = false;
+    o.split_valence2 = false;
+    const CrossField raw = compute_cross_field(s.mesh, s.positions, o);
+    CHECK(raw.stats.valence_count[2] == 4);
+    CHECK(raw.stats.valence_count[6] == 4 * genus);
+    o.split_valence2 = true;
+    o.split_valence6 = true;
+    const CrossField split = compute_cross_field(s.mesh, s.positions, o);
+    check_field(s, split, "split genus " + std::to_string(genus));
+    CHECK(split.stats.valence_count[2] == 0);
+    CHECK(split.stats.valence_count[6] == 0);
+    CHECK(split.stats.valence_count[3] == raw.stats.valence_count[3] + 8);
+    CHECK(split.stats.valence_count[5] == raw.stats.valence_count[5] + 8 * genus);
+    // The halves are at least split_distance mean edges apart: no two cones adjacent.
+    for (const Cone& c : split.cones) {
+      const int first = s.mesh.vertex_halfedge(c.vertex);
+      int h = first;
+      do {
+        CHECK(split.valence[s.mesh.target(h)] == 4);
+        h = s.mesh.next_around_origin(h);
+      } while (h != first);
+    }
+  }
+}
+
 TEST_CASE("cross field: a cone of angle 0 at a spike is raised to valence 1") {
   IGM_REQUIRE_DATA(dir);
   // mannequin-devil.off: vertex 11829 is a spike tip (corner angles summing to 116.5 degrees);
@@ -477,6 +509,7 @@ TEST_CASE("cross field: a cone of angle 0 at a spike is raised to valence 1") {
   const Surface s = load(dir / "meshes/open/mannequin-devil.off");
   CrossFieldOptions o;
   o.remove_close_pairs = false;
+  o.split_valence2 = false;
   const CrossField before = compute_cross_field(s.mesh, s.positions, o);
   REQUIRE(before.valence[11829] == 0);
   CHECK(seamless_obstruction(s.mesh, before).find("vertex 11829") != std::string::npos);

@@ -80,18 +80,27 @@ struct CrossFieldOptions {
   /// Cones of opposite index (valence sum 8: 3 with 5, 2 with 6) closer than this many mean edge
   /// lengths (shortest path along the edges) are reported as close pairs.
   double close_pair_distance = 3.0;
-  /// Remove close +-1/4 pairs (3 with 5), and raise every vertex no seamless map allows
-  /// (interior valence < 1, boundary k < 1: a cone of angle 0, seen at spikes when the field is
-  /// aligned) by a quarter turn taken from the nearest interior cone of valence >= 5 within 8 mean
-  /// edges, or else from its nearest regular interior vertex. Each such move carries a quarter
-  /// turn of period along the shortest path of interior edges between its two vertices (only
-  /// the ends change valence), then the field angles are re-solved by least squares with every
-  /// period fixed on the faces within r of the paths, r = (round + 2) * max(distance, 1) mean
-  /// edges (Ray et al. 2008, the angle form). A move whose re-solve leaves a vertex further from
-  /// regular and outside valence 3..5 (rounding put the quarter turn elsewhere) is dropped; a
-  /// round is kept if it lowers (vertices of valence < 1, sum |4 - valence| + sum |2 - k|)
+  /// Cone cleanup: moves of a quarter turn of index from one vertex to another. Each move
+  /// carries a quarter turn of period along the shortest path of interior edges between its two
+  /// vertices (avoiding every other cone: only the two ends change valence), then the field
+  /// angles are re-solved by least squares with every period fixed on the faces within r of the
+  /// paths, r = (round + 2) * max(distance, 1) mean edges (Ray et al. 2008, the angle form),
+  /// boundary-aligned faces kept. The moves:
+  ///  - remove_close_pairs: each close +-1/4 pair (3 with 5 -> 4 and 4); and every vertex no
+  ///    seamless map allows (interior valence < 1, boundary k < 1: seen at spikes when the field
+  ///    is aligned) gets a quarter turn from the nearest interior cone of valence >= 5 within 8
+  ///    mean edges, or else from its nearest regular interior vertex;
+  ///  - split_valence2 / split_valence6: each interior cone of valence 2 (6) becomes two of
+  ///    valence 3 (5), the second at the regular interior vertex nearest to split_distance mean
+  ///    edges away (at least that far, within 8).
+  /// A move whose re-solve leaves a vertex further from regular and outside valence 3..5
+  /// (rounding put the quarter turn elsewhere) is dropped; a round is kept if it lowers
+  /// (vertices of valence < 1, cones of valence 2 / 6 to split, sum |4 - valence| + sum |2 - k|)
   /// lexicographically; at most `cleanup_rounds` rounds. docs/field.md has the counts.
   bool remove_close_pairs = true;
+  bool split_valence2 = true;
+  bool split_valence6 = false;
+  double split_distance = 2.0;
   int cleanup_rounds = 3;
 };
 
@@ -123,8 +132,8 @@ struct CrossFieldStats {
   /// and boundary vertices by k 0..8 (the same capping).
   std::array<int, 9> valence_count{};
   std::array<int, 9> boundary_count{};
-  int cones_before_cleanup = 0;  // interior cones before remove_close_pairs (== cones without it)
-  int pairs_before_cleanup = 0;  // close pairs before remove_close_pairs
+  int cones_before_cleanup = 0;  // interior cones before the cleanup (== cones without it)
+  int pairs_before_cleanup = 0;  // close pairs before the cleanup
   int cleanup_rounds = 0;        // rounds kept
   int cleanup_rejected = 0;      // moves dropped: their re-solve made a vertex worse (see above)
 };
