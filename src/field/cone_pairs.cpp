@@ -119,8 +119,9 @@ struct PairPlan {
 // The angles on the faces marked in `region` minimizing
 // sum_e w_e (theta_g - theta_f - rho_h - pi/2 p_h)^2 with every period p fixed and theta fixed
 // outside the region (Ray, Vallet, Li, Levy 2008, "N-symmetry direction field design", the
-// angle form); written into theta reduced to [0, pi/2).
-void solve_angles(const TriMesh& mesh, const System& sys, const FaceFrames& frames, const std::vector<int>& period,
+// angle form); written into theta reduced to [0, pi/2). False (theta untouched) if the solve
+// gives a non-finite angle.
+bool solve_angles(const TriMesh& mesh, const System& sys, const FaceFrames& frames, const std::vector<int>& period,
                   const std::vector<char>& region, std::vector<double>& theta, double& factor_seconds) {
   const int nf = mesh.num_faces();
   std::vector<int> free_faces, slot(nf, -1);
@@ -140,7 +141,7 @@ void solve_angles(const TriMesh& mesh, const System& sys, const FaceFrames& fram
     for (std::size_t i = 0; i < free_faces.size(); ++i) slot[free_faces[i]] = static_cast<int>(i);
   }
   const int n = static_cast<int>(free_faces.size());
-  if (n == 0) return;
+  if (n == 0) return true;
   std::vector<Eigen::Triplet<double>> trip;
   Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
   for (int i = 0; i < n; ++i) {
@@ -165,10 +166,12 @@ void solve_angles(const TriMesh& mesh, const System& sys, const FaceFrames& fram
   Factor<double> factor;
   factor.compute(m, factor_seconds);
   const Eigen::VectorXd x = factor.solve(b);
+  if (!x.allFinite()) return false;
   for (int i = 0; i < n; ++i) {
     const double t = x[i] - kQuarter * std::floor(x[i] / kQuarter);  // in [0, pi/2]
     theta[free_faces[i]] = t < kQuarter ? t : 0.0;
   }
+  return true;
 }
 
 }  // namespace
@@ -306,7 +309,7 @@ void clean_cones(const TriMesh& mesh, const std::vector<Vec3d>& p, const System&
       }
       if (!active) break;
       CrossField trial = field;
-      solve_angles(mesh, sys, field.frames, period, region, trial.theta, st.factor_seconds);
+      if (!solve_angles(mesh, sys, field.frames, period, region, trial.theta, st.factor_seconds)) break;
       derive_singularities(mesh, trial);
       std::vector<char> bad_face(nf, 0);
       bool bad = false;

@@ -242,6 +242,7 @@ Vec linear_field(const System& s, const std::vector<Complex>& q, double c, const
   ComplexFactor factor;
   factor.compute(restricted(s, free_faces, slot, c), st.factor_seconds);
   const Vec x = factor.solve(b);
+  if (!x.allFinite()) throw Error(ErrorKind::Internal, "cross field: the linear solve gave a non-finite field");
   for (std::size_t i = 0; i < free_faces.size(); ++i) u[free_faces[i]] = x[static_cast<Eigen::Index>(i)];
   return u;
 }

@@ -46,6 +46,13 @@ Surface load(const std::filesystem::path& path) {
   return surface_of(set.components[0]);
 }
 
+std::vector<std::filesystem::path> sorted_files(const std::filesystem::path& dir) {
+  std::vector<std::filesystem::path> files;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
 Surface generated(int genus, std::int64_t faces, int boundaries, std::uint64_t seed) {
   GenerateOptions o;
   o.genus = genus;
@@ -313,9 +320,7 @@ TEST_CASE("cross field: a torus of revolution has no cone, and the aligned field
 
 TEST_CASE("cross field: Poincare-Hopf and the float index on every shared closed mesh") {
   IGM_REQUIRE_DATA(dir);
-  std::vector<std::filesystem::path> files;
-  for (const auto& e : std::filesystem::directory_iterator(dir / "meshes/clean")) files.push_back(e.path());
-  std::sort(files.begin(), files.end());
+  const std::vector<std::filesystem::path> files = sorted_files(dir / "meshes/clean");
   REQUIRE(files.size() >= 20);
   for (const auto& path : files) {
     if (igm_test::kSanitized && path.stem() == "armadillo") continue;  // 52k faces: Release only
@@ -351,9 +356,7 @@ TEST_CASE("cross field: Poincare-Hopf on generated meshes of genus 0 to 20, clos
 
 TEST_CASE("cross field: the shared open meshes are aligned with every boundary edge") {
   IGM_REQUIRE_DATA(dir);
-  std::vector<std::filesystem::path> files;
-  for (const auto& e : std::filesystem::directory_iterator(dir / "meshes/open")) files.push_back(e.path());
-  std::sort(files.begin(), files.end());
+  const std::vector<std::filesystem::path> files = sorted_files(dir / "meshes/open");
   REQUIRE(files.size() >= 10);
   for (const auto& path : files) {
     const Surface s = load(path);
@@ -604,58 +607,40 @@ TEST_CASE("cross field: degenerate faces take a fallback frame and keep exact in
 }
 
 TEST_CASE("cross field: bad input gets a typed error naming the element") {
-  const Surface cube = subdivided_cube(1);
-  auto kind_of = [](auto&& call) {
+  // The error's kind and elements, or Internal with no element if nothing is thrown (no case
+  // below expects that).
+  auto error_of = [](const TriMesh& mesh, const std::vector<Vec3d>& positions, const CrossFieldOptions& o = {}) {
     try {
-      call();
+      compute_cross_field(mesh, positions, o);
     } catch (const Error& e) {
-      return e.kind();
+      return std::pair{e.kind(), e.elements()};
     }
-    return ErrorKind::Internal;  // no throw: fails the CHECKs below (none expects Internal)
+    return std::pair{ErrorKind::Internal, std::vector<std::int64_t>{}};
   };
-  CHECK(kind_of([&] { compute_cross_field(TriMesh{}, {}); }) == ErrorKind::Empty);
-  CHECK(kind_of([&] { compute_cross_field(TriMesh::from_triangles(3, {}), std::vector<Vec3d>(3)); }) ==
-        ErrorKind::NoFaces);
-  CHECK(kind_of([&] { compute_cross_field(cube.mesh, std::vector<Vec3d>(3)); }) == ErrorKind::InvalidArgument);
-  {
-    Surface nan = cube;
-    nan.positions[5].y = std::nan("");
-    try {
-      compute_cross_field(nan.mesh, nan.positions);
-      FAIL("no error");
-    } catch (const Error& e) {
-      CHECK(e.kind() == ErrorKind::NonFinite);
-      CHECK(e.elements() == std::vector<std::int64_t>{5});
-    }
-  }
+  using Elements = std::vector<std::int64_t>;
+  const Surface cube = subdivided_cube(1);
+  CHECK(error_of(TriMesh{}, {}).first == ErrorKind::Empty);
+  CHECK(error_of(TriMesh::from_triangles(3, {}), std::vector<Vec3d>(3)).first == ErrorKind::NoFaces);
+  CHECK(error_of(cube.mesh, std::vector<Vec3d>(3)).first == ErrorKind::InvalidArgument);
+  Surface nan = cube;
+  nan.positions[5].y = std::nan("");
+  CHECK(error_of(nan.mesh, nan.positions) == std::pair{ErrorKind::NonFinite, Elements{5}});
   CrossFieldOptions bad;
   bad.alignment = -1;
-  CHECK(kind_of([&] { compute_cross_field(cube.mesh, cube.positions, bad); }) == ErrorKind::InvalidArgument);
+  CHECK(error_of(cube.mesh, cube.positions, bad).first == ErrorKind::InvalidArgument);
   bad = {};
   bad.max_iterations = 0;
-  CHECK(kind_of([&] { compute_cross_field(cube.mesh, cube.positions, bad); }) == ErrorKind::InvalidArgument);
+  CHECK(error_of(cube.mesh, cube.positions, bad).first == ErrorKind::InvalidArgument);
+  bad = {};
+  bad.split_distance = 9;
+  CHECK(error_of(cube.mesh, cube.positions, bad).first == ErrorKind::InvalidArgument);
   // Two triangles sharing only vertex 0: two fans at one vertex.
-  {
-    const Surface bow = from({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}}, {{0, 1, 2}, {0, 3, 4}}, true);
-    try {
-      compute_cross_field(bow.mesh, bow.positions);
-      FAIL("no error");
-    } catch (const Error& e) {
-      CHECK(e.kind() == ErrorKind::NonManifoldVertex);
-      CHECK(e.elements() == std::vector<std::int64_t>{0});
-    }
-  }
-  // Two separate triangles; and an unused vertex.
-  {
-    const Surface two = from({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {5, 0, 0}, {6, 0, 0}, {5, 1, 0}}, {{0, 1, 2}, {3, 4, 5}}, true);
-    CHECK(kind_of([&] { compute_cross_field(two.mesh, two.positions); }) == ErrorKind::SeveralComponents);
-    const Surface extra = from({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {5, 0, 0}}, {{0, 1, 2}}, true);
-    try {
-      compute_cross_field(extra.mesh, extra.positions);
-      FAIL("no error");
-    } catch (const Error& e) {
-      CHECK(e.kind() == ErrorKind::SeveralComponents);
-      CHECK(e.elements() == std::vector<std::int64_t>{3});
-    }
-  }
+  const Surface bow = from({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}}, {{0, 1, 2}, {0, 3, 4}}, true);
+  CHECK(error_of(bow.mesh, bow.positions) == std::pair{ErrorKind::NonManifoldVertex, Elements{0}});
+  // Two separate triangles (face 1 is not connected to face 0); an unused vertex.
+  const Surface two =
+      from({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {5, 0, 0}, {6, 0, 0}, {5, 1, 0}}, {{0, 1, 2}, {3, 4, 5}}, true);
+  CHECK(error_of(two.mesh, two.positions) == std::pair{ErrorKind::SeveralComponents, Elements{1}});
+  const Surface extra = from({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {5, 0, 0}}, {{0, 1, 2}}, true);
+  CHECK(error_of(extra.mesh, extra.positions) == std::pair{ErrorKind::SeveralComponents, Elements{3}});
 }
