@@ -1,7 +1,7 @@
 // Cross field benchmark (field/cross_field.h): per mesh the faces, the field's time (its
 // factorization), iterations, energy, the interior cones by valence (3/5/2/6/other), boundary
 // corners (k = 1 / 3 / 0 / other), close +-pairs, Poincare-Hopf.
-// usage: igm_bench_field [--alignment W] [--lanczos] [--iterations N] [--tolerance T] [--cleanup]
+// usage: igm_bench_field [--alignment W] [--lanczos] [--iterations N] [--tolerance T] [--no-cleanup] [--split6]
 //                        [--pair-distance D] [--cones] [--generated FACES] [--no-shared] [MESH ...]
 // Default: every mesh of $IGM_DATA_DIR/meshes/clean and /open (or ../shared), then a generated
 // genus-20 mesh of about 1M faces (--generated 0 skips it). --cones prints every cone's vertex,
@@ -43,6 +43,7 @@ void run(const std::string& name, const igm::SurfaceComponent& c) {
   for (int k = 0; k <= 8; ++k)
     if (k < 2 || k > 6) other += v[k];
   const std::string ph = igm::check_poincare_hopf(mesh, f);
+  const std::string obstruction = igm::seamless_obstruction(mesh, f);
   // Feature alignment: interior edges with a dihedral angle above 30 degrees whose direction is
   // within 5 degrees of a field direction in both faces.
   int sharp = 0, aligned = 0;
@@ -64,10 +65,11 @@ void run(const std::string& name, const igm::SurfaceComponent& c) {
   }
   std::printf(
       "%-24s g=%-3d F=%-8d cpu %7.3fs wall %7.3fs (factor %.3fs) %s it=%-3d%s E=%-9.4g cones %3zu: v3 %-3d v5 %-3d v2 %-2d v6 %-2d "
-      "other %-2d | sharp %d aligned %.0f%% | corners k1 %-2d k3 %-2d k0 %-2d | pairs %d -> %zu | PH %s\n",
+      "other %-2d | sharp %d aligned %.0f%% | corners k1 %-2d k3 %-2d k0 %-2d | pairs %d -> %zu | PH %s%s%s\n",
       name.c_str(), c.genus, mesh.num_faces(), cpu, s.seconds, s.factor_seconds, s.linear ? "lin" : igm::to_string(s.solver),
       s.iterations, s.converged ? "" : "!", s.energy, f.cones.size(), v[3], v[5], v[2], v[6], other, sharp, sharp ? 100.0 * aligned / sharp : 0.0, b[1], b[3], b[0],
-      s.pairs_before_cleanup, f.close_pairs.size(), ph.empty() ? "ok" : ph.c_str());
+      s.pairs_before_cleanup, f.close_pairs.size(), ph.empty() ? "ok" : ph.c_str(), obstruction.empty() ? "" : " | ",
+      obstruction.c_str());
   if (g_print_cones)
     for (const igm::Cone& k : f.cones) {
       const igm::Vec3d& p = c.positions[k.vertex];
@@ -110,6 +112,10 @@ int main(int argc, char** argv) {
         g_options.tolerance = std::atof(argv[++i]);
       else if (a == "--cleanup")
         g_options.remove_close_pairs = true;
+      else if (a == "--no-cleanup")
+        g_options.remove_close_pairs = g_options.split_valence2 = g_options.split_valence6 = false;
+      else if (a == "--split6")
+        g_options.split_valence6 = true;
       else if (a == "--pair-distance" && i + 1 < argc)
         g_options.close_pair_distance = std::atof(argv[++i]);
       else if (a == "--cones")

@@ -1,6 +1,7 @@
 // Close pairs of opposite cones (close_cone_pairs, cross_field.h) and their cancellation
-// (cancel_close_pairs, field_internal.h).
+// and the cone cleanup (clean_cones, field_internal.h).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <queue>
@@ -118,8 +119,9 @@ struct PairPlan {
 // The angles on the faces marked in `region` minimizing
 // sum_e w_e (theta_g - theta_f - rho_h - pi/2 p_h)^2 with every period p fixed and theta fixed
 // outside the region (Ray, Vallet, Li, Levy 2008, "N-symmetry direction field design", the
-// angle form); written into theta reduced to [0, pi/2).
-void solve_angles(const TriMesh& mesh, const System& sys, const FaceFrames& frames, const std::vector<int>& period,
+// angle form); written into theta reduced to [0, pi/2). False (theta untouched) if the solve
+// gives a non-finite angle.
+bool solve_angles(const TriMesh& mesh, const System& sys, const FaceFrames& frames, const std::vector<int>& period,
                   const std::vector<char>& region, std::vector<double>& theta, double& factor_seconds) {
   const int nf = mesh.num_faces();
   std::vector<int> free_faces, slot(nf, -1);
@@ -139,7 +141,7 @@ void solve_angles(const TriMesh& mesh, const System& sys, const FaceFrames& fram
     for (std::size_t i = 0; i < free_faces.size(); ++i) slot[free_faces[i]] = static_cast<int>(i);
   }
   const int n = static_cast<int>(free_faces.size());
-  if (n == 0) return;
+  if (n == 0) return true;
   std::vector<Eigen::Triplet<double>> trip;
   Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
   for (int i = 0; i < n; ++i) {
@@ -164,51 +166,109 @@ void solve_angles(const TriMesh& mesh, const System& sys, const FaceFrames& fram
   Factor<double> factor;
   factor.compute(m, factor_seconds);
   const Eigen::VectorXd x = factor.solve(b);
+  if (!x.allFinite()) return false;
   for (int i = 0; i < n; ++i) {
     const double t = x[i] - kQuarter * std::floor(x[i] / kQuarter);  // in [0, pi/2]
     theta[free_faces[i]] = t < kQuarter ? t : 0.0;
   }
+  return true;
 }
 
 }  // namespace
 
-void cancel_close_pairs(const TriMesh& mesh, const std::vector<Vec3d>& p, const System& sys,
-                        const std::vector<char>& fixed, const CrossFieldOptions& options, CrossField& field) {
+namespace {
+
+// Lexicographic score of a field's singularities, lower is better: the vertices no seamless map
+// allows (interior valence < 1, boundary k < 1), the cones to split (interior valence 2 / 6 as
+// asked), then the total deviation sum |4 - valence| + sum |2 - k|.
+std::array<long long, 3> singularity_score(const CrossField& field, const CrossFieldOptions& o) {
+  long long illegal = 0, halves = 0, deviation = 0;
+  for (std::size_t v = 0; v < field.valence.size(); ++v) {
+    const int val = field.valence[v];
+    illegal += val < 1;
+    if (!field.on_boundary[v]) halves += (o.split_valence2 && val == 2) + (o.split_valence6 && val == 6);
+    deviation += std::abs((field.on_boundary[v] ? 2 : 4) - val);
+  }
+  return {illegal, halves, deviation};
+}
+
+}  // namespace
+
+void clean_cones(const TriMesh& mesh, const std::vector<Vec3d>& p, const System& sys, const std::vector<char>& fixed,
+                 const CrossFieldOptions& options, CrossField& field) {
   const int nv = mesh.num_vertices(), nf = mesh.num_faces(), nh = mesh.num_halfedges();
   const double mean = sys.mean_edge;
   CrossFieldStats& st = field.stats;
   std::vector<double> dist(nv, INFINITY);
   std::vector<int> via(nv, -1), touched;
   for (int round = 0; round < options.cleanup_rounds; ++round) {
+    const auto regular = [&](int v) { return field.valence[v] == (field.on_boundary[v] ? 2 : 4); };
     // Paths avoid every other singular vertex: the field twists most near a cone, where a quarter
     // turn more would not spread over a few faces.
     std::vector<char> singular(nv, 0);
-    for (int v = 0; v < nv; ++v) singular[v] = field.valence[v] != (field.on_boundary[v] ? 2 : 4);
+    for (int v = 0; v < nv; ++v) singular[v] = !regular(v);
+    // Moves (CrossFieldOptions): a quarter turn of index from `minus` (valence - 1) to `plus`
+    // (valence + 1) along the shortest path of interior edges.
+    struct Move {
+      int plus, minus;
+      double distance;  // in mean edge lengths, for the region's radius
+    };
+    std::vector<Move> moves;
+    if (options.remove_close_pairs)
+      for (const ConePair& pr : field.close_pairs)
+        if (field.valence[pr.positive] == 3 && field.valence[pr.negative] == 5)
+          moves.push_back({pr.positive, pr.negative, pr.distance});
+    for (int v = 0; v < nv; ++v) {
+      const int val = field.valence[v];
+      const bool raise = options.remove_close_pairs && val < 1;
+      const bool split2 = options.split_valence2 && val == 2 && !field.on_boundary[v];
+      const bool split6 = options.split_valence6 && val == 6 && !field.on_boundary[v];
+      if (!raise && !split2 && !split6) continue;
+      // Candidates within 8 mean edges; ties by vertex id (sorted by (distance, id)).
+      dijkstra(mesh, p, {v}, 8 * mean, true, -1, &singular, dist, via, touched);
+      std::vector<int> near(touched);
+      std::sort(near.begin(), near.end(), [&](int a, int b) { return dist[a] != dist[b] ? dist[a] < dist[b] : a < b; });
+      int partner = -1;
+      if (raise)  // the nearest interior cone of valence >= 5, else the nearest regular vertex
+        for (int pass = 0; pass < 2 && partner < 0; ++pass)
+          for (int w : near)
+            if (w != v && !field.on_boundary[w] && (pass == 0 ? field.valence[w] >= 5 : regular(w))) {
+              partner = w;
+              break;
+            }
+      if (split2 || split6)  // the nearest regular interior vertex at least split_distance away
+        for (int w : near)
+          if (w != v && !field.on_boundary[w] && regular(w) && dist[w] >= options.split_distance * mean) {
+            partner = w;
+            break;
+          }
+      if (partner >= 0) {
+        const double d = dist[partner] / mean;
+        moves.push_back(split6 ? Move{partner, v, d} : Move{v, partner, d});
+      }
+      reset(dist, via, touched);
+    }
     std::vector<PairPlan> plans;
     std::vector<int> stamp(nf, -1);
-    for (const ConePair& pr : field.close_pairs) {
-      if (field.valence[pr.positive] != 3 || field.valence[pr.negative] != 5) continue;
-      // The shortest path of interior edges from the positive cone to the negative one.
-      dijkstra(mesh, p, {pr.positive}, (2 * pr.distance + 2) * mean, true, pr.negative, &singular, dist, via,
-               touched);
+    for (const Move& mv : moves) {
+      dijkstra(mesh, p, {mv.plus}, (2 * mv.distance + 2) * mean, true, mv.minus, &singular, dist, via, touched);
       PairPlan plan;
-      std::vector<int> path;  // vertices, from the negative cone back to the positive one
-      if (via[pr.negative] >= 0) {
-        for (int v = pr.negative, step = 0; v != pr.positive && step < nv; ++step) {
+      std::vector<int> path;  // vertices, from `minus` back to `plus`
+      if (via[mv.minus] >= 0) {
+        for (int v = mv.minus, step = 0; v != mv.plus && step < nv; ++step) {
           path.push_back(v);
           const int e = via[v];
           v = mesh.origin(e) == v ? mesh.target(e) : mesh.origin(e);
-          // A quarter turn of period towards the positive cone: p += 1 on the half-edge from the
-          // path vertex nearer the negative cone to the one nearer the positive cone adds one to
-          // the latter's valence and takes one from the former's (cross_field.h, Valence); along
-          // the path the two ends change, 3 -> 4 and 5 -> 4.
+          // p += 1 on the half-edge from the path vertex nearer `minus` to the one nearer `plus`
+          // adds one to the latter's valence and takes one from the former's (cross_field.h,
+          // Valence): along the whole path only the two ends change.
           plan.plus.push_back(mesh.origin(e) == path.back() ? e : mesh.twin(e));
         }
-        path.push_back(pr.positive);
+        path.push_back(mv.plus);
       }
       reset(dist, via, touched);
       if (plan.plus.empty()) continue;
-      const double r = (round + 2) * std::max(pr.distance, 1.0) * mean;
+      const double r = (round + 2) * std::max(mv.distance, 1.0) * mean;
       dijkstra(mesh, p, path, r, false, -1, nullptr, dist, via, touched);
       const int id = static_cast<int>(plans.size());
       for (int v : touched) {
@@ -227,10 +287,11 @@ void cancel_close_pairs(const TriMesh& mesh, const std::vector<Vec3d>& p, const 
       reset(dist, via, touched);
       plans.push_back(std::move(plan));
     }
-    // Apply the plans together; a vertex that ends outside valence 3..5 (or a boundary vertex
-    // whose k changes) where it was not before means the solve could not spread some quarter
-    // turn: the plans whose regions touch it are dropped and the rest tried again (at most
-    // plans + 1 attempts). The round is kept if it lowers the number of cones.
+    // Apply the plans together. A vertex that moves further from regular and ends outside
+    // valence 3..5 (boundary: further from k = 2) means the solve could not spread some quarter
+    // turn (rounding put it on one edge): the plans whose regions touch it are dropped and the
+    // rest tried again (at most plans + 1 attempts). The round is kept if it lowers the
+    // singularity score (singularity_score).
     std::vector<char> dropped(plans.size(), 0);
     bool kept = false;
     for (std::size_t attempt = 0; attempt <= plans.size(); ++attempt) {
@@ -248,13 +309,15 @@ void cancel_close_pairs(const TriMesh& mesh, const std::vector<Vec3d>& p, const 
       }
       if (!active) break;
       CrossField trial = field;
-      solve_angles(mesh, sys, field.frames, period, region, trial.theta, st.factor_seconds);
+      if (!solve_angles(mesh, sys, field.frames, period, region, trial.theta, st.factor_seconds)) break;
       derive_singularities(mesh, trial);
       std::vector<char> bad_face(nf, 0);
       bool bad = false;
       for (int v = 0; v < nv; ++v) {
         if (trial.valence[v] == field.valence[v]) continue;
-        if (trial.on_boundary[v] ? true : trial.valence[v] < 3 || trial.valence[v] > 5) {
+        const int regular_valence = trial.on_boundary[v] ? 2 : 4;
+        const bool worse = std::abs(trial.valence[v] - regular_valence) > std::abs(field.valence[v] - regular_valence);
+        if (worse && (trial.on_boundary[v] || trial.valence[v] < 3 || trial.valence[v] > 5)) {
           bad = true;
           const int first = mesh.vertex_halfedge(v);
           int h = first;
@@ -266,7 +329,7 @@ void cancel_close_pairs(const TriMesh& mesh, const std::vector<Vec3d>& p, const 
         }
       }
       if (!bad) {
-        if (trial.cones.size() < field.cones.size()) {
+        if (singularity_score(trial, options) < singularity_score(field, options)) {
           field = std::move(trial);
           kept = true;
         }

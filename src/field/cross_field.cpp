@@ -38,9 +38,11 @@ std::string vname(int v) { return "vertex " + std::to_string(v); }
 void check_input(const TriMesh& mesh, const std::vector<Vec3d>& positions, const CrossFieldOptions& o) {
   if (!(o.alignment >= 0) || !std::isfinite(o.alignment))
     throw Error(ErrorKind::InvalidArgument, "cross field: alignment must be finite and >= 0");
-  if (o.max_iterations < 1 || !(o.tolerance >= 0) || !(o.close_pair_distance >= 0) || o.cleanup_rounds < 0)
+  if (o.max_iterations < 1 || !(o.tolerance >= 0) || !(o.close_pair_distance >= 0) || o.cleanup_rounds < 0 ||
+      !(o.split_distance >= 0 && o.split_distance <= 8))
     throw Error(ErrorKind::InvalidArgument,
-                "cross field: max_iterations >= 1, tolerance >= 0, close_pair_distance >= 0, cleanup_rounds >= 0");
+                "cross field: max_iterations >= 1, tolerance >= 0, close_pair_distance >= 0, cleanup_rounds >= 0, "
+                "split_distance in [0, 8]");
   const int nv = mesh.num_vertices(), nf = mesh.num_faces(), nh = mesh.num_halfedges();
   if (static_cast<int>(positions.size()) != nv)
     throw Error(ErrorKind::InvalidArgument, "cross field: " + std::to_string(positions.size()) +
@@ -240,6 +242,7 @@ Vec linear_field(const System& s, const std::vector<Complex>& q, double c, const
   ComplexFactor factor;
   factor.compute(restricted(s, free_faces, slot, c), st.factor_seconds);
   const Vec x = factor.solve(b);
+  if (!x.allFinite()) throw Error(ErrorKind::Internal, "cross field: the linear solve gave a non-finite field");
   for (std::size_t i = 0; i < free_faces.size(); ++i) u[free_faces[i]] = x[static_cast<Eigen::Index>(i)];
   return u;
 }
@@ -339,6 +342,32 @@ std::string check_poincare_hopf(const TriMesh& mesh, const CrossField& field) {
          ", sum (2 - k) over boundary vertices = " + std::to_string(boundary) + ", 4 chi = " + std::to_string(4 * chi);
 }
 
+std::string seamless_obstruction(const TriMesh& mesh, const CrossField& field) {
+  const int nv = mesh.num_vertices(), nh = mesh.num_halfedges();
+  if (static_cast<int>(field.valence.size()) != nv || static_cast<int>(field.on_boundary.size()) != nv)
+    return "the field has " + std::to_string(field.valence.size()) + " valences for " + std::to_string(nv) + " vertices";
+  bool boundary = false;
+  for (int v = 0; v < nv; ++v) {
+    boundary = boundary || field.on_boundary[v];
+    if (field.valence[v] < 1)
+      return std::string(field.on_boundary[v] ? "boundary " : "") + vname(v) + " has " +
+             (field.on_boundary[v] ? "k = " : "valence ") + std::to_string(field.valence[v]) +
+             " (a cone angle k pi/2 needs k >= 1)";
+  }
+  long long edges = 0;
+  for (int h = 0; h < nh; ++h)
+    if (mesh.twin(h) < h) ++edges;
+  const long long chi = static_cast<long long>(nv) - edges + mesh.num_faces();
+  if (!boundary && chi == 0 && field.cones.size() == 2) {
+    const Cone& a = field.cones[0];
+    const Cone& b = field.cones[1];
+    if (std::min(a.valence, b.valence) == 3 && std::max(a.valence, b.valence) == 5)
+      return "a torus whose only cones are one of valence 3 (" + vname(a.valence == 3 ? a.vertex : b.vertex) +
+             ") and one of valence 5 has no seamless map";
+  }
+  return "";
+}
+
 int field_rotation(const TriMesh& mesh, const CrossField& field, const std::vector<int>& crossed) {
   const int nh = mesh.num_halfedges();
   int sum = 0;
@@ -385,9 +414,16 @@ CrossField compute_cross_field(const TriMesh& mesh, const std::vector<Vec3d>& in
   std::vector<Complex> q;
   double c = 0;
   if (options.alignment > 0) {
+    // The guide scaled to unit mean square (M-weighted), so that it weighs the same as the unit
+    // boundary values whatever the surface's size (the curvature is in 1 / length).
     q = curvature_cross_guide(mesh, p, fr);
-    const bool any = std::any_of(q.begin(), q.end(), [](const Complex& z) { return z != Complex(0, 0); });
-    if (any && sys.total_area > 0) c = options.alignment / sys.total_area;
+    double square = 0;
+    for (int f = 0; f < nf; ++f) square += sys.mass[f] * std::norm(q[f]);
+    const double rms = std::sqrt(square / sys.total_area);
+    if (rms > 0 && std::isfinite(rms) && sys.total_area > 0) {
+      for (Complex& z : q) z /= rms;
+      c = options.alignment / sys.total_area;
+    }
   }
   Vec u;
   if (st.constrained_faces > 0 || c > 0) {
@@ -405,8 +441,9 @@ CrossField compute_cross_field(const TriMesh& mesh, const std::vector<Vec3d>& in
   field.close_pairs = close_cone_pairs(mesh, p, field, options.close_pair_distance);
   st.cones_before_cleanup = static_cast<int>(field.cones.size());
   st.pairs_before_cleanup = static_cast<int>(field.close_pairs.size());
-  if (options.remove_close_pairs) cancel_close_pairs(mesh, p, sys, fixed, options, field);
-  st.energy = unit_energy(sys, field.theta);
+  if (options.remove_close_pairs || options.split_valence2 || options.split_valence6)
+    clean_cones(mesh, p, sys, fixed, options, field);
+  st.energy = unit_energy(sys, field.theta) * sys.total_area;
   st.seconds = since(t0);
   return field;
 }

@@ -85,12 +85,10 @@ class Factor {
 /// The submatrix of sys.A on `free_faces` (slot: face -> its row, or -1) plus shift * M.
 SpMat restricted(const System& sys, const std::vector<int>& free_faces, const std::vector<int>& slot, double shift);
 
-/// Removes the close +-1/4 pairs of field.close_pairs (CrossFieldOptions::remove_close_pairs;
-/// cone_pairs.cpp): for each, a quarter turn of period moved along the shortest path of interior
-/// edges between the two cones, then the field angles re-solved around the paths with every
-/// period fixed. `fixed` marks the boundary-constrained faces. Updates theta, periods,
+/// The cone cleanup of CrossFieldOptions (remove_close_pairs, split_valence2, split_valence6;
+/// cone_pairs.cpp). `fixed` marks the boundary-constrained faces. Updates theta, periods,
 /// valences, cones, close_pairs and the cleanup stats.
-void cancel_close_pairs(const TriMesh& mesh, const std::vector<Vec3d>& positions, const System& sys,
-                        const std::vector<char>& fixed, const CrossFieldOptions& options, CrossField& field);
+void clean_cones(const TriMesh& mesh, const std::vector<Vec3d>& positions, const System& sys,
+                 const std::vector<char>& fixed, const CrossFieldOptions& options, CrossField& field);
 
 }  // namespace igm::field_internal

@@ -62,26 +62,45 @@ const char* to_string(FieldSolver solver);
 struct CrossFieldOptions {
   /// Curvature alignment weight w >= 0. 0: the smoothest field (closed surface: the smallest
   /// eigenvector of A u = lambda M u; open surface: the smoothest field with the boundary
-  /// values). w > 0: the minimizer of E(u) + (w / S) |u - q|^2_M, S the surface area and q the
-  /// curvature guide (curvature.h), i.e. the linear system (A + c M) u = c M q, c = w / S: the
-  /// guide wins over the smoothness on regions larger than about sqrt(S / w). On a closed
-  /// surface whose guide is 0 everywhere the smoothest field is taken. Default: measured
+  /// values). w > 0: the minimizer of E(u) + (w / S) |u - q|^2_M (with the boundary values), S
+  /// the surface area and q the curvature guide (curvature.h) scaled to unit mean square, i.e.
+  /// the linear system (A + c M) u = c M q, c = w / S: the guide wins over the smoothness on
+  /// regions larger than about sqrt(S / w). Invariant under rigid motions and scaling. On a
+  /// surface whose guide is 0 everywhere the field is computed as for w = 0. Default: measured
   /// (docs/field.md).
-  double alignment = 0.0;
+  double alignment = 100.0;
   FieldSolver solver = FieldSolver::InverseIteration;
-  /// Inverse iteration: at most this many iterations (each one solve with the factor), stopping
-  /// earlier when successive M-normalized iterates differ by at most `tolerance` in M-norm.
-  /// Lanczos: Spectra's maximum of restarts and its tolerance.
+  /// Closed surfaces with w = 0. Inverse iteration: at most this many iterations (each one solve
+  /// with the factor) from u = 1 in every frame, stopping earlier when the energy (Rayleigh
+  /// quotient) changes by at most `tolerance` relative (measured: the cones no longer change
+  /// from about 1e-4 on; docs/field.md). Lanczos: Spectra's maximum of restarts, and its
+  /// tolerance on the Ritz values.
   int max_iterations = 100;
-  double tolerance = 1e-8;
+  double tolerance = 1e-5;
   /// Cones of opposite index (valence sum 8: 3 with 5, 2 with 6) closer than this many mean edge
   /// lengths (shortest path along the edges) are reported as close pairs.
   double close_pair_distance = 3.0;
-  /// Remove close +-1/4 pairs (3 with 5) by re-solving the field as the smoothest one (without
-  /// the curvature term) on the faces around each pair, the field around them fixed: the faces
-  /// with a corner within r of either cone, r = (round + 1) * max(distance, mean edge), for
-  /// `cleanup_rounds` rounds while such pairs remain.
-  bool remove_close_pairs = false;
+  /// Cone cleanup: moves of a quarter turn of index from one vertex to another. Each move
+  /// carries a quarter turn of period along the shortest path of interior edges between its two
+  /// vertices (avoiding every other cone: only the two ends change valence), then the field
+  /// angles are re-solved by least squares with every period fixed on the faces within r of the
+  /// paths, r = (round + 2) * max(distance, 1) mean edges (Ray et al. 2008, the angle form),
+  /// boundary-aligned faces kept. The moves:
+  ///  - remove_close_pairs: each close +-1/4 pair (3 with 5 -> 4 and 4); and every vertex no
+  ///    seamless map allows (interior valence < 1, boundary k < 1: seen at spikes when the field
+  ///    is aligned) gets a quarter turn from the nearest interior cone of valence >= 5 within 8
+  ///    mean edges, or else from its nearest regular interior vertex;
+  ///  - split_valence2 / split_valence6: each interior cone of valence 2 (6) becomes two of
+  ///    valence 3 (5), the second at the regular interior vertex nearest to split_distance mean
+  ///    edges away (at least that far, within 8).
+  /// A move whose re-solve leaves a vertex further from regular and outside valence 3..5
+  /// (rounding put the quarter turn elsewhere) is dropped; a round is kept if it lowers
+  /// (vertices of valence < 1, cones of valence 2 / 6 to split, sum |4 - valence| + sum |2 - k|)
+  /// lexicographically; at most `cleanup_rounds` rounds. docs/field.md has the counts.
+  bool remove_close_pairs = true;
+  bool split_valence2 = true;
+  bool split_valence6 = false;
+  double split_distance = 2.0;
   int cleanup_rounds = 3;
 };
 
@@ -102,7 +121,8 @@ struct CrossFieldStats {
   bool linear = false;         // the field came from one linear solve (boundary or alignment)
   int iterations = 0;          // inverse iterations / Lanczos operator applications
   bool converged = true;       // the iteration met its tolerance (always for a linear solve)
-  double energy = 0;           // u* A u / u* M u of the unit field u_f = exp(4 i theta_f) returned
+  double energy = 0;           // S u* A u / u* M u, u_f = exp(4 i theta_f) the field returned, S the
+                               // area: dimensionless, invariant under rigid motions and scaling
   double seconds = 0;          // wall time of compute_cross_field (reporting only)
   double factor_seconds = 0;   // of which the factorizations
   double mean_edge_length = 0;
@@ -112,10 +132,10 @@ struct CrossFieldStats {
   /// and boundary vertices by k 0..8 (the same capping).
   std::array<int, 9> valence_count{};
   std::array<int, 9> boundary_count{};
-  int cones_before_cleanup = 0;  // interior cones before remove_close_pairs (== cones without it)
-  int pairs_before_cleanup = 0;  // close pairs before remove_close_pairs
+  int cones_before_cleanup = 0;  // interior cones before the cleanup (== cones without it)
+  int pairs_before_cleanup = 0;  // close pairs before the cleanup
   int cleanup_rounds = 0;        // rounds kept
-  int cleanup_rejected = 0;      // pairs left alone: their re-solve made a cone outside valence 3..5
+  int cleanup_rejected = 0;      // moves dropped: their re-solve made a vertex worse (see above)
 };
 
 struct CrossField {
@@ -136,10 +156,13 @@ struct CrossField {
 /// InvalidArgument (positions size, options out of range), Empty / NoFaces, NonFinite naming the
 /// vertex, SeveralComponents naming a face or an unused vertex, NonManifoldVertex naming the
 /// vertex (a vertex with more than one fan), Internal naming the half-edge if twins are
-/// inconsistent, Internal if the sparse factorization fails (not numerically positive definite).
-/// Deterministic: the same bytes for the same input on any thread count (serial code, a fixed
-/// start vector, no randomness). Cost: one sparse Cholesky factorization of the F x F complex
-/// system (cleanup: one more per round, on the regions) and at most max_iterations solves.
+/// inconsistent, Internal if the sparse factorization fails (not numerically positive definite)
+/// or gives a non-finite field. Deterministic: the same bytes for the same input on any machine
+/// and thread count (serial code, CHOLMOD's simplicial factorization without BLAS, a fixed start
+/// vector, no randomness). Cost: one sparse LDL^T factorization of the F x F complex system, one
+/// solve (alignment or boundary) or at most max_iterations (the smoothest closed field); the
+/// cleanup one real factorization on the faces around its moves per attempt (docs/field.md:
+/// 0.4 s for armadillo's 52k faces, about 20 s of CPU and 1.1 GB for 1M faces).
 CrossField compute_cross_field(const TriMesh& mesh, const std::vector<Vec3d>& positions,
                                const CrossFieldOptions& options = {});
 
@@ -152,9 +175,20 @@ void derive_singularities(const TriMesh& mesh, CrossField& field);
 /// violation (the two sides). chi = V - E + F counts every vertex and edge of the mesh. O(F).
 std::string check_poincare_hopf(const TriMesh& mesh, const CrossField& field);
 
-/// The close pairs of opposite-index interior cones (see CrossFieldOptions::close_pair_distance,
-/// in mean edge lengths): each cone in at most one pair, the closest first (greedy, ties by
-/// vertex ids). Cost O(cones * the vertices within the bound).
+/// "" if a seamless map whose cones are the field's can exist, else why (naming a vertex): every
+/// interior vertex of valence >= 1 (cone angle k pi/2 with k >= 1) and every boundary vertex of
+/// k >= 1, and not the one exception of Campen, Shen, Zhou, Zorin 2019 ("Seamless parametrization
+/// with arbitrary cones for arbitrary genus": with Poincare-Hopf, any such cone set of a closed
+/// surface has a seamless map except) a closed torus whose only cones are one of valence 3 and
+/// one of valence 5. Necessary conditions, checked in integers; the rotations along the homology
+/// loops (field_rotation) and the integer translations of an IGM are the layout's to satisfy
+/// (docs/field.md). O(V + E).
+std::string seamless_obstruction(const TriMesh& mesh, const CrossField& field);
+
+/// The close pairs of opposite-index interior cones (valence sum 8) within max_distance mean edge
+/// lengths along the edges (CrossFieldOptions::close_pair_distance): each cone in at most one
+/// pair, the closest first (greedy, ties by vertex ids). Cost O(cones * the vertices within the
+/// bound, times its log).
 std::vector<ConePair> close_cone_pairs(const TriMesh& mesh, const std::vector<Vec3d>& positions,
                                        const CrossField& field, double max_distance);
 

@@ -4,16 +4,16 @@
 // alignment with a guidance field), weighted by how strongly the surface bends more one way than
 // the other.
 //
-// Per edge e of the surface its bending beta_e |e| (e_hat (x) e_hat), beta_e the signed dihedral
-// angle (Cohen-Steiner & Morvan 2003, the normal-cycle curvature measure; 0 on a boundary edge);
-// per face f the sum over the edges with an end at one of f's corners (each edge once), its
-// traceless part written in f's frame (face_frames.h) as the complex number
-// t_f = sum beta_e |e| exp(2 i phi_e) / (2 * area of those edges' faces), phi_e the angle of e
-// projected onto f's plane. t_f = |t_f| exp(2 i phi_f) with phi_f a principal direction (either
+// Per interior edge e its bending tensor beta_e |e| (e_hat e_hat^T), beta_e the signed dihedral
+// angle (the normal-cycle curvature measure, Cohen-Steiner & Morvan 2003; boundary edges bend
+// nothing); per face f the sum T_f over the edges with an end at one of f's corners (each once),
+// restricted to f's plane and divided by the area of the faces around f's corners (summed per
+// corner). Its traceless part in f's frame (face_frames.h) is the complex number
+// t_f = ((T_xx - T_yy) + 2 i T_xy) / 2 = |t_f| exp(2 i phi_f): phi_f a principal direction (either
 // one: they differ by a quarter turn), |t_f| the anisotropy |k1 - k2| / 2 of the averaged
-// curvature. The guide is q_f = t_f^2 / |t_f| = |t_f| exp(4 i phi_f) (0 where t_f = 0): umbilic and
-// flat regions give no guidance. The paper's representation of a cross field is exp(4 i theta);
-// a field aligned with q is aligned with the principal directions where they are well defined.
+// curvature. The guide is q_f = t_f^2 / |t_f| = |t_f| exp(4 i phi_f) (0 where t_f = 0): umbilic
+// and flat regions give no guidance. A field aligned with q (exp(4 i theta) = q / |q|, the
+// paper's representation) is aligned with the principal directions where they are defined.
 #include <complex>
 #include <vector>
 
@@ -22,8 +22,8 @@
 namespace igm {
 
 /// The curvature guide q_f per face (see the top of the file). Pre: frames is
-/// face_frames(mesh, positions). Deterministic (edges summed in half-edge order); cost
-/// O(sum over faces of the edges around their corners), about 36 F on a regular mesh.
+/// face_frames(mesh, positions). Deterministic (sums in half-edge and face order); cost O(F)
+/// (per-vertex tensors, then three per face).
 std::vector<std::complex<double>> curvature_cross_guide(const TriMesh& mesh, const std::vector<Vec3d>& positions,
                                                         const FaceFrames& frames);
 
