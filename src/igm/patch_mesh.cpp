@@ -27,67 +27,9 @@ bool same_location(const SurfacePoint& a, const SurfacePoint& b) {
   return true;
 }
 
-// Splits, in every patch, the interior edges whose two ends lie on one side of the patch.
-// Triangles and vertices are appended to `m` (plane ids past the overlay's); each split makes a
-// vertex inside its patch, whose new edges all end at that vertex, so no split makes another one
-// necessary: the loop runs once over the initial candidates.
-void split_same_side_chords(const QuadLayout& L, PatchMesh& m) {
-  const int nq = static_cast<int>(L.quads.size());
-  // Sides of each patch a plane vertex lies on, as a 4-bit mask per (patch, vertex).
-  std::vector<std::unordered_map<int, int>> side_mask(nq);
-  for (int q = 0; q < nq; ++q)
-    for (int k = 0; k < 4; ++k)
-      for (int v : m.edge_chain[L.quad_edge[q][k]]) side_mask[q][v] |= 1 << k;
-  std::unordered_map<std::uint64_t, std::array<int, 2>> edge_tris;  // interior edges' two triangles
-  edge_tris.reserve(3 * m.triangles.size() / 2);
-  for (std::size_t t = 0; t < m.triangles.size(); ++t)
-    for (int i = 0; i < 3; ++i) {
-      auto [it, fresh] = edge_tris.emplace(edge_key(m.triangles[t][i], m.triangles[t][(i + 1) % 3]),
-                                           std::array<int, 2>{static_cast<int>(t), -1});
-      if (!fresh) it->second[1] = static_cast<int>(t);
-    }
-  std::vector<std::uint64_t> chords;
-  for (const auto& [key, tris] : edge_tris) {
-    if (tris[1] < 0) continue;
-    const int q = m.triangle_quad[tris[0]];
-    if (m.triangle_quad[tris[1]] != q) continue;  // a layout edge
-    const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
-    const auto ia = side_mask[q].find(a), ib = side_mask[q].find(b);
-    if (ia != side_mask[q].end() && ib != side_mask[q].end() && (ia->second & ib->second)) chords.push_back(key);
-  }
-  std::sort(chords.begin(), chords.end());  // deterministic vertex numbering
-  for (std::uint64_t key : chords) {
-    const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
-    const std::array<int, 2> tris = edge_tris.at(key);
-    const int mid_plane = static_cast<int>(m.vertex_of.size());
-    const int mid = static_cast<int>(m.locations.size());
-    SurfacePoint p;
-    lerp_into(p, m.locations[m.vertex_of[a]], m.locations[m.vertex_of[b]], Rational(1, 2));
-    m.locations.push_back(std::move(p));
-    m.vertex_of.push_back(mid);
-    for (int t : tris) {
-      auto& T = m.triangles[t];
-      int i = 0;
-      while (!((T[i] == a && T[(i + 1) % 3] == b) || (T[i] == b && T[(i + 1) % 3] == a))) ++i;  // < 3 steps
-      const int u = T[i], w = T[(i + 1) % 3], x = T[(i + 2) % 3];
-      const int second = static_cast<int>(m.triangles.size());
-      T = {u, mid_plane, x};
-      m.triangles.push_back({mid_plane, w, x});
-      m.triangle_quad.push_back(m.triangle_quad[t]);
-      // The other edges of the two halves keep their triangles, but (w, x) moved to `second`.
-      auto it = edge_tris.find(edge_key(w, x));
-      if (it != edge_tris.end()) {
-        if (it->second[0] == t) it->second[0] = second;
-        else if (it->second[1] == t) it->second[1] = second;
-      }
-    }
-    ++m.splits;
-  }
-}
-
 }  // namespace
 
-PatchMesh build_patch_mesh(PatchMeshInput in, bool split_chords) {
+PatchMesh build_patch_mesh(PatchMeshInput in) {
   if (!in.layout || !in.overlay || !in.disk_to_surface || !in.disk_triangles || !in.input_positions)
     throw Error(ErrorKind::InvalidArgument, "build_patch_mesh: missing input");
   const QuadLayout& L = *in.layout;
@@ -221,7 +163,6 @@ PatchMesh build_patch_mesh(PatchMeshInput in, bool split_chords) {
   for (int t = 0; t < nf; ++t)
     if (m.triangle_quad[t] < 0) throw Error(ErrorKind::Internal, "triangle " + str(t) + " got no layout quad", {t});
   m.triangles = F;
-  if (split_chords) split_same_side_chords(L, m);
   m.positions.resize(m.locations.size());
   for (std::size_t v = 0; v < m.locations.size(); ++v) m.positions[v] = evaluate(m.locations[v], *in.input_positions);
   return m;

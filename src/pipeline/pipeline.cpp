@@ -172,7 +172,7 @@ void smooth_extract_certify(PipelineResult& result, const PipelineOptions& optio
     stats.dyadic = std::move(rounded.stats);
     stats.uv_doubles = stats.dyadic.on_grid;
   }
-  const bool isolines = smoothing || !options.structured_extraction;
+  const bool isolines = smoothing || !options.structured_extraction || !structured;
   if (isolines) {
     IsolineInput in;  // the map lent to the extraction (it reads it only), not copied
     in.triangles = std::move(igm.triangles);
@@ -328,7 +328,7 @@ void map_disk(PipelineResult& result, CutDisk& cut, const PipelineOptions& optio
   pin.disk_triangles = &cut.disk_triangles;
   pin.surface_locations = take_locations(surface, overlay.mesh.positions.size() - num_disk_vertices);
   pin.input_positions = &surface.input_positions;
-  PatchMesh patches = build_patch_mesh(std::move(pin), !affine);
+  PatchMesh patches = build_patch_mesh(std::move(pin));
   const std::vector<double> lengths = layout_edge_lengths(layout, patches, scale);
   const Sizing sizing = size_layout(layout, lengths, sizing_options(options, scale));
   stats.edge_length = sizing.edge_length / scale;
@@ -336,8 +336,9 @@ void map_disk(PipelineResult& result, CutDisk& cut, const PipelineOptions& optio
   PatchMapStats map_stats;
   if (!affine) {
     // Every layout takes the one back end: the patch mesh as a surface layout, its arcs sized by the
-    // chords' counts, mapped by map_layout (its triangles and vertices are the patch mesh's: the
-    // patch mesh already meets the Tutte maps' pre-conditions, so nothing is split again).
+    // chords' counts, mapped by map_layout. Its triangles and vertices are the patch mesh's, with
+    // any edge split for the Tutte maps' pre-conditions appended (none on the shared meshes: the
+    // overlay's segments cut the triangles they cross).
     LayoutMapOptions map_options;
     map_options.weights = options.patch_weights;
     map_options.tutte = options.tutte;
@@ -347,12 +348,7 @@ void map_disk(PipelineResult& result, CutDisk& cut, const PipelineOptions& optio
     map_stats = map.stats;
     igm = std::move(map.igm);
   } else {
-    PatchMapOptions map_options;
-    map_options.kind = options.patch_map;
-    map_options.weights = options.patch_weights;
-    map_options.tutte = options.tutte;
-    map_options.length_scale = scale;
-    PatchMaps maps = map_patches(layout, patches, sizing, overlay.mesh.positions, map_options);
+    PatchMaps maps = map_patches(layout, patches, sizing, overlay.mesh.positions);
     map_stats = maps.stats;
     igm.triangles.reserve(patches.triangles.size());
     for (const auto& t : patches.triangles)
@@ -418,7 +414,9 @@ void map_disk(PipelineResult& result, CutDisk& cut, const PipelineOptions& optio
   // --- smooth, extract (the a x b grid of every layout quad, or the smoothed map's isolines),
   // certify ---
   IgmMesh& igm_out = result.igm;
-  smooth_extract_certify(result, options, stage, surface.input_positions, [&] {
+  // The rectangles' grids are found in the patch mesh's triangles: not after map_layout split some.
+  std::function<std::string()> rectangles;
+  if (map_stats.splits == 0) rectangles = [&] {
     const PatchGrid grid = extract_patch_grids(layout, patches, sizing, igm_out.corner_uv);
     QuadMesh& quads = result.quads;
     quads.quads = grid.quads;
@@ -426,7 +424,8 @@ void map_disk(PipelineResult& result, CutDisk& cut, const PipelineOptions& optio
     quads.locations.reserve(grid.vertices.size());
     for (const GridVertex& v : grid.vertices) add_quad_vertex(quads, igm_out, v.triangle, v.barycentric, surface.input_positions);
     return std::string("the layout's rectangles");
-  });
+  };
+  smooth_extract_certify(result, options, stage, surface.input_positions, rectangles);
 }
 
 PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& options) {

@@ -99,7 +99,7 @@ PipelineResult compute_igm_open(const SurfaceComponent& input, const PipelineOpt
 /// (extract/isolines.h, whose certifier report becomes result.igm_report); without it, the map put
 /// on a double grid where that keeps it valid (round_to_dyadic), then "extract" by `structured`,
 /// which fills result.quads from the map's own structure (the layout's rectangles, the
-/// pillowcase's cells), and the certifier on the IGM. Then the certifier on the quads ("certify").
+/// pillowcase's cells; an empty function: by the isolines), and the certifier on the IGM. Then the certifier on the quads ("certify").
 void smooth_extract_certify(PipelineResult& result, const PipelineOptions& options, StageReporter& stage,
                             const std::vector<Vec3d>& input_positions, const std::function<std::string()>& structured);
 

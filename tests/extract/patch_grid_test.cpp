@@ -20,8 +20,7 @@ struct Grid {
 Grid grid_of(const igm_test::PatchSetup& s, const SizingOptions& so) {
   Grid out;
   out.sizing = size_layout(s.layout, layout_edge_lengths(s.layout, s.mesh), so);
-  const PatchMaps maps = map_patches(s.layout, s.mesh, out.sizing, s.overlay.mesh.positions);
-  out.grid = extract_patch_grids(s.layout, s.mesh, out.sizing, maps.corner_uv);
+  out.grid = extract_patch_grids(s.layout, s.mesh, out.sizing, igm_test::tutte_maps(s, out.sizing).igm.corner_uv);
   return out;
 }
 
@@ -90,8 +89,8 @@ TEST_CASE("patch grid: UVs that do not cover a patch's rectangle are an Internal
   SizingOptions so;
   so.resolution = 3;  // a torus's one quad has loops for sides: 3 is its least count
   const Sizing sizing = size_layout(s.layout, layout_edge_lengths(s.layout, s.mesh), so);
-  PatchMaps maps = map_patches(s.layout, s.mesh, sizing, s.overlay.mesh.positions);
-  for (auto& tri : maps.corner_uv)
+  std::vector<std::array<Point2q, 3>> uv = igm_test::tutte_maps(s, sizing).igm.corner_uv;
+  for (auto& tri : uv)
     for (Point2q& p : tri) p.x /= 2;  // the patch now covers [0, 3/2] x [0, 3] only
-  CHECK_THROWS_AS(extract_patch_grids(s.layout, s.mesh, sizing, maps.corner_uv), Error);
+  CHECK_THROWS_AS(extract_patch_grids(s.layout, s.mesh, sizing, uv), Error);
 }

@@ -2,6 +2,7 @@
 // Shared by tests/igm and tests/extract: the stages before the patch maps, run directly on a mesh
 // (topology, a uniform Tutte map of the disk with uniformly placed sides, a layout, its overlay,
 // the patch mesh), so that the patch maps and grids can be tested on their own.
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -9,6 +10,7 @@
 #include "igm/arrange/overlay.h"
 #include "igm/embed/polygon.h"
 #include "igm/embed/tutte.h"
+#include "igm/igm/layout_map.h"
 #include "igm/igm/patch_maps.h"
 #include "igm/igm/patch_mesh.h"
 #include "igm/layout/quad_layout.h"
@@ -25,9 +27,8 @@ struct PatchSetup {
   std::vector<igm::Vec3d> input_positions;
 };
 
-/// Runs the stages up to the patch mesh; `affine` adds the layout's diagonals to the overlay;
-/// same-side chords are split with `split_chords` (the Tutte maps' pre-condition).
-inline PatchSetup patch_setup(const igm::ValidMesh& mesh, igm::LayoutKind kind, bool affine, bool split_chords) {
+/// Runs the stages up to the patch mesh; `affine` adds the layout's diagonals to the overlay.
+inline PatchSetup patch_setup(const igm::ValidMesh& mesh, igm::LayoutKind kind, bool affine) {
   using namespace igm;
   PatchSetup s;
   CutOptions co;
@@ -63,13 +64,21 @@ inline PatchSetup patch_setup(const igm::ValidMesh& mesh, igm::LayoutKind kind, 
   for (const SurfacePoint& p : cut.surface.constructed) in.surface_locations.push_back(p);
   s.input_positions = cut.surface.input_positions;
   in.input_positions = &s.input_positions;
-  s.mesh = build_patch_mesh(std::move(in), split_chords);
+  s.mesh = build_patch_mesh(std::move(in));
   return s;
 }
 
-/// The same, chords split unless `affine` (PatchMapKind::Affine leaves them; Tutte needs them split).
-inline PatchSetup patch_setup(const igm::ValidMesh& mesh, igm::LayoutKind kind, bool affine) {
-  return patch_setup(mesh, kind, affine, !affine);
+/// The Tutte maps of the set-up's patches (map_layout on its surface layout, arcs sized by the
+/// chords), whose triangles are the patch mesh's: throws if map_layout had to split an edge.
+inline igm::LayoutMap tutte_maps(const PatchSetup& s, const igm::Sizing& sizing, double length_scale = 1) {
+  igm::PatchMesh copy = s.mesh;
+  igm::LayoutMapOptions o;
+  o.length_scale = length_scale;
+  igm::LayoutMap m = igm::map_layout(
+      igm::to_surface_layout(s.layout, copy, static_cast<int>(s.input_positions.size())), sizing.edge_count, o);
+  if (m.stats.splits != 0 || m.igm.triangles.size() != s.mesh.triangles.size())
+    throw std::runtime_error("tutte_maps: map_layout split edges of the patch mesh");
+  return m;
 }
 
 /// The certifier's report on the patch mesh with these corner UVs (checks 1-4).

@@ -50,21 +50,20 @@ TEST_CASE("patch maps: every layout and both maps certify on generated genus 1-3
         SizingOptions so;
         so.quads = 400;
         const Sizing sizing = size_layout(s.layout, layout_edge_lengths(s.layout, s.mesh), so);
-        PatchMapOptions o;
-        o.kind = affine ? PatchMapKind::Affine : PatchMapKind::Tutte;
-        const PatchMaps maps = map_patches(s.layout, s.mesh, sizing, s.overlay.mesh.positions, o);
+        const PatchMaps maps = affine ? map_patches(s.layout, s.mesh, sizing, s.overlay.mesh.positions)
+                                      : PatchMaps{igm_test::tutte_maps(s, sizing).igm.corner_uv, {}};
         const certify::Report r = certify_patch_maps(s.mesh, maps.corner_uv);
         CHECK_MESSAGE(r.valid(), certify::summary(r));
         // Every patch fills its a x b rectangle: the UV areas add up to the quad count exactly.
         CHECK(uv_area2(maps.corner_uv) == Rational(2 * sizing.quads));
         CHECK(layout_corners_off_grid(s, maps.corner_uv) == 0);
-        CHECK(maps.stats.patches == static_cast<int>(s.layout.quads.size()));
+        if (affine) CHECK(maps.stats.patches == static_cast<int>(s.layout.quads.size()));
       }
 }
 
 TEST_CASE("patch maps: a layout quad sized against its chord breaks a transition, and the certifier says so") {
   const ValidMesh mesh = igm_test::generated_mesh(2, 1200, 5);
-  const PatchSetup s = patch_setup(mesh, LayoutKind::Spread, false);
+  const PatchSetup s = patch_setup(mesh, LayoutKind::Spread, true);  // the affine maps take any sizing
   SizingOptions so;
   so.resolution = 3;
   Sizing sizing = size_layout(s.layout, layout_edge_lengths(s.layout, s.mesh), so);
@@ -102,10 +101,8 @@ TEST_CASE("patch maps: hostile geometry (coincident, collinear, 1e300, 1e-300) s
     // Lengths on positions scaled to about 1 (mesh/scale.h), as the pipeline measures them.
     const double scale = unit_scale(s.input_positions);
     const Sizing sizing = size_layout(s.layout, layout_edge_lengths(s.layout, s.mesh, scale), so);
-    PatchMapOptions o;
-    o.length_scale = scale;
-    const PatchMaps maps = map_patches(s.layout, s.mesh, sizing, s.overlay.mesh.positions, o);
-    const certify::Report r = certify_patch_maps(s.mesh, maps.corner_uv);
+    const LayoutMap maps = igm_test::tutte_maps(s, sizing, scale);
+    const certify::Report r = certify_patch_maps(s.mesh, maps.igm.corner_uv);
     CHECK_MESSAGE(r.valid(), certify::summary(r));
   }
 }

@@ -11,11 +11,7 @@
 #include "../igm/patch_fixture.h"
 
 using namespace igm;
-using igm_test::build_layout;
-using igm_test::cube_spec;
-using igm_test::grid_spec;
-using igm_test::Rect;
-using igm_test::torus_embedding;
+using namespace igm_test;
 
 namespace {
 
@@ -114,9 +110,7 @@ TEST_CASE("quantize: minimum lengths: closed arcs 3, parallel arcs 2, a patch ac
   REQUIRE(q.ok());
   CHECK(q.arc_length == std::vector<int>{3, 3});
   // A cylinder as one patch: the seam is on sides 1 and 3, so sides 0 and 2 (the circles) need 3.
-  const SurfaceLayout cyl = build_layout(grid_spec(8, 3, true, false, {Rect{0, 0, 8, 3}}, [](int i, int j) {
-    return Vec3d{std::cos(2 * M_PI * i / 8), std::sin(2 * M_PI * i / 8), double(j)};
-  }));
+  const SurfaceLayout cyl = build_layout(grid_spec(8, 3, true, false, {Rect{0, 0, 8, 3}}, cylinder_embedding(8)));
   const std::vector<int> m = minimum_arc_lengths(cyl);
   const int seam = cyl.patches[0].sides[1].front().arc;
   for (std::size_t a = 0; a < m.size(); ++a) CHECK(m[a] == (static_cast<int>(a) == seam ? 1 : 3));

@@ -7,15 +7,12 @@
 #include "layout_builder.h"
 
 using namespace igm;
-using igm_test::build_layout;
-using igm_test::cube_spec;
-using igm_test::grid_spec;
-using igm_test::Rect;
-using igm_test::torus_embedding;
+using namespace igm_test;
 
 namespace {
 
-auto flat(int, int) { return [](int i, int j) { return Vec3d{double(i), double(j), 0.1 * ((i * 7 + j * 3) % 5)}; }; }
+// A gently uneven plane (z from 0 to 0.4), for open grids.
+Vec3d flat_point(int i, int j) { return {double(i), double(j), 0.1 * ((i * 7 + j * 3) % 5)}; }
 
 SurfaceLayout torus_one_patch(int n = 6, int m = 5) {
   return build_layout(grid_spec(n, m, true, true, {Rect{0, 0, n, m}}, torus_embedding(n, m)));
@@ -79,7 +76,7 @@ TEST_CASE("surface layout: a torus as one patch, its arcs with the patch on both
 
 TEST_CASE("surface layout: an open square of 2 x 2 patches, boundary arcs with no patch on one side") {
   const SurfaceLayout L = build_layout(
-      grid_spec(4, 6, false, false, {Rect{0, 0, 2, 3}, Rect{2, 0, 4, 3}, Rect{0, 3, 2, 6}, Rect{2, 3, 4, 6}}, flat(4, 6)));
+      grid_spec(4, 6, false, false, {Rect{0, 0, 2, 3}, Rect{2, 0, 4, 3}, Rect{0, 3, 2, 6}, Rect{2, 3, 4, 6}}, flat_point));
   CHECK(check_surface_layout(L) == "");
   int boundary_arcs = 0;
   for (const LayoutArc& a : L.arcs) boundary_arcs += a.patch[1] < 0 || a.patch[0] < 0;
@@ -88,9 +85,7 @@ TEST_CASE("surface layout: an open square of 2 x 2 patches, boundary arcs with n
 }
 
 TEST_CASE("surface layout: a cylinder as one patch meets both ends of its seam twice") {
-  const SurfaceLayout L = build_layout(grid_spec(8, 3, true, false, {Rect{0, 0, 8, 3}}, [](int i, int j) {
-    return Vec3d{std::cos(2 * M_PI * i / 8), std::sin(2 * M_PI * i / 8), double(j)};
-  }));
+  const SurfaceLayout L = build_layout(grid_spec(8, 3, true, false, {Rect{0, 0, 8, 3}}, cylinder_embedding(8)));
   CHECK(check_surface_layout(L) == "");
   const PatchDisk d = patch_disk(L, layout_adjacency(L), 0);
   REQUIRE(d.error == "");
@@ -131,7 +126,6 @@ TEST_CASE("surface layout: the check catches every kind of broken layout") {
   }
   SUBCASE("a triangle labelled with the neighbouring patch: a non-arc edge between patches") {
     SurfaceLayout L = cube;
-    const int t = L.arcs[0].patch[0] == L.triangle_patch[0] ? 0 : 0;
     // A triangle of patch 0 at an arc: give it the patch across that arc.
     const LayoutAdjacency A = layout_adjacency(L);
     int moved = -1;
@@ -140,7 +134,6 @@ TEST_CASE("surface layout: the check catches every kind of broken layout") {
         L.triangle_patch[h / 3] = L.triangle_patch[A.twin[h] / 3];
         moved = h / 3;
       }
-    (void)t;
     REQUIRE(moved >= 0);
     CHECK(contains(check_surface_layout(L), "lies on no arc but joins"));
   }
@@ -180,7 +173,7 @@ TEST_CASE("surface layout: the check catches every kind of broken layout") {
     CHECK(contains(check_surface_layout(L), "has no arc"));
   }
   SUBCASE("a boundary arc that claims a patch on its empty side") {
-    SurfaceLayout L = build_layout(grid_spec(3, 3, false, false, {Rect{0, 0, 3, 3}}, flat(3, 3)));
+    SurfaceLayout L = build_layout(grid_spec(3, 3, false, false, {Rect{0, 0, 3, 3}}, flat_point));
     REQUIRE(check_surface_layout(L) == "");
     int a = 0;
     while (L.arcs[a].patch[1] >= 0 && L.arcs[a].patch[0] >= 0) ++a;
@@ -198,9 +191,7 @@ TEST_CASE("surface layout: a patch that is not a disk (an annulus) is named as s
   // A cylinder without a seam: one patch between two boundary circles; the bottom circle split
   // into four arcs makes the four sides, the top circle is an arc of the patch too.
   const int n = 8;
-  igm_test::LayoutSpec spec = grid_spec(n, 2, true, false, {}, [](int i, int j) {
-    return Vec3d{std::cos(2 * M_PI * i / 8), std::sin(2 * M_PI * i / 8), double(j)};
-  });
+  LayoutSpec spec = grid_spec(n, 2, true, false, {}, cylinder_embedding(n));
   // Boundary arcs are added by the builder; corners on the bottom circle at i = 0, 2, 4, 6.
   spec.corners.push_back({std::pair{0, 1}, std::pair{2, 3}, std::pair{4, 5}, std::pair{6, 7}});
   spec.extra_nodes = {2 * n};  // the top circle's node
@@ -211,7 +202,7 @@ TEST_CASE("surface layout: a patch that is not a disk (an annulus) is named as s
 
 TEST_CASE("surface layout: a patch in two pieces is named as such") {
   // Two separate squares of one open grid labelled one patch: relabel the right half's triangles.
-  SurfaceLayout L = build_layout(grid_spec(4, 2, false, false, {Rect{0, 0, 2, 2}, Rect{2, 0, 4, 2}}, flat(4, 2)));
+  SurfaceLayout L = build_layout(grid_spec(4, 2, false, false, {Rect{0, 0, 2, 2}, Rect{2, 0, 4, 2}}, flat_point));
   REQUIRE(check_surface_layout(L) == "");
   for (int& p : L.triangle_patch) p = 0;
   const std::string e = check_surface_layout(L);

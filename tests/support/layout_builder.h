@@ -192,6 +192,11 @@ inline auto torus_embedding(int n, int m, double R = 3, double r = 1) {
   };
 }
 
+/// A cylinder of radius 1: grid point (i, j) at angle 2 pi i / n, height h j (for a grid wrapped in i).
+inline auto cylinder_embedding(int n, double h = 1) {
+  return [=](int i, int j) { return igm::Vec3d{std::cos(2 * M_PI * i / n), std::sin(2 * M_PI * i / n), h * j}; };
+}
+
 /// Rectangles tiling an n x m torus grid: a k x k array of blocks, then `splits` random guillotine
 /// splits (a block of >= 2 cells across, cut along a grid line), seeded mt19937 (its raw outputs:
 /// the same on every machine).

@@ -1,14 +1,14 @@
 #pragma once
-// The IGM of a sized quad layout: every layout quad's patch of the surface mapped onto its integer
-// rectangle [0,a] x [0,b], exactly, orientation preserving, with the same parameters on both sides
-// of every layout edge and of every glued pair of polygon sides (so that every seam's transition is
-// a rotation by a multiple of 90 degrees plus an integer translation).
+// How each patch of a sized layout is mapped onto its integer rectangle [0,a] x [0,b] (exactly,
+// orientation preserving, the same parameters on both sides of every seam, so that every seam's
+// transition is a rotation by a multiple of 90 degrees plus an integer translation): the Tutte
+// maps of every layout (igm/layout_map.h), and here the paper's affine maps of the canonical
+// layouts, and the maps' statistics.
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
-#include "igm/embed/tutte.h"
-#include "igm/embed/weights.h"
 #include "igm/igm/patch_mesh.h"
 #include "igm/layout/sizing.h"
 
@@ -26,18 +26,7 @@ enum class PatchMapKind {
 /// "tutte", "affine".
 const char* to_string(PatchMapKind kind);
 
-struct PatchMapOptions {
-  PatchMapKind kind = PatchMapKind::Tutte;
-  WeightKind weights = WeightKind::MeanValue;
-  /// Arc-length parameters along layout edges are multiples of 2^-parameter_bits (1..52): with 32
-  /// bits and counts below 2^20 every boundary coordinate is exactly a double.
-  int parameter_bits = 32;
-  /// 3D lengths and weights are computed on the positions times this (mesh/scale.h: unit_scale of
-  /// the input keeps hostile coordinates in range).
-  double length_scale = 1;
-  TutteOptions tutte;
-};
-
+/// Statistics of the patch maps (map_layout, map_patches).
 struct PatchMapStats {
   int patches = 0;
   int max_patch_vertices = 0;
@@ -58,17 +47,15 @@ struct PatchMaps {
 /// exactly; ties to Q0-Q2), -1 for a parallelogram (one affine map). O(quads).
 std::vector<int> quad_diagonals(const QuadLayout& layout);
 
-/// Maps every patch. Tutte: the patch (triangles of mesh.triangle_quad == q, which must meet the
-/// pre-conditions of tutte_embed: build_patch_mesh with split_chords) onto [0,a] x [0,b] =
-/// sizing.quad_size[q], Q0 -> (0,0), Q1 -> (a,0), Q2 -> (a,b), Q3 -> (0,b); a vertex of layout edge e
-/// at arc-length parameter t (arc_length_parameters of the 3D lengths along the edge's surface
-/// edge, computed once for a glued pair) sits at t along its rectangle side. Affine: through
-/// `overlay_positions` (the overlay's plane positions; the overlay must hold the diagonals of
-/// quad_diagonals). Post: every UV triangle strictly positive (checked exactly by tutte_embed, and
-/// here for the affine maps), layout points at integer points, every seam rigid with an integer
-/// translation (checked by the certifier downstream). Throws igm::Error(Internal) if a map fails.
-/// Cost: one certified Tutte solve per patch (embed/tutte.h), O(F) for the affine maps.
+/// The paper's affine maps: every layout quad q (triangles of mesh.triangle_quad == q) mapped
+/// through `overlay_positions` (the overlay's plane positions; the overlay must hold the diagonals
+/// of quad_diagonals) onto [0,a] x [0,b] = sizing.quad_size[q], Q0 -> (0,0), Q1 -> (a,0),
+/// Q2 -> (a,b), Q3 -> (0,b): one affine map per half of the quad. Post: every UV triangle strictly
+/// positive (checked exactly), layout points at integer points, every seam rigid with an integer
+/// translation (checked by the certifier downstream). Throws igm::Error(InvalidArgument) if the
+/// sizing or the mesh does not match the layout, Internal if a map fails. Cost O(F) exact
+/// operations.
 PatchMaps map_patches(const QuadLayout& layout, const PatchMesh& mesh, const Sizing& sizing,
-                      const std::vector<Point2q>& overlay_positions, const PatchMapOptions& options = {});
+                      const std::vector<Point2q>& overlay_positions);
 
 }  // namespace igm

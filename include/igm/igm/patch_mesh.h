@@ -1,8 +1,9 @@
 #pragma once
 // The IGM's triangle mesh before its UVs: the overlay of a quad layout on the embedded disk
 // (arrange/overlay.h), glued back into a refinement of the input surface, each triangle labelled
-// with its layout quad ("patch"), each layout edge with its chain of vertices. The patches' own
-// maps (igm/patch_maps.h) and their grids (extract/patch_grid.h) are computed on it.
+// with its layout quad ("patch"), each layout edge with its chain of vertices. As a surface layout
+// (to_surface_layout) it is mapped by map_layout (igm/layout_map.h); the paper's affine maps
+// (igm/patch_maps.h) and the rectangles' grids (extract/patch_grid.h) are computed on it directly.
 #include <array>
 #include <vector>
 
@@ -30,7 +31,6 @@ struct PatchMesh {
   std::vector<std::vector<int>> edge_chain;
   /// Per layout point: a plane id of it (a side point has two copies: the one on its own side).
   std::vector<int> point_vertex;
-  int splits = 0;  // interior edges split because both ends lay on one side of their patch
 };
 
 struct PatchMeshInput {
@@ -49,14 +49,13 @@ struct PatchMeshInput {
 /// Builds the patch mesh: surface ids for the overlay's vertices (a disk vertex is its surface
 /// vertex; a new point on a polygon side is one vertex with the point it is glued to on the mate
 /// side, checked to be the same exact surface point; every other new point is a vertex of its own),
-/// every triangle's layout quad (a flood fill bounded by the layout edges' chains), every layout
-/// edge's chain, and, when `split_chords`, every interior edge of a patch whose two ends lie on one
-/// side of that patch (a corner lies on two) split at its midpoint, so that each patch meets the
-/// pre-conditions of a Tutte map onto its rectangle (embed/tutte.h). Checks that glued chains
-/// carry the same surface vertices in opposite orders. Throws igm::Error(InvalidArgument) if the
-/// overlay does not match the layout, Internal if an invariant breaks. Cost O(F log F) plus the
-/// exact locations (O(1) GMP operations per new vertex).
-PatchMesh build_patch_mesh(PatchMeshInput input, bool split_chords);
+/// every triangle's layout quad (a flood fill bounded by the layout edges' chains) and every layout
+/// edge's chain. Edges that break the Tutte maps' pre-conditions are split by map_layout
+/// (igm/layout_map.h), not here. Checks that glued chains carry the same surface vertices in
+/// opposite orders. Throws igm::Error(InvalidArgument) if the overlay does not match the layout,
+/// Internal if an invariant breaks. Cost O(F log F) plus the exact locations (O(1) GMP operations
+/// per new vertex).
+PatchMesh build_patch_mesh(PatchMeshInput input);
 
 /// The patch mesh of a canonical layout as a surface layout (the one input of map_layout,
 /// igm/layout_map.h): the same triangles in the same order over surface ids, the vertices no
