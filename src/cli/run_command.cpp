@@ -287,6 +287,16 @@ int run_command(const std::vector<std::string_view>& args) {
       }
       continue;
     }
+    if (a == "--field-alignment") {
+      if (i + 1 >= args.size()) return usage("--field-alignment needs a value");
+      const std::string_view v = args[++i];
+      double w = 0;
+      if (!parse_double(v, w) || !(w >= 0) || !std::isfinite(w))
+        return usage("--field-alignment needs a number >= 0 (0: the smoothest field), got '" + std::string(v) + "'");
+      options.field.alignment = w;
+      options.field_retry_alignments.clear();
+      continue;
+    }
     if (a == "--layout" || a == "--map" || a == "--edge-length" || a == "--smooth-seconds") {
       if (i + 1 >= args.size()) return usage(std::string(a) + " needs a value");
       const std::string_view v = args[++i];

@@ -701,9 +701,9 @@ class Builder {
 // slack in the optimum of the elastic linear program (minimize the total slack of
 // sum(side 0) - sum(side 2) = 0 and sum(side 1) - sum(side 3) = 0 over lengths >= minimum).
 // Empty when the lengths can be chosen (the relaxation is feasible). Cost: one LP (Clp).
-std::vector<int> contradicting_patches(const SurfaceLayout& L, const std::vector<int>& minimum) {
+std::vector<int> contradicting_patches(const SurfaceLayout& L, const std::vector<int>& minimum, bool sides_at_least_one = false) {
   const int na = static_cast<int>(L.arcs.size()), np = static_cast<int>(L.patches.size());
-  const int nrows = 2 * np, ncols = na + 2 * nrows;
+  const int nrows = 2 * np + (sides_at_least_one ? 4 * np : 0), ncols = na + 2 * 2 * np;
   std::vector<int> rows, cols;
   std::vector<double> vals;
   for (int p = 0; p < np; ++p)
@@ -717,9 +717,17 @@ std::vector<int> contradicting_patches(const SurfaceLayout& L, const std::vector
       rows.push_back(r), cols.push_back(na + 2 * r), vals.push_back(1);
       rows.push_back(r), cols.push_back(na + 2 * r + 1), vals.push_back(-1);
     }
+  if (sides_at_least_one)
+    for (int p = 0; p < np; ++p)
+      for (int k = 0; k < 4; ++k) {
+        std::map<int, double> coef;
+        for (const ArcUse& u : L.patches[p].sides[k]) coef[u.arc] += 1;
+        for (const auto& [a, c] : coef) rows.push_back(2 * np + 4 * p + k), cols.push_back(a), vals.push_back(c);
+      }
   CoinPackedMatrix m(true, rows.data(), cols.data(), vals.data(), static_cast<CoinBigIndex>(vals.size()));
   m.setDimensions(nrows, ncols);
   std::vector<double> collb(ncols, 0), colub(ncols, 1e30), obj(ncols, 0), rowlb(nrows, 0), rowub(nrows, 0);
+  for (int r = 2 * np; r < nrows; ++r) rowlb[r] = 1, rowub[r] = 1e30;
   for (int a = 0; a < na; ++a) collb[a] = minimum[a], obj[a] = 1e-6;
   for (int k = na; k < ncols; ++k) obj[k] = 1;
   ClpSimplex lp;
@@ -789,6 +797,11 @@ FieldLayoutResult build_field_layout(const TriMesh& mesh, const std::vector<Vec3
       // patches that would have to be longer than itself: spiralling curves), the curves ending on
       // the contradicting patches are left out and the graph traced again.
       const std::vector<int> bad = contradicting_patches(r.layout, minimum_arc_lengths(r.layout));
+      if (std::getenv("IGM_TRACE_DEBUG") && !bad.empty()) {
+        std::vector<int> zero(r.layout.arcs.size(), 0);
+        const std::vector<int> bad0 = contradicting_patches(r.layout, zero, true);
+        std::fprintf(stderr, "with zero minimum lengths: %zu contradicting patches\n", bad0.size());
+      }
       if (bad.empty()) {
         r.ok = true;
         break;

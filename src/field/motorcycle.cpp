@@ -60,6 +60,9 @@ FieldFrames::FieldFrames(const TriMesh& m, const std::vector<Vec3d>& positions, 
   corner.resize(nf);
   dir.resize(nf);
   good.assign(nf, 0);
+  origin.assign(nf, Vec3d{0, 0, 0});
+  axis_x.assign(nf, Vec3d{1, 0, 0});
+  axis_y.assign(nf, Vec3d{0, 1, 0});
   for (int f = 0; f < nf; ++f) {
     const auto fv = mesh.face_vertices(f);
     const Vec3d p0 = positions[fv[0]], e1 = sub3(positions[fv[1]], p0), e2 = sub3(positions[fv[2]], p0);
@@ -72,6 +75,9 @@ FieldFrames::FieldFrames(const TriMesh& m, const std::vector<Vec3d>& positions, 
     const Vec3d x{e1.x / l1, e1.y / l1, e1.z / l1};
     const Vec3d nn{n.x / ln, n.y / ln, n.z / ln};
     const Vec3d y = cross3(nn, x);
+    origin[f] = p0;
+    axis_x[f] = x;
+    axis_y[f] = y;
     corner[f][1] = {l1, 0};
     corner[f][2] = {dot3(e2, x), dot3(e2, y)};
     const Vec3d& d = face_direction[f];
@@ -251,7 +257,8 @@ struct Where {
   int vertex = -1, ray = -1;
   int face = -1, he = -1;
   Rational s;
-  int dir = 0;  // in a face: the curve's field direction there
+  int dir = 0;     // in a face: the curve's field direction there
+  int steer = -1;  // a vertex the curve heads straight for (taken into it), or -1: the field
 };
 
 // One step of a curve, decided in doubles from exact dyadic positions (the same in the solo
@@ -330,6 +337,16 @@ class Tracer {
       for (int k = first; k <= last; ++k)
         if (!banned_.count({v, k})) starts.push_back({v, k});
     }
+    // Vertices with traced rays, hashed by position for the steering.
+    steer_length_ = options_.snap_length > 0 ? options_.snap_length : options_.snap_distance * mean_edge_;
+    if (steer_length_ > 0)
+      for (int v = 0; v < nv; ++v)
+        if (traced_[v]) {
+          const Vec3d& X = positions_[v];
+          traced_hash_[cell_key(static_cast<long>(std::floor(X.x / steer_length_)), static_cast<long>(std::floor(X.y / steer_length_)),
+                                static_cast<long>(std::floor(X.z / steer_length_)))]
+              .push_back(v);
+        }
     // Pairs of rays that trace one separatrix between two of those vertices.
     // Every ray traced alone: the vertex and ray it is taken into, and in how many steps. A ray
     // taken into another is the same separatrix: pairs are made greedily, mutual claims first,
@@ -498,7 +515,7 @@ class Tracer {
     if (!frames_.good[f]) return a;
     const Vec2d P = point_in_face(w);
     const Vec2d Pi = frames_.corner[f][i], Pj = frames_.corner[f][(i + 1) % 3], Pc = frames_.corner[f][(i + 2) % 3];
-    const Vec2d dir = frames_.direction(f, w.dir);
+    const Vec2d dir = w.steer >= 0 ? steer_direction(f, P, w.steer, w.dir) : frames_.direction(f, w.dir);
     const Vec2d e = sub2(Pj, Pi);
     const int far = mesh_.face_vertices(f)[(i + 2) % 3];
     a.face = f;
@@ -544,6 +561,61 @@ class Tracer {
     }
     a.kind = Advance::Kind::Edge;
     return a;
+  }
+
+  // 3D position of a point of face f given in f's frame.
+  Vec3d to_3d(int f, const Vec2d& p) const {
+    const Vec3d& o = frames_.origin[f];
+    const Vec3d &ax = frames_.axis_x[f], &ay = frames_.axis_y[f];
+    return {o.x + p.x * ax.x + p.y * ay.x, o.y + p.x * ax.y + p.y * ay.y, o.z + p.x * ax.z + p.y * ay.z};
+  }
+  // The unit direction in face f from P towards vertex x (projected on the face plane); the field
+  // direction dir where that is degenerate.
+  Vec2d steer_direction(int f, const Vec2d& P, int x, int dir) const {
+    const Vec3d p3 = to_3d(f, P), x3 = positions_[x];
+    const Vec3d d{x3.x - p3.x, x3.y - p3.y, x3.z - p3.z};
+    const Vec3d &ax = frames_.axis_x[f], &ay = frames_.axis_y[f];
+    const Vec2d v{d.x * ax.x + d.y * ax.y + d.z * ax.z, d.x * ay.x + d.y * ay.y + d.z * ay.z};
+    const double l = std::sqrt(dot2(v, v));
+    if (!(l > 0) || !std::isfinite(l)) return frames_.direction(f, dir);
+    return {v.x / l, v.y / l};
+  }
+  // A curve inside a face (not steering yet) within steer_length of a vertex `ok` accepts, ahead
+  // of it within 45 degrees of its field direction, heads straight for the nearest such vertex.
+  template <class Ok>
+  void maybe_steer(Where& w, const Ok& ok) {
+    if (w.face < 0 || w.steer >= 0 || !(steer_length_ > 0) || traced_hash_.empty()) return;
+    const Vec2d P2 = point_in_face(w);
+    const Vec3d P = to_3d(w.face, P2);
+    const Vec2d d2 = frames_.direction(w.face, w.dir);
+    const Vec3d &ax = frames_.axis_x[w.face], &ay = frames_.axis_y[w.face];
+    const Vec3d d{d2.x * ax.x + d2.y * ay.x, d2.x * ax.y + d2.y * ay.y, d2.x * ax.z + d2.y * ay.z};
+    const long cx = static_cast<long>(std::floor(P.x / steer_length_)), cy = static_cast<long>(std::floor(P.y / steer_length_)),
+               cz = static_cast<long>(std::floor(P.z / steer_length_));
+    int best = -1;
+    double best_d = steer_length_;
+    for (long i = cx - 1; i <= cx + 1; ++i)
+      for (long j = cy - 1; j <= cy + 1; ++j)
+        for (long k = cz - 1; k <= cz + 1; ++k) {
+          auto it = traced_hash_.find(cell_key(i, j, k));
+          if (it == traced_hash_.end()) continue;
+          for (int x : it->second) {
+            if (!ok(x)) continue;
+            const Vec3d X = positions_[x];
+            const Vec3d v{X.x - P.x, X.y - P.y, X.z - P.z};
+            const double l = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+            if (!(l <= best_d) || !(l > 0)) continue;
+            if (v.x * d.x + v.y * d.y + v.z * d.z < 0.7071 * l) continue;
+            if (l == best_d && x > best) continue;
+            best = x;
+            best_d = l;
+          }
+        }
+    if (best >= 0) w.steer = best, ++graph_.stats.steers;
+  }
+  static std::uint64_t cell_key(long i, long j, long k) {
+    return (static_cast<std::uint64_t>(i & 0x1fffff) << 42) | (static_cast<std::uint64_t>(j & 0x1fffff) << 21) |
+           static_cast<std::uint64_t>(k & 0x1fffff);
   }
 
   // The ray of vertex x nearest to the direction `d` given in face f (a face around x): d is
@@ -645,18 +717,21 @@ class Tracer {
     const int bound = std::min(max_segments_, 64 + 8 * static_cast<int>(std::sqrt(static_cast<double>(mesh_.num_faces()))));
     for (int steps = 0; steps < bound; ++steps) {
       const int from = w.vertex;
-      const Advance a = advance(w, [&](int x) { return traced_[x] && x != from; });
+      maybe_steer(w, [&](int x) { return traced_[x] && x != v; });
+      const Advance a = advance(w, [&](int x) { return traced_[x] && x != from && (w.steer < 0 || x == w.steer); });
       int x = -1, ra = -1;
       switch (a.kind) {
         case Advance::Kind::Stuck: return std::nullopt;
         case Advance::Kind::Edge: {
           const int tw = mesh_.twin(a.he);
           if (tw < 0) return std::nullopt;
+          const int steer = w.steer;
           w = Where{};
           w.face = TriMesh::face(tw);
           w.he = tw;
           w.s = 1 - a.t;
           w.dir = (a.dir + frames_.shift[a.he]) % 4;
+          w.steer = steer;
           continue;
         }
         case Advance::Kind::Vertex:
@@ -951,10 +1026,7 @@ class Tracer {
     if (p < 0) {
       // A node of the other curve close by on the same segment (where a curve from its other side
       // ended): end there too, rather than a hair's breadth away.
-      p = nearby_node(c, f, dir, m);
-      if (p >= 0) {
-        ++graph_.stats.node_snaps;
-      } else if (snap_across(c, f, dir, m)) {
+      if (snap_to_node(c, f, dir, m)) {
         ++graph_.stats.node_snaps;
         return;
       } else {
@@ -993,120 +1065,136 @@ class Tracer {
     return out;
   }
 
-  // For curve c (direction dir in face f) meeting segment m.segment of curve m.curve at the new
-  // point m.at: a point already on that segment where another curve ended, within
-  // TraceOptions::snap_distance mean edge lengths (3D) of the meeting point, that c reaches in f
-  // without crossing anything and whose ray on c's side is free; -1 if none.
-  int nearby_node(int c, int f, int dir, const Meet& m) {
-    if (options_.snap_distance <= 0) return -1;
-    const TraceCurve& other = graph_.curves[m.curve];
-    std::vector<int> cand;
-    for (int k : {m.segment, m.segment + 1}) {
-      const int y = other.points[k];
-      if (graph_.points[y].kind != TracePoint::Kind::Vertex && point_uses_[y] > 1) cand.push_back(y);
-    }
-    for (const Hit& h : hits_)
-      if (h.curve == m.curve && h.segment == m.segment) cand.push_back(h.point);
-    if (cand.empty()) return -1;
-    // The meeting point in 3D.
-    const auto fv = mesh_.face_vertices(f);
-    Vec3d X{0, 0, 0};
-    const double w1 = to_double(m.at.x), w2 = to_double(m.at.y), w0 = 1 - w1 - w2;
-    for (int i = 0; i < 3; ++i) {
-      const double w = i == 0 ? w0 : i == 1 ? w1 : w2;
-      X.x += w * positions_[fv[i]].x, X.y += w * positions_[fv[i]].y, X.z += w * positions_[fv[i]].z;
-    }
-    const double limit = options_.snap_distance * mean_edge_;
-    int best = -1;
-    double best_d = limit;
+  // Curve c (direction dir in face f) meets segment m.segment of curve b = m.curve at the new
+  // point X = m.at. Where b already carries a node within TraceOptions::snap_length (3D, along b)
+  // of X at which a curve from c's side could end (another curve ended there from the other side,
+  // so c's ray there is free), c goes there instead: along b, one grid step beside b's crossings
+  // of the edges in between, on c's side, every piece checked exactly not to meet anything. One
+  // node instead of two a short way apart, whose short arc no integer length >= 1 could fit (the
+  // zero-length arcs of T-mesh quantization, Lyon, Campen & Kobbelt 2021, made geometric). True
+  // when c has ended there.
+  bool snap_to_node(int c, int f, int dir, const Meet& m) {
+    const double limit = options_.snap_length > 0 ? options_.snap_length : options_.snap_distance * mean_edge_;
+    if (!(limit > 0)) return false;
+    const int b = m.curve, s = m.segment;
+    const TraceCurve& other = graph_.curves[b];
+    const int ns = static_cast<int>(other.segment_face.size());
     const Point2q A = bary(graph_.curves[c].points.back(), f);
-    for (int y : cand) {
-      const Vec3d Y = point_position(y);
-      const double d = std::sqrt((X.x - Y.x) * (X.x - Y.x) + (X.y - Y.y) * (X.y - Y.y) + (X.z - Y.z) * (X.z - Y.z));
-      if (!(d <= best_d)) continue;
-      const int ray = ray_of(y, f, dir + 2);
-      const std::vector<int> used = rays_at(y);
-      if (std::find(used.begin(), used.end(), ray) != used.end()) continue;
-      const Point2q Yq = bary(y, f);
-      if (along_face_edge(A, Yq)) continue;  // the new piece must cut the face
-      if (const auto mm = first_meet(f, A, Yq); mm && mm->point != y && !same(mm->at, Yq)) continue;
-      best = y;
-      best_d = d;
-    }
-    return best;
-  }
-
-  // As nearby_node, for a node of the other curve in the next face along it: curve c goes to the
-  // shared edge next to where the other curve crosses it (on c's side, one grid step away) and
-  // from there to the node. True when done (c has ended there).
-  bool snap_across(int c, int f, int dir, const Meet& m) {
-    if (options_.snap_distance <= 0) return false;
-    const TraceCurve& other = graph_.curves[m.curve];
-    const int s = m.segment;
-    const Point2q A = bary(graph_.curves[c].points.back(), f);
-    const Point2q Ba = bary(other.points[s], f), Bb = bary(other.points[s + 1], f);
-    const Sign side = orient2d(Ba, Bb, A);
+    const Sign side = orient2d(bary(other.points[s], f), bary(other.points[s + 1], f), A);
     if (side == Sign::Zero) return false;
-    const auto fv = mesh_.face_vertices(f);
     Vec3d X{0, 0, 0};
     {
+      const auto fv = mesh_.face_vertices(f);
       const double w1 = to_double(m.at.x), w2 = to_double(m.at.y), w0 = 1 - w1 - w2;
       for (int i = 0; i < 3; ++i) {
         const double w = i == 0 ? w0 : i == 1 ? w1 : w2;
         X.x += w * positions_[fv[i]].x, X.y += w * positions_[fv[i]].y, X.z += w * positions_[fv[i]].z;
       }
     }
-    const double limit = options_.snap_distance * mean_edge_;
-    for (const int s2 : {s + 1, s - 1}) {
-      if (s2 < 0 || s2 >= static_cast<int>(other.segment_face.size())) continue;
-      const int f2 = other.segment_face[s2];
-      if (f2 < 0 || f2 == f) continue;
-      const int qb = s2 == s + 1 ? other.points[s + 1] : other.points[s];  // where the other curve crosses
-      const TracePoint& Q = graph_.points[qb];
-      if (Q.kind != TracePoint::Kind::Edge) continue;
-      const int ce = Q.element;
-      // The half-edge of f on that edge, and the direction of c in f2.
-      int he = ce;
-      if (TriMesh::face(he) != f) he = mesh_.twin(ce);
-      if (he < 0 || TriMesh::face(he) != f || mesh_.twin(he) < 0 || TriMesh::face(mesh_.twin(he)) != f2) continue;
-      const int dir2 = (dir + frames_.shift[he]) % 4;
-      // Candidates: points on segment s2 where another curve ended.
-      std::vector<int> cand;
-      const int far = s2 == s + 1 ? other.points[s2 + 1] : other.points[s2];
-      if (graph_.points[far].kind != TracePoint::Kind::Vertex && point_uses_[far] > 1) cand.push_back(far);
-      for (const Hit& h : hits_)
-        if (h.curve == m.curve && h.segment == s2) cand.push_back(h.point);
-      for (const int y : cand) {
-        const Vec3d Y = point_position(y);
-        const double d = std::sqrt((X.x - Y.x) * (X.x - Y.x) + (X.y - Y.y) * (X.y - Y.y) + (X.z - Y.z) * (X.z - Y.z));
-        if (!(d <= limit)) continue;
-        const int ray = ray_of(y, f2, dir2 + 2);
-        const std::vector<int> used = rays_at(y);
-        if (std::find(used.begin(), used.end(), ray) != used.end()) continue;
-        // The crossing point one grid step from the other curve's, on c's side.
-        const Rational step = make_rational(Integer(1), Integer(1) << bits_);
-        for (const Rational t : {Rational(Q.t + step), Rational(Q.t - step)}) {
-          if (!(t > 0 && t < 1) || find_edge_point(ce, t) >= 0 || walk_at(ce, t)) continue;
-          const Rational tl = he == ce ? t : Rational(1 - t);
-          const Point2q qf = edge_bary(he, tl);
-          if (orient2d(Ba, Bb, qf) != side) continue;
-          if (along_face_edge(A, qf)) continue;  // the piece must cut the face
-          if (first_meet(f, A, qf)) continue;
-          const Point2q q2 = edge_bary(mesh_.twin(he), Rational(1 - tl)), y2 = bary(y, f2);
-          if (along_face_edge(q2, y2)) continue;
-          if (const auto mm = first_meet(f2, q2, y2); mm && mm->point != y && !same(mm->at, y2)) continue;
-          const int q = edge_point(ce, t);
-          add_segment(c, q, f, ray_of(q, f, dir + 2));
-          record_face_segment(c, f, dir);
-          graph_.curves[c].ray_forward.back() = ray_of(q, f2, dir2);
-          add_segment(c, y, f2, ray);
-          record_face_segment(c, f2, dir2);
-          finish(c, CurveEnd::Curve);
-          return true;
-        }
+    auto dist = [](const Vec3d& p, const Vec3d& q) {
+      return std::sqrt((p.x - q.x) * (p.x - q.x) + (p.y - q.y) * (p.y - q.y) + (p.z - q.z) * (p.z - q.z));
+    };
+    // Candidates along b in both directions: (distance, node point, its segment, direction).
+    struct Cand {
+      double d;
+      int point, segment, step;  // step +1: ahead along b, -1: behind
+    };
+    std::vector<Cand> cands;
+    for (const int step : {+1, -1}) {
+      double d = 0;
+      Vec3d prev = X;
+      for (int k = s; k >= 0 && k < ns; k += step) {
+        if (other.segment_face[k] < 0) break;  // a walk along an edge: no hugging there
+        // Hits on segment k (ends of other curves), and its far end if one ended there.
+        for (const Hit& h : hits_)
+          if (h.curve == b && h.segment == k) {
+            const double dh = d + dist(prev, point_position(h.point));
+            if (dh <= limit) cands.push_back({dh, h.point, k, step});
+          }
+        const int far = other.points[step > 0 ? k + 1 : k];
+        d += dist(prev, point_position(far));
+        prev = point_position(far);
+        if (d > limit || graph_.points[far].kind == TracePoint::Kind::Vertex) break;
+        if (point_uses_[far] > 1) cands.push_back({d, far, k, step});
       }
     }
+    std::sort(cands.begin(), cands.end(), [](const Cand& x, const Cand& y) {
+      return x.d != y.d ? x.d < y.d : x.point < y.point;
+    });
+    for (const Cand& cand : cands) {
+      // Only nodes on the hit segment's side of X that lie ahead of X in `step` direction, or on
+      // a later segment, are reached by the plan below; a hit on segment s itself behind X with
+      // step +1 is found again with step -1.
+      if (plan_and_go(c, f, dir, b, s, cand.segment, cand.step, cand.point, side)) return true;
+    }
     return false;
+  }
+
+  // The path of snap_to_node: from c's point in face f along curve b's segments s .. t (step +1
+  // or -1) to node y on segment t, on c's side `side` of b. Commits and ends c when every piece
+  // passes the exact checks; else changes nothing.
+  bool plan_and_go(int c, int f, int dir, int b, int s, int t, int step, int y, Sign side) {
+    const TraceCurve& other = graph_.curves[b];
+    struct Piece {
+      int face, dir;
+      int edge;          // canonical edge of the crossing point at the piece's end (-1: the node)
+      Rational t_edge;   // its parameter
+      int he;            // the half-edge of `face` on that edge
+    };
+    std::vector<Piece> pieces;
+    int cur_face = f, cur_dir = dir;
+    Point2q from = bary(graph_.curves[c].points.back(), f);
+    std::vector<std::pair<int, Rational>> fresh;  // edge points to create, in order
+    const Rational step_t = make_rational(Integer(1), Integer(1) << bits_);
+    for (int k = s;; k += step) {
+      if (k != t) {
+        // Cross the edge where b leaves segment k (towards t): next to b's crossing point.
+        const int qb = other.points[step > 0 ? k + 1 : k];
+        const TracePoint& Q = graph_.points[qb];
+        if (Q.kind != TracePoint::Kind::Edge) return false;
+        const int ce = Q.element;
+        int he = ce;
+        if (TriMesh::face(he) != cur_face) he = mesh_.twin(ce);
+        if (he < 0 || TriMesh::face(he) != cur_face || mesh_.twin(he) < 0) return false;
+        const Point2q Ba = bary(other.points[k], cur_face), Bb = bary(other.points[k + 1], cur_face);
+        bool placed = false;
+        for (const Rational tq : {Rational(Q.t + step_t), Rational(Q.t - step_t)}) {
+          if (!(tq > 0 && tq < 1) || find_edge_point(ce, tq) >= 0 || walk_at(ce, tq)) continue;
+          const Rational tl = he == ce ? tq : Rational(1 - tq);
+          const Point2q qf = edge_bary(he, tl);
+          if (orient2d(Ba, Bb, qf) != side) continue;
+          if (along_face_edge(from, qf) || first_meet(cur_face, from, qf)) return false;
+          pieces.push_back({cur_face, cur_dir, ce, tq, he});
+          from = edge_bary(mesh_.twin(he), Rational(1 - tl));
+          cur_dir = (cur_dir + frames_.shift[he]) % 4;
+          cur_face = TriMesh::face(mesh_.twin(he));
+          if (other.segment_face[k + step] != cur_face) return false;  // b goes on elsewhere
+          placed = true;
+          break;
+        }
+        if (!placed) return false;
+        continue;
+      }
+      // The last piece, into the node.
+      const Point2q yq = bary(y, cur_face);
+      if (along_face_edge(from, yq)) return false;
+      if (const auto mm = first_meet(cur_face, from, yq); mm && mm->point != y && !same(mm->at, yq)) return false;
+      const int ray = ray_of(y, cur_face, cur_dir + 2);
+      const std::vector<int> used = rays_at(y);
+      if (std::find(used.begin(), used.end(), ray) != used.end()) return false;
+      // Commit.
+      for (const Piece& pc : pieces) {
+        const int q = edge_point(pc.edge, pc.t_edge);
+        add_segment(c, q, pc.face, ray_of(q, pc.face, pc.dir + 2));
+        record_face_segment(c, pc.face, pc.dir);
+        const int g2 = TriMesh::face(mesh_.twin(pc.he));
+        graph_.curves[c].ray_forward.back() = ray_of(q, g2, (pc.dir + frames_.shift[pc.he]) % 4);
+      }
+      add_segment(c, y, cur_face, ray);
+      record_face_segment(c, cur_face, cur_dir);
+      finish(c, CurveEnd::Curve);
+      return true;
+    }
   }
 
   // A parallel meeting with a segment that ends at a vertex of face f (a curve taken into a cone,
@@ -1283,6 +1371,7 @@ class Tracer {
       }
     }
     const int target = r.target;
+    if (target >= 0) maybe_steer(r.where, [&](int x) { return x == target; });
     const Advance a = advance(r.where, [&](int x) { return x == target; });
     switch (a.kind) {
       case Advance::Kind::Stuck: finish_at(c, __LINE__, CurveEnd::Stuck); return;
@@ -1373,11 +1462,13 @@ class Tracer {
       return;
     }
     Runner& r = runners_[c];
+    const int steer = r.where.steer;
     r.where = Where{};
     r.where.face = TriMesh::face(tw);
     r.where.he = tw;
     r.where.s = 1 - a.t;
     r.where.dir = (dir + frames_.shift[he]) % 4;
+    r.where.steer = steer;
     cur.ray_forward.back() = ray_of(q, r.where.face, r.where.dir);
   }
 
@@ -1617,6 +1708,8 @@ class Tracer {
   std::vector<int> point_uses_;  // per point: occurrences in curves
   std::unordered_map<int, std::vector<int>> point_curves_;  // point -> curves through it (may repeat)
   double mean_edge_ = 0;
+  double steer_length_ = 0;
+  std::unordered_map<std::uint64_t, std::vector<int>> traced_hash_;  // steering: traced vertices by cell
   std::vector<char> dead_;       // per point: cut away with a merged curve
   std::vector<int> finished_elsewhere_;   // curves finished by another's step (merges)
   std::set<std::pair<int, int>> reserved_;  // (vertex point, ray) kept for a paired curve's arrival

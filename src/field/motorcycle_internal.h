@@ -38,6 +38,8 @@ struct FieldFrames {
   std::vector<Vec2d> dir;
   std::vector<char> good;  // the face has positive area and a direction with a tangent component
   std::vector<int> shift;
+  /// Per face: corner 0 and the frame's axes in 3D (to carry points and directions across).
+  std::vector<Vec3d> origin, axis_x, axis_y;
 
   FieldFrames(const TriMesh& mesh, const std::vector<Vec3d>& positions, const std::vector<Vec3d>& face_direction);
   /// Field direction j of face f (unit, in f's frame).

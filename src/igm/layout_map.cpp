@@ -93,10 +93,19 @@ void split_same_side_edges(PatchResult& r, std::vector<int>& mask, const Shared&
       const int second = static_cast<int>(r.local_triangles.size());
       T = {u, mid, x};
       r.local_triangles.push_back({mid, w, x});
-      // (w, x) moved to `second`; the new edges (mid, *) are never split.
+      // (w, x) moved to `second`; the new edges (mid, *) are indexed too: a later split of a chord
+      // of these triangles finds them as its third side (regression: elk, alignment 0).
       auto& wx = all.at(pair_key(w, x));
       if (wx[0] == t) wx[0] = second;
       else if (wx[1] == t) wx[1] = second;
+      auto add = [&](int p0, int p1, int tri) {
+        auto [it, fresh] = all.emplace(pair_key(p0, p1), std::array<int, 2>{tri, -1});
+        if (!fresh) it->second[1] = tri;
+      };
+      add(u, mid, t);
+      add(mid, x, t);
+      add(mid, x, second);
+      add(mid, w, second);
     }
     ++r.splits;
   }

@@ -1,7 +1,9 @@
 // The field-driven layout through the common back end (pipeline.h, LayoutKind::Field): cross field,
 // traced layout, quantization, per-patch maps, then smoothing, extraction and the certifier as for
 // every layout. Any stage that cannot finish returns nothing and says why; the caller falls back.
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -51,43 +53,75 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
   };
   const std::vector<Vec3d>& positions = *input.positions;
 
-  // --- field: the smoothest cross field and its cones ---
-  auto t0 = Clock::now();
-  CrossField field;
-  try {
-    field = compute_cross_field(*input.mesh, positions, options.field);
-  } catch (const Error& e) {
-    if (e.kind() != ErrorKind::Internal) throw;
-    return fail(std::string("field: ") + e.what());
+  // The quad size the sizing aims at (for the tracing's snapping): from the area and the quad
+  // count, or the edge length; 0 with a resolution (then the tracing's own default).
+  double quad_size = 0;
+  {
+    double area = 0;
+    for (const auto& t : *input.triangles) {
+      const Vec3d &p0 = positions[t[0]], &p1 = positions[t[1]], &p2 = positions[t[2]];
+      const Vec3d u{p1.x - p0.x, p1.y - p0.y, p1.z - p0.z}, v{p2.x - p0.x, p2.y - p0.y, p2.z - p0.z};
+      const Vec3d n{u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x};
+      area += 0.5 * std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+    }
+    if (options.resolution <= 0) {
+      if (options.edge_length > 0) quad_size = options.edge_length;
+      else quad_size = std::sqrt(area / static_cast<double>(options.quads > 0 ? options.quads : kDefaultQuads));
+    }
+    if (!std::isfinite(quad_size)) quad_size = 0;
   }
-  stats.cross_field = field.stats;
-  stage.done("field", t0,
-             std::to_string(field.cones.size()) + " cones (" + cones_summary(field.stats) + "), " +
-                 std::to_string(field.stats.iterations) + " iterations");
 
-  // --- trace: the separatrices, the patches ---
-  t0 = Clock::now();
-  std::vector<Vec3d> direction(input.mesh->num_faces());
-  for (int f = 0; f < input.mesh->num_faces(); ++f) direction[f] = field_direction(field, f, 0);
+  // --- field and trace, for each attempt's curvature alignment until a layout is built ---
+  std::vector<double> alignments{options.field.alignment};
+  for (const double w : options.field_retry_alignments)
+    if (std::find(alignments.begin(), alignments.end(), w) == alignments.end()) alignments.push_back(w);
   FieldLayoutResult traced;
-  try {
-    traced = build_field_layout(*input.mesh, positions, direction, options.field_layout);
-  } catch (const std::exception& e) {
-    // A broken invariant of the tracing is a bug; the surface still gets a certified output.
-    return fail(std::string("trace: internal error: ") + e.what());
+  std::string first_failure;
+  for (std::size_t k = 0; k < alignments.size(); ++k) {
+    const std::string attempt_name = alignments.size() > 1 ? " (attempt " + std::to_string(k + 1) + ")" : "";
+    auto t0 = Clock::now();
+    CrossFieldOptions fo = options.field;
+    fo.alignment = alignments[k];
+    CrossField field;
+    try {
+      field = compute_cross_field(*input.mesh, positions, fo);
+    } catch (const Error& e) {
+      if (e.kind() != ErrorKind::Internal) throw;
+      if (first_failure.empty()) first_failure = std::string("field: ") + e.what();
+      continue;
+    }
+    stats.cross_field = field.stats;
+    stage.done("field", t0,
+               std::to_string(field.cones.size()) + " cones (" + cones_summary(field.stats) + "), alignment " +
+                   std::to_string(static_cast<int>(fo.alignment)) + attempt_name);
+    t0 = Clock::now();
+    std::vector<Vec3d> direction(input.mesh->num_faces());
+    for (int f = 0; f < input.mesh->num_faces(); ++f) direction[f] = field_direction(field, f, 0);
+    FieldLayoutOptions lo = options.field_layout;
+    if (lo.trace.snap_length <= 0 && quad_size > 0) lo.trace.snap_length = 0.5 * quad_size;
+    try {
+      traced = build_field_layout(*input.mesh, positions, direction, lo);
+    } catch (const std::exception& e) {
+      // A broken invariant of the tracing is a bug; the surface still gets a certified output.
+      traced = FieldLayoutResult{};
+      traced.failure = std::string("internal error: ") + e.what();
+    }
+    stats.field_layout = traced.stats;
+    stage.done("trace", t0,
+               traced.ok ? std::to_string(traced.stats.trace.curves) + " curves, " + std::to_string(traced.stats.patches) +
+                               " patches, " + std::to_string(traced.stats.t_junctions) + " T-junctions, " +
+                               std::to_string(traced.stats.rounds) + " rounds"
+                         : "no layout: " + traced.failure);
+    if (traced.ok) break;
+    if (first_failure.empty()) first_failure = "trace: " + traced.failure;
   }
-  stats.field_layout = traced.stats;
-  if (!traced.ok) return fail("trace: " + traced.failure);
+  if (!traced.ok) return fail(first_failure);
   stats.refined_vertices = traced.stats.refined_vertices;
   stats.refined_faces = traced.stats.refined_triangles;
   stats.layout_quads = traced.stats.patches;
-  stage.done("trace", t0,
-             std::to_string(traced.stats.trace.curves) + " curves, " + std::to_string(traced.stats.patches) +
-                 " patches, " + std::to_string(traced.stats.t_junctions) + " T-junctions, " +
-                 std::to_string(traced.stats.rounds) + " rounds");
 
   // --- quantize: integer arc lengths ---
-  t0 = Clock::now();
+  auto t0 = Clock::now();
   const double scale = unit_scale(positions);
   QuantizeOptions qo;
   const SizingOptions sizing = sizing_options(options, scale);

@@ -71,9 +71,11 @@ struct TraceOptions {
   /// slope x distance along); when two rays take each other so, only one curve is traced, from the
   /// first, and it ends in the other's vertex by the other's ray. 0: no such pairs.
   double capture_slope = 0.35;
-  /// A curve ending on another one within this many mean edge lengths (3D) of a point where a
-  /// curve from the other side ended already ends at that point (one node instead of two a hair
-  /// apart, whose short arc between them no integer length could fit). 0: never.
+  /// A curve ending on another one within snap_length (3D, along the other curve; 0: snap_distance
+  /// mean edge lengths) of a node where a curve from the other side ended already ends at that
+  /// node (one node instead of two a short way apart, whose short arc no integer length could fit;
+  /// the pipeline sets snap_length from the quad size). Both 0: never.
+  double snap_length = 0;
   double snap_distance = 0.5;
   /// Vertices whose every field direction is traced as well, even where the field is regular
   /// (build_field_layout seeds patches that are not disks this way).
@@ -96,6 +98,7 @@ struct TraceStats {
   int same_direction_meets = 0;  // of those, the two curves running the same way
   int slides = 0;             // curves that ran along the edge they entered by
   int blocked_arrivals = 0;   // curves that reached a vertex by a ray already taken
+  int steers = 0;             // curves that headed straight for a cone within the snap length
   int node_snaps = 0;         // curves ended at a node close by instead of a new T-junction
   int vertex_joins = 0;       // parallel meetings resolved by going on to the vertex ahead
   int dropped = 0;            // of those, curves removed whole (nothing rested on them)

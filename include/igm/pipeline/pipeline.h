@@ -91,8 +91,11 @@ struct PipelineOptions {
   /// Genus 0 only: the four cone vertices (input vertex ids) in path order A, B, C, D; empty: the
   /// deterministic default (topology/sphere_cut.h). Bad lists give igm::Error(InvalidArgument).
   std::vector<int> cones;
-  /// The field layout's cross field and tracing (LayoutKind::Field).
+  /// The field layout's cross field and tracing (LayoutKind::Field). Where no layout can be built
+  /// from the field, the field is computed again with each of field_retry_alignments as its
+  /// curvature alignment (CrossFieldOptions::alignment), in order, before falling back.
   CrossFieldOptions field;
+  std::vector<double> field_retry_alignments{0, 10};
   FieldLayoutOptions field_layout;
   /// Refinement bounds of the embedding (Tutte for g >= 1, orbifold Tutte for g = 0).
   TutteOptions tutte;
