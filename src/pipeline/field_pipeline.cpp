@@ -91,6 +91,16 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
       continue;
     }
     stats.cross_field = field.stats;
+    // A cone of valence 1 (a quarter turn of angle) gives a valid IGM but no quad mesh: a quad
+    // would close on itself around it.
+    int bad_cone = -1;
+    for (const Cone& cone : field.cones)
+      if (cone.valence <= 1) bad_cone = cone.vertex;
+    if (bad_cone >= 0) {
+      stage.done("field", t0, "a cone of valence 1 at vertex " + std::to_string(bad_cone) + attempt_name);
+      if (first_failure.empty()) first_failure = "field: a cone of valence 1 at vertex " + std::to_string(bad_cone);
+      continue;
+    }
     stage.done("field", t0,
                std::to_string(field.cones.size()) + " cones (" + cones_summary(field.stats) + "), alignment " +
                    std::to_string(static_cast<int>(fo.alignment)) + attempt_name);
