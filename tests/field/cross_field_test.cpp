@@ -22,6 +22,7 @@
 #include "igm/mesh/validate.h"
 #include "igm/mesh/validate_surfaces.h"
 #include "test_data.h"
+#include "test_surfaces.h"
 
 using namespace igm;
 
@@ -30,10 +31,10 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kQuarter = kPi / 2;
 
-struct Surface {
-  TriMesh mesh;
-  std::vector<Vec3d> positions;
-};
+using igm_test::from;
+using igm_test::subdivided_cube;
+using igm_test::Surface;
+using igm_test::torus;
 
 Surface surface_of(const SurfaceComponent& c) {
   return {TriMesh::from_triangles(static_cast<int>(c.positions.size()), c.triangles, !c.boundary_loops.empty()),
@@ -62,77 +63,6 @@ Surface generated(int genus, std::int64_t faces, int boundaries, std::uint64_t s
   const SurfaceSet set = validate_surfaces(generate_mesh(o));
   REQUIRE(set.components.size() == 1);
   return surface_of(set.components[0]);
-}
-
-Surface from(const std::vector<Vec3d>& positions, const std::vector<std::array<int, 3>>& tris, bool open = false) {
-  return {TriMesh::from_triangles(static_cast<int>(positions.size()), tris, open), positions};
-}
-
-// A cube [-1, 1]^3 with every face cut into n x n squares, each split along a diagonal whose
-// direction alternates (no symmetry of the triangulation helps); shared vertices.
-Surface subdivided_cube(int n) {
-  std::vector<Vec3d> pos;
-  std::vector<std::array<int, 3>> tris;
-  std::map<std::array<long, 3>, int> id;
-  auto vertex = [&](const Vec3d& p) {
-    const std::array<long, 3> key{std::lround(p.x * n * 2), std::lround(p.y * n * 2), std::lround(p.z * n * 2)};
-    auto it = id.find(key);
-    if (it != id.end()) return it->second;
-    id[key] = static_cast<int>(pos.size());
-    pos.push_back(p);
-    return static_cast<int>(pos.size()) - 1;
-  };
-  for (int axis = 0; axis < 3; ++axis)
-    for (int side : {-1, 1}) {
-      // (u, v, normal) with u x v = normal (outward).
-      auto point = [&](double a, double b) {
-        Vec3d p;
-        double c[3];
-        c[axis] = side;
-        c[(axis + 1) % 3] = side > 0 ? a : b;
-        c[(axis + 2) % 3] = side > 0 ? b : a;
-        p = {c[0], c[1], c[2]};
-        return p;
-      };
-      for (int i = 0; i < n; ++i)
-        for (int j = 0; j < n; ++j) {
-          const double a0 = -1 + 2.0 * i / n, a1 = -1 + 2.0 * (i + 1) / n;
-          const double b0 = -1 + 2.0 * j / n, b1 = -1 + 2.0 * (j + 1) / n;
-          const int v00 = vertex(point(a0, b0)), v10 = vertex(point(a1, b0)), v11 = vertex(point(a1, b1)),
-                    v01 = vertex(point(a0, b1));
-          if ((i + j) % 2 == 0) {
-            tris.push_back({v00, v10, v11});
-            tris.push_back({v00, v11, v01});
-          } else {
-            tris.push_back({v00, v10, v01});
-            tris.push_back({v10, v11, v01});
-          }
-        }
-    }
-  return from(pos, tris);
-}
-
-// A torus of revolution (radii R > r) on an nu x nv grid, diagonals alternating.
-Surface torus(double R, double r, int nu, int nv) {
-  std::vector<Vec3d> pos;
-  std::vector<std::array<int, 3>> tris;
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      const double u = 2 * kPi * i / nu, v = 2 * kPi * j / nv;
-      pos.push_back({(R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
-    }
-  auto id = [&](int i, int j) { return ((i + nu) % nu) * nv + (j + nv) % nv; };
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      if ((i + j) % 2 == 0) {
-        tris.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-        tris.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-      } else {
-        tris.push_back({id(i, j), id(i + 1, j), id(i, j + 1)});
-        tris.push_back({id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
-      }
-    }
-  return from(pos, tris);
 }
 
 Vec3d sub(const Vec3d& a, const Vec3d& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }

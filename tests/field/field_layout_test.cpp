@@ -1,0 +1,199 @@
+// Tests of the separatrices' motorcycle graph (field/motorcycle.h) and the field layout built from
+// it (field/field_layout.h): the cube's six faces, a torus without cones (seeded), generated
+// surfaces of genus 0 to 20, open surfaces, the independent checks of both structures (and that
+// they catch broken ones), determinism; every layout passes check_surface_layout.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "igm/field/cross_field.h"
+#include "igm/field/field_layout.h"
+#include "igm/field/motorcycle.h"
+#include "igm/layout/surface_layout.h"
+#include "igm/io/read_mesh.h"
+#include "igm/mesh/generate.h"
+#include "igm/mesh/validate.h"
+#include "igm/mesh/validate_surfaces.h"
+#include "test_data.h"
+#include "test_surfaces.h"
+
+using namespace igm;
+using igm_test::Surface;
+
+namespace {
+
+std::vector<Vec3d> directions(const Surface& s, const CrossFieldOptions& o = {}) {
+  const CrossField f = compute_cross_field(s.mesh, s.positions, o);
+  std::vector<Vec3d> d(s.mesh.num_faces());
+  for (int f_ = 0; f_ < s.mesh.num_faces(); ++f_) d[f_] = field_direction(f, f_, 0);
+  return d;
+}
+
+Surface generated(int genus, std::int64_t faces, int boundaries, std::uint64_t seed) {
+  GenerateOptions o;
+  o.genus = genus;
+  o.faces = faces;
+  o.boundaries = boundaries;
+  o.seed = seed;
+  const SurfaceSet set = validate_surfaces(generate_mesh(o));
+  REQUIRE(set.components.size() == 1);
+  const SurfaceComponent& c = set.components[0];
+  return {TriMesh::from_triangles(static_cast<int>(c.positions.size()), c.triangles, boundaries > 0), c.positions};
+}
+
+// The layout's facts every test checks: the independent check, and every patch a four-sided disk
+// whose sides are made of arcs of the layout.
+void check_layout(const FieldLayoutResult& r, const std::string& what) {
+  INFO(what << ": " << r.failure);
+  REQUIRE(r.ok);
+  CHECK(check_surface_layout(r.layout) == "");
+  CHECK(r.stats.patches == static_cast<int>(r.layout.patches.size()));
+  CHECK(r.layout.num_input_vertices > 0);
+}
+
+}  // namespace
+
+TEST_CASE("field layout: the cube's separatrices join its corners, six square patches") {
+  for (int n : {1, 3}) {
+    const Surface s = igm_test::subdivided_cube(n);
+    const TraceGraph g = trace_motorcycles(s.mesh, s.positions, directions(s));
+    CHECK(check_trace_graph(s.mesh, g) == "");
+    CHECK(g.stats.cones == 8);
+    // Every separatrix runs from a corner to the next one: 12 curves, all ending at cones.
+    CHECK(g.curves.size() == 12);
+    for (const TraceCurve& c : g.curves) CHECK(c.end == CurveEnd::Cone);
+    const FieldLayoutResult r = build_field_layout(s.mesh, s.positions, directions(s));
+    check_layout(r, "cube " + std::to_string(n));
+    CHECK(r.layout.patches.size() == 6);
+    CHECK(r.layout.arcs.size() == 12);
+    for (const LayoutPatch& p : r.layout.patches)
+      for (const auto& side : p.sides) CHECK(side.size() == 1);  // no T-junction
+  }
+}
+
+TEST_CASE("field layout: a torus without cones gets a seed and a layout of disks") {
+  const Surface s = igm_test::torus(3, 1, 48, 16);
+  CrossFieldOptions o;
+  o.alignment = 0;
+  const std::vector<Vec3d> d = directions(s, o);
+  const TraceGraph g = trace_motorcycles(s.mesh, s.positions, d);
+  CHECK(g.stats.cones == 0);
+  CHECK(g.curves.empty());
+  const FieldLayoutResult r = build_field_layout(s.mesh, s.positions, d);
+  check_layout(r, "torus");
+  CHECK(r.stats.seeds >= 1);
+  CHECK(r.stats.rounds >= 2);
+  // Without seeding rounds the one patch is the whole torus: not a disk, and said so.
+  FieldLayoutOptions none;
+  none.max_seed_rounds = 0;
+  const FieldLayoutResult bare = build_field_layout(s.mesh, s.positions, d, none);
+  CHECK_FALSE(bare.ok);
+  CHECK(bare.failure.find("no boundary") != std::string::npos);
+  CHECK(bare.stats.non_disk_patches == 1);
+}
+
+TEST_CASE("field layout: generated closed surfaces of genus 0 to 20") {
+  for (int genus : {0, 1, 3, 8, 20}) {
+    const Surface s = generated(genus, 6000, 0, 7);
+    const std::vector<Vec3d> d = directions(s);
+    const TraceGraph g = trace_motorcycles(s.mesh, s.positions, d);
+    CHECK(check_trace_graph(s.mesh, g) == "");
+    // Poincare-Hopf on the tracing's own valences.
+    int sum = 0;
+    for (int v = 0; v < s.mesh.num_vertices(); ++v) sum += 4 - g.valence[v];
+    CHECK(sum == 8 - 8 * genus);
+    check_layout(build_field_layout(s.mesh, s.positions, d), "genus " + std::to_string(genus));
+  }
+}
+
+TEST_CASE("field layout: open surfaces, the boundary on arcs with no patch outside") {
+  for (const auto& [genus, loops] : std::vector<std::pair<int, int>>{{0, 1}, {0, 3}, {1, 3}, {2, 1}}) {
+    const Surface s = generated(genus, 4000, loops, 3);
+    const FieldLayoutResult r = build_field_layout(s.mesh, s.positions, directions(s));
+    check_layout(r, "genus " + std::to_string(genus) + ", " + std::to_string(loops) + " loops");
+    int boundary_arcs = 0;
+    for (const LayoutArc& a : r.layout.arcs) boundary_arcs += a.patch[1] < 0;
+    CHECK(boundary_arcs >= loops);
+  }
+  IGM_REQUIRE_DATA(dir);
+  for (const char* name : {"plane.off", "head.off", "open_cube.off", "triangular_hole.off"}) {
+    const SurfaceSet set = validate_surfaces(read_soup(dir / "meshes/open" / name));
+    const SurfaceComponent& c = set.components[0];
+    const Surface s{TriMesh::from_triangles(static_cast<int>(c.positions.size()), c.triangles, true), c.positions};
+    check_layout(build_field_layout(s.mesh, s.positions, directions(s)), name);
+  }
+}
+
+TEST_CASE("field layout: the same input gives the same layout") {
+  const Surface s = generated(3, 3000, 0, 11);
+  const std::vector<Vec3d> d = directions(s);
+  const FieldLayoutResult a = build_field_layout(s.mesh, s.positions, d), b = build_field_layout(s.mesh, s.positions, d);
+  REQUIRE(a.ok);
+  REQUIRE(b.ok);
+  CHECK(a.layout.triangles == b.layout.triangles);
+  CHECK(a.layout.triangle_patch == b.layout.triangle_patch);
+  REQUIRE(a.layout.locations.size() == b.layout.locations.size());
+  for (std::size_t v = 0; v < a.layout.locations.size(); ++v) {
+    CHECK(a.layout.locations[v].v == b.layout.locations[v].v);
+    CHECK(a.layout.locations[v].w == b.layout.locations[v].w);
+  }
+  REQUIRE(a.layout.arcs.size() == b.layout.arcs.size());
+  for (std::size_t k = 0; k < a.layout.arcs.size(); ++k) CHECK(a.layout.arcs[k].vertices == b.layout.arcs[k].vertices);
+}
+
+TEST_CASE("field layout: check_trace_graph catches broken graphs") {
+  const Surface s = generated(2, 3000, 0, 5);
+  const TraceGraph good = trace_motorcycles(s.mesh, s.positions, directions(s));
+  REQUIRE(check_trace_graph(s.mesh, good) == "");
+  REQUIRE(!good.curves.empty());
+  // A curve's point moved onto another face's interior: its segment leaves its face.
+  {
+    TraceGraph g = good;
+    for (TracePoint& p : g.points)
+      if (p.kind == TracePoint::Kind::Face) {
+        p.element = (p.element + 1) % s.mesh.num_faces();
+        break;
+      }
+    for (TracePoint& p : g.points)
+      if (p.kind == TracePoint::Kind::Edge) {
+        p.t = 0;
+        break;
+      }
+    CHECK(check_trace_graph(s.mesh, g) != "");
+  }
+  // A curve given a ray its point does not have.
+  {
+    TraceGraph g = good;
+    g.curves[0].ray_forward[0] = g.ray_count[g.curves[0].points[0]] + 3;
+    CHECK(check_trace_graph(s.mesh, g).find("ray out of range") != std::string::npos);
+  }
+  // Two curves crossing without a point in common: one curve's crossing of an edge swapped with
+  // the other's, by giving them the same parameter on one edge.
+  {
+    TraceGraph g = good;
+    // A segment of zero length.
+    TraceCurve& c = g.curves[0];
+    c.points.insert(c.points.begin() + 1, c.points[1]);
+    c.segment_face.insert(c.segment_face.begin() + 1, c.segment_face[0]);
+    c.ray_back.insert(c.ray_back.begin() + 1, -1);
+    c.ray_forward.insert(c.ray_forward.begin() + 1, -1);
+    CHECK(check_trace_graph(s.mesh, g).find("zero length") != std::string::npos);
+  }
+}
+
+TEST_CASE("field layout: sizes that do not match are typed errors") {
+  const Surface s = igm_test::subdivided_cube(1);
+  std::vector<Vec3d> d = directions(s);
+  d.pop_back();
+  CHECK_THROWS_AS(trace_motorcycles(s.mesh, s.positions, d), Error);
+  CHECK_THROWS_AS(build_field_layout(s.mesh, s.positions, d), Error);
+  TraceOptions bad;
+  bad.parameter_bits = 60;
+  CHECK_THROWS_AS(trace_motorcycles(s.mesh, s.positions, directions(s), bad), Error);
+  TraceOptions seed;
+  seed.seeds = {s.mesh.num_vertices()};
+  CHECK_THROWS_AS(trace_motorcycles(s.mesh, s.positions, directions(s), seed), Error);
+}
