@@ -294,7 +294,7 @@ int run_command(const std::vector<std::string_view>& args) {
       if (!parse_double(v, w) || !(w >= 0) || !std::isfinite(w))
         return usage("--field-alignment needs a number >= 0 (0: the smoothest field), got '" + std::string(v) + "'");
       options.field.alignment = w;
-      options.field_retry_alignments.clear();
+      options.field_attempts.clear();
       continue;
     }
     if (a == "--layout" || a == "--map" || a == "--edge-length" || a == "--smooth-seconds") {

@@ -72,24 +72,39 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
   }
 
   // --- field and trace, for each attempt's curvature alignment until a layout is built ---
-  std::vector<double> alignments{options.field.alignment};
-  for (const double w : options.field_retry_alignments)
-    if (std::find(alignments.begin(), alignments.end(), w) == alignments.end()) alignments.push_back(w);
+  // The attempts: the options' own, then field_attempts (the same field computed once).
+  struct Attempt {
+    CrossFieldOptions field;
+    double snap;  // in quad sizes; <= 0: the trace options' own snap length
+  };
+  std::vector<Attempt> attempts{{options.field, options.field_layout.trace.snap_length > 0 ? 0.0 : 0.5}};
+  for (const PipelineOptions::FieldAttempt& a : options.field_attempts) {
+    CrossFieldOptions fo = options.field;
+    fo.alignment = a.alignment;
+    fo.remove_close_pairs = a.cleanup;
+    attempts.push_back({fo, a.snap});
+  }
+  std::vector<std::pair<CrossFieldOptions, CrossField>> fields;  // computed so far
   FieldLayoutResult traced;
   std::string first_failure;
-  for (std::size_t k = 0; k < alignments.size(); ++k) {
-    const std::string attempt_name = alignments.size() > 1 ? " (attempt " + std::to_string(k + 1) + ")" : "";
+  for (std::size_t k = 0; k < attempts.size(); ++k) {
+    const std::string attempt_name = attempts.size() > 1 ? " (attempt " + std::to_string(k + 1) + ")" : "";
     auto t0 = Clock::now();
-    CrossFieldOptions fo = options.field;
-    fo.alignment = alignments[k];
-    CrossField field;
-    try {
-      field = compute_cross_field(*input.mesh, positions, fo);
-    } catch (const Error& e) {
-      if (e.kind() != ErrorKind::Internal) throw;
-      if (first_failure.empty()) first_failure = std::string("field: ") + e.what();
-      continue;
+    const CrossFieldOptions& fo = attempts[k].field;
+    const CrossField* known = nullptr;
+    for (const auto& [o, f] : fields)
+      if (o.alignment == fo.alignment && o.remove_close_pairs == fo.remove_close_pairs) known = &f;
+    if (!known) {
+      try {
+        fields.emplace_back(fo, compute_cross_field(*input.mesh, positions, fo));
+      } catch (const Error& e) {
+        if (e.kind() != ErrorKind::Internal) throw;
+        if (first_failure.empty()) first_failure = std::string("field: ") + e.what();
+        continue;
+      }
+      known = &fields.back().second;
     }
+    const CrossField& field = *known;
     stats.cross_field = field.stats;
     // A cone of valence 1 (a quarter turn of angle) gives a valid IGM but no quad mesh: a quad
     // would close on itself around it.
@@ -103,12 +118,13 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
     }
     stage.done("field", t0,
                std::to_string(field.cones.size()) + " cones (" + cones_summary(field.stats) + "), alignment " +
-                   std::to_string(static_cast<int>(fo.alignment)) + attempt_name);
+                   std::to_string(static_cast<int>(fo.alignment)) + (fo.remove_close_pairs ? "" : ", close pairs kept") +
+                   attempt_name);
     t0 = Clock::now();
     std::vector<Vec3d> direction(input.mesh->num_faces());
     for (int f = 0; f < input.mesh->num_faces(); ++f) direction[f] = field_direction(field, f, 0);
     FieldLayoutOptions lo = options.field_layout;
-    if (lo.trace.snap_length <= 0 && quad_size > 0) lo.trace.snap_length = 0.5 * quad_size;
+    if (attempts[k].snap > 0 && quad_size > 0) lo.trace.snap_length = attempts[k].snap * quad_size;
     try {
       traced = build_field_layout(*input.mesh, positions, direction, lo);
     } catch (const std::exception& e) {

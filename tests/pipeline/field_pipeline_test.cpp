@@ -142,7 +142,7 @@ TEST_CASE("field pipeline: a layout that cannot be built falls back, and says wh
   const ValidMesh mesh = igm_test::generated_mesh(1, 2000, 2);
   PipelineOptions o = field_options(800);
   o.field.alignment = 0;
-  o.field_retry_alignments.clear();
+  o.field_attempts.clear();
   o.field_layout.max_seed_rounds = 0;
   o.field_layout.max_ban_rounds = 0;
   const PipelineResult r = compute_igm(mesh, o);

@@ -91,12 +91,20 @@ struct PipelineOptions {
   /// Genus 0 only: the four cone vertices (input vertex ids) in path order A, B, C, D; empty: the
   /// deterministic default (topology/sphere_cut.h). Bad lists give igm::Error(InvalidArgument).
   std::vector<int> cones;
-  /// The field layout's cross field and tracing (LayoutKind::Field). Where no layout can be built
-  /// from the field, the field is computed again with each of field_retry_alignments as its
-  /// curvature alignment (CrossFieldOptions::alignment), in order, before falling back.
+  /// The field layout's cross field and tracing (LayoutKind::Field). The layout is tried with
+  /// `field` and field_layout first, then, where no layout can be built, with each of
+  /// field_attempts in order (docs/field.md, "Attempts"), before falling back.
   CrossFieldOptions field;
-  std::vector<double> field_retry_alignments{0, 10};
   FieldLayoutOptions field_layout;
+  struct FieldAttempt {
+    double alignment = 0;   // CrossFieldOptions::alignment
+    bool cleanup = true;    // CrossFieldOptions::remove_close_pairs
+    double snap = 0.5;      // TraceOptions::snap_length in units of the quad size
+  };
+  /// Measured over the shared and generated meshes (bench/README.md): each one rescues layouts the
+  /// others miss. Empty: one attempt only.
+  std::vector<FieldAttempt> field_attempts{{0, true, 0.5}, {0, false, 0.5}, {0, true, 1.0}, {10, true, 0.5},
+                                           {300, true, 0.5}, {1000, true, 0.5}};
   /// Refinement bounds of the embedding (Tutte for g >= 1, orbifold Tutte for g = 0).
   TutteOptions tutte;
   std::size_t max_witnesses = 20;
