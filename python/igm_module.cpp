@@ -57,7 +57,8 @@ const std::map<std::string, Setter>& option_setters() {
       {"resolution", field(&igm::PipelineOptions::resolution)},
       {"edge_length", field(&igm::PipelineOptions::edge_length)},
       {"quads", field(&igm::PipelineOptions::quads)},
-      {"layout", choice(&igm::PipelineOptions::layout, {{"spread", igm::LayoutKind::Spread},
+      {"layout", choice(&igm::PipelineOptions::layout, {{"field", igm::LayoutKind::Field},
+                                                         {"spread", igm::LayoutKind::Spread},
                                                          {"kite", igm::LayoutKind::Kite},
                                                          {"paper", igm::LayoutKind::Paper}})},
       {"map", choice(&igm::PipelineOptions::patch_map,
@@ -136,6 +137,8 @@ py::dict stats_dict(const igm::PipelineStats& st) {
                   "output_triangles"_a = st.output_triangles, "layout_quads"_a = st.layout_quads, "quads"_a = st.quads,
                   "chords"_a = st.chords, "edge_length"_a = st.edge_length, "max_uv_bits"_a = st.max_uv_bits,
                   "smooth_iterations"_a = st.smooth.iterations, "smooth_skipped"_a = st.smooth_skipped,
+                  "layout"_a = st.layout,
+                  "layout_fallback"_a = st.layout_fallback.empty() ? py::object(py::none()) : py::object(py::str(st.layout_fallback)),
                   "stages"_a = stages);
 }
 

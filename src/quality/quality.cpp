@@ -1,6 +1,7 @@
 #include "igm/quality/quality.h"
 
 #include <algorithm>
+#include <map>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -407,6 +408,20 @@ QuadQuality measure_quads(const std::vector<Vec3d>& quad_positions,
   for (const auto& q : quads)
     for (int v : q) ++around[v];
   for (int k : around) ++r.valence[k];
+  {
+    // Boundary vertices: on an edge that one quad has (an edge counted once over all quads).
+    std::map<std::pair<int, int>, int> edges;
+    for (const auto& q : quads)
+      for (int i = 0; i < 4; ++i) ++edges[{std::min(q[i], q[(i + 1) % 4]), std::max(q[i], q[(i + 1) % 4])}];
+    std::vector<char> boundary(qp.size(), 0);
+    for (const auto& [e, n] : edges)
+      if (n == 1) boundary[e.first] = boundary[e.second] = 1;
+    for (std::size_t v = 0; v < around.size(); ++v) {
+      if (boundary[v] || around[v] == 0) continue;
+      if (around[v] != 4) ++r.irregular_vertices;
+      r.max_valence = std::max(r.max_valence, around[v]);
+    }
+  }
 
   std::vector<double> sj(quads.size()), area(quads.size()), deviation;
   deviation.reserve(4 * quads.size());
@@ -465,6 +480,8 @@ std::string to_json(const QuadQuality& q) {
   std::string valence = "{";
   for (const auto& [k, n] : q.valence) put_count(valence, std::to_string(k).c_str(), n);
   o += valence + "}";
+  put_count(o, "irregular_vertices", q.irregular_vertices);
+  put_count(o, "max_valence", q.max_valence);
   put_field(o, "sj_min", q.sj_min);
   put_field(o, "sj_p5", q.sj_p5);
   put_field(o, "sj_median", q.sj_median);
@@ -491,10 +508,10 @@ std::string summary_line(const IgmQuality& igm, const QuadQuality& quads) {
     std::snprintf(distance, sizeof distance, "distance max %.3g %%", 100 * quads.distance_max);
   char line[512];
   std::snprintf(line, sizeof line,
-                "quads %d: SJ median %.2f p5 %.2f min %.2f, <0.5 %.1f %%, <=0 %.1f %%, angle dev "
-                "median %.1f deg, area/input %.3f, smallest half %.0f %%, %s; IGM conformal p99 "
-                "%.3g, area p99 %.3g",
-                quads.quads, quads.sj_median, quads.sj_p5, quads.sj_min, 100 * quads.sj_below_half,
+                "quads %d (%d irregular vertices, valence <= %d): SJ median %.2f p5 %.2f min %.2f, <0.5 %.1f %%, "
+                "<=0 %.1f %%, angle dev median %.1f deg, area/input %.3f, smallest half %.0f %%, %s; IGM "
+                "conformal p99 %.3g, area p99 %.3g",
+                quads.quads, quads.irregular_vertices, quads.max_valence, quads.sj_median, quads.sj_p5, quads.sj_min, 100 * quads.sj_below_half,
                 100 * quads.sj_nonpositive, quads.angle_deviation_median, quads.area_ratio,
                 100 * quads.smallest_half_area, distance, igm.conformal.p99, igm.area.p99);
   return line;

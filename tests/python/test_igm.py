@@ -176,6 +176,10 @@ def test_sizes_layouts_and_the_quality_report():
     assert -1.0 <= q["quads"]["sj_median"] <= 1.0
     k = igm.compute(V, F, layout="kite", map="affine", edge_length=1.0, quality=False)
     assert k["certified"] and k["quality"] is None and k["stats"]["layout_quads"] == 8
+    assert st["layout"] == "spread" and st["layout_fallback"] is None
+    f = igm.compute(V, F, quads=800, layout="field")
+    assert f["certified"] and f["stats"]["layout"] == "field" and f["stats"]["layout_fallback"] is None
+    assert f["quality"]["quads"]["irregular_vertices"] >= 8  # a genus-2 field: at least 8 valence-5 cones
     with pytest.raises(igm.Error) as e:
         igm.compute(V, F, layout="round")
     assert e.value.kind == "invalid_argument"

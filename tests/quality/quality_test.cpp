@@ -95,6 +95,25 @@ TEST_CASE("weighted_quantiles: the smallest value whose weight up to it reaches 
   CHECK(quantiles({kInf, 1, 2}, {0.5, 1}) == std::vector<double>{2, kInf});
 }
 
+TEST_CASE("measure_quads: irregular vertices are interior ones of valence other than 4") {
+  // The cube without one face: the four corners of the missing face are on the boundary (left
+  // out), the other four interior of valence 3.
+  QuadMesh open = unit_cube();
+  open.quads.pop_back();
+  const QuadQuality q = measure(open, triangulated(open), false);
+  CHECK(q.irregular_vertices == 4);
+  CHECK(q.max_valence == 3);
+  // A 2 x 2 grid: one interior vertex of valence 4, nothing irregular.
+  QuadMesh grid;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) grid.positions.push_back({double(i), double(j), 0});
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) grid.quads.push_back({3 * j + i, 3 * j + i + 1, 3 * j + i + 4, 3 * j + i + 3});
+  const QuadQuality g = measure(grid, triangulated(grid), false);
+  CHECK(g.irregular_vertices == 0);
+  CHECK(g.max_valence == 4);
+}
+
 TEST_CASE("measure_quads: the unit cube against its triangulation is perfect") {
   const QuadMesh cube = unit_cube();
   const QuadQuality q = measure(cube, triangulated(cube), true);
@@ -102,6 +121,8 @@ TEST_CASE("measure_quads: the unit cube against its triangulation is perfect") {
   CHECK(q.vertices == 8);
   CHECK(q.degenerate == 0);
   CHECK(q.valence == std::map<int, int>{{3, 8}});
+  CHECK(q.irregular_vertices == 8);  // every corner: closed, valence 3
+  CHECK(q.max_valence == 3);
   CHECK(q.sj_min == 1);
   CHECK(q.sj_p5 == 1);
   CHECK(q.sj_median == 1);
@@ -414,7 +435,7 @@ TEST_CASE(
   q.distance_max = 0.5;  // not measured: null
   CHECK(to_json(q) ==
         "{\"quads\": 3, \"vertices\": 8, \"degenerate\": 0, \"valence\": {\"3\": 8, \"10\": 1}, "
-        "\"sj_min\": -0.25, \"sj_p5\": 0.5, \"sj_median\": 0.75, \"sj_below_half\": 1e-20, "
+        "\"irregular_vertices\": 0, \"max_valence\": 0, \"sj_min\": -0.25, \"sj_p5\": 0.5, \"sj_median\": 0.75, \"sj_below_half\": 1e-20, "
         "\"sj_nonpositive\": 0, \"angle_deviation_median\": null, \"angle_deviation_p95\": 0, "
         "\"area_p95_over_p5\": 0, \"area_ratio\": 0.3333333333333333, \"smallest_half_area\": 0, "
         "\"distance_measured\": false, \"distance_max\": null, \"distance_p99\": null, "
@@ -431,7 +452,7 @@ TEST_CASE(
   igm.area.p99 = 3.1;
   CHECK(
       summary_line(igm, q) ==
-      "quads 3: SJ median 0.75 p5 0.50 min -0.25, <0.5 3.1 %, <=0 0.0 %, angle dev median 6.1 deg, "
-      "area/input 0.998, smallest half 41 %, distance max 0.3 %; IGM conformal p99 2.7, area p99 "
-      "3.1");
+      "quads 3 (0 irregular vertices, valence <= 0): SJ median 0.75 p5 0.50 min -0.25, <0.5 3.1 %, "
+      "<=0 0.0 %, angle dev median 6.1 deg, area/input 0.998, smallest half 41 %, distance max 0.3 %; "
+      "IGM conformal p99 2.7, area p99 3.1");
 }

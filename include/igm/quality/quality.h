@@ -59,6 +59,9 @@ struct QuadQuality {
   int quads = 0, vertices = 0;
   int degenerate = 0;          // quads with a zero edge or a zero normal: their SJ counts as 0
   std::map<int, int> valence;  // quads around a vertex -> number of such vertices (0: unused)
+  /// Interior vertices (on no edge of a single quad) whose valence is not 4, and the largest
+  /// valence of an interior vertex (0 without one).
+  int irregular_vertices = 0, max_valence = 0;
   double sj_min = 0, sj_p5 = 0, sj_median = 0;  // scaled Jacobian (SJ)
   double sj_below_half = 0;                     // fraction of quads with SJ < 0.5
   double sj_nonpositive = 0;                    // fraction of quads with SJ <= 0
