@@ -18,6 +18,7 @@
 #include "igm/core/union_find.h"
 #include "igm/exact/intersect.h"
 #include "igm/layout/quantize.h"
+#include "igm/mesh/scale.h"
 #include "motorcycle_internal.h"
 
 namespace igm {
@@ -780,7 +781,7 @@ FieldLayoutResult build_field_layout(const TriMesh& mesh, const std::vector<Vec3
       static_cast<int>(face_direction.size()) != mesh.num_faces())
     throw Error(ErrorKind::InvalidArgument, "build_field_layout: positions or face directions do not match the mesh");
   FieldLayoutResult r;
-  const FieldFrames frames(mesh, positions, face_direction);
+  const FieldFrames frames(mesh, scaled_positions(positions, unit_scale(positions)), face_direction);
   TraceOptions trace = options.trace;
   const int max_rounds = std::max(0, options.max_seed_rounds) + std::max(0, options.max_ban_rounds);
   for (int round = 0; round <= max_rounds; ++round) {

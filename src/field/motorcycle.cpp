@@ -15,6 +15,7 @@
 
 #include "igm/core/error.h"
 #include "igm/exact/intersect.h"
+#include "igm/mesh/scale.h"
 #include "motorcycle_internal.h"
 
 namespace igm {
@@ -289,7 +290,13 @@ class Tracer {
  public:
   Tracer(const TriMesh& mesh, const std::vector<Vec3d>& positions, const std::vector<Vec3d>& face_direction,
          const TraceOptions& options)
-      : mesh_(mesh), positions_(positions), frames_(mesh, positions, face_direction), options_(options) {
+      : mesh_(mesh),
+        scale_(unit_scale(positions)),
+        positions_(scaled_positions(positions, scale_)),
+        frames_(mesh, positions_, face_direction),
+        options_(options) {
+    // Hostile coordinates (1e-300, 1e300): every length in units scaled by a power of two.
+    options_.snap_length *= scale_;
     bits_ = options.parameter_bits;
     max_segments_ = options.max_segments > 0 ? options.max_segments : 2 * mesh.num_faces() + 64;
     const int nv = mesh.num_vertices();
@@ -1691,7 +1698,8 @@ class Tracer {
   }
 
   const TriMesh& mesh_;
-  const std::vector<Vec3d>& positions_;
+  double scale_ = 1;
+  std::vector<Vec3d> positions_;  // the input's, times scale_
   FieldFrames frames_;
   TraceOptions options_;
   int bits_ = 24, max_segments_ = 0;
