@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <numeric>
 #include <optional>
+#include <set>
 #include <string>
 #include <unordered_map>
 
@@ -220,34 +220,51 @@ class Builder {
       for (int p : ch) lc.push_back(add(point_vertex_[p], plane_point(mesh_, g_.points[p], f)));
       pending.push_back(std::move(lc));
     }
-    // Two curves that end at one point inside the face and run on from it in opposite directions
-    // (merged head-on) are one chord through it.
+    // Curves that end at one point inside the face, none passing through it: two of them merged
+    // head-on there (they run on from it in opposite directions) and are one chord through it
+    // (any others then end on that chord). The pair joined is the straightest at the point.
     const int n_boundary_local = static_cast<int>(boundary.size());
-    for (bool joined = true; joined;) {
-      joined = false;
-      for (std::size_t a = 0; a < pending.size() && !joined; ++a)
-        for (std::size_t b = a + 1; b < pending.size() && !joined; ++b) {
-          auto& A = pending[a];
-          auto& B = pending[b];
-          for (int ea : {0, 1})
-            for (int eb : {0, 1}) {
-              if (joined) continue;
-              const int pa = ea ? A.back() : A.front(), pb = eb ? B.back() : B.front();
-              if (pa != pb || pa < n_boundary_local) continue;
-              bool through = false;  // a chord passing through the point: a T-junction, not a merge
-              for (const auto& C : pending)
-                for (std::size_t k = 1; k + 1 < C.size(); ++k) through = through || C[k] == pa;
-              if (through) continue;
-              std::vector<int> J(A);
-              if (!ea) std::reverse(J.begin(), J.end());
-              std::vector<int> Bv(B);
-              if (eb) std::reverse(Bv.begin(), Bv.end());
-              J.insert(J.end(), Bv.begin() + 1, Bv.end());
-              pending[a] = std::move(J);
-              pending.erase(pending.begin() + static_cast<long>(b));
-              joined = true;
-            }
-        }
+    for (std::size_t guard = 0; guard <= pending.size(); ++guard) {
+      std::map<int, std::vector<std::pair<std::size_t, int>>> ends;  // point -> (chord, 0 front / 1 back)
+      std::set<int> through;
+      for (std::size_t a = 0; a < pending.size(); ++a) {
+        ends[pending[a].front()].push_back({a, 0});
+        ends[pending[a].back()].push_back({a, 1});
+        for (std::size_t k = 1; k + 1 < pending[a].size(); ++k) through.insert(pending[a][k]);
+      }
+      bool joined = false;
+      for (const auto& [x, list] : ends) {
+        if (x < n_boundary_local || list.size() < 2 || through.count(x)) continue;
+        // The straightest pair: the most negative dot product of the two directions leaving x.
+        auto away = [&](const std::pair<std::size_t, int>& e) {
+          const auto& ch = pending[e.first];
+          const int y = e.second == 0 ? ch[1] : ch[ch.size() - 2];
+          return std::array<double, 2>{to_double(pos[y].x - pos[x].x), to_double(pos[y].y - pos[x].y)};
+        };
+        std::size_t best_a = 0, best_b = 1;
+        double best = 2;
+        for (std::size_t p = 0; p < list.size(); ++p)
+          for (std::size_t q = p + 1; q < list.size(); ++q) {
+            if (list[p].first == list[q].first) continue;
+            const auto da = away(list[p]), db = away(list[q]);
+            const double la = std::sqrt(da[0] * da[0] + da[1] * da[1]), lb = std::sqrt(db[0] * db[0] + db[1] * db[1]);
+            const double c = (da[0] * db[0] + da[1] * db[1]) / (la * lb);
+            if (c < best) best = c, best_a = p, best_b = q;
+          }
+        if (best > 1) continue;
+        const auto ea = list[best_a], eb = list[best_b];
+        std::vector<int> J(pending[ea.first]);
+        if (ea.second == 0) std::reverse(J.begin(), J.end());  // J ends at x
+        std::vector<int> B(pending[eb.first]);
+        if (eb.second == 1) std::reverse(B.begin(), B.end());  // B starts at x
+        J.insert(J.end(), B.begin() + 1, B.end());
+        const std::size_t lo = std::min(ea.first, eb.first), hi = std::max(ea.first, eb.first);
+        pending[lo] = std::move(J);
+        pending.erase(pending.begin() + static_cast<long>(hi));
+        joined = true;
+        break;
+      }
+      if (!joined) break;
     }
     // Insert chords whose two ends lie on one cell with the chord inside it, until none is left.
     for (std::size_t guard = 0; !pending.empty() && guard <= face_chords.size(); ++guard) {
@@ -263,16 +280,6 @@ class Builder {
       if (!progress) break;
     }
     if (!pending.empty()) {
-      if (std::getenv("IGM_TRACE_DEBUG")) {
-        std::fprintf(stderr, "face %d: %zu pending chords; boundary:", f, pending.size());
-        for (int v : boundary) std::fprintf(stderr, " %d(%.6g,%.6g)", rid[v], to_double(pos[v].x), to_double(pos[v].y));
-        std::fprintf(stderr, "\n");
-        for (const auto& ch : face_chords) {
-          std::fprintf(stderr, "  chord:");
-          for (int p : ch) { const int l = local[point_vertex_[p]]; std::fprintf(stderr, " %d(%.6g,%.6g)", rid[l], to_double(pos[l].x), to_double(pos[l].y)); }
-          std::fprintf(stderr, "\n");
-        }
-      }
       return "face " + str(f) + ": curve pieces that do not cut it into cells";
     }
     for (const auto& cell : cells)
@@ -280,39 +287,66 @@ class Builder {
     return "";
   }
 
+  // Whether the polyline `chord` (local ids, ends on the cell's boundary) runs inside simple cell
+  // `cell` (counter-clockwise): it leaves its first end into the cell's angle there, enters its
+  // last end from inside the angle there, and crosses no edge of the cell. Exact.
+  static bool chord_inside(const std::vector<int>& cell, std::size_t i, std::size_t j, const std::vector<int>& chord,
+                           const std::vector<Point2q>& pos) {
+    const std::size_t n = cell.size();
+    auto into = [&](std::size_t at, int toward) {  // the segment from cell[at] to `toward` enters the cell
+      const Point2q &p = pos[cell[(at + n - 1) % n]], &u = pos[cell[at]], &q = pos[cell[(at + 1) % n]], &x = pos[toward];
+      const Sign in_prev = orient2d(p, u, x), in_next = orient2d(u, q, x);
+      if (orient2d(p, u, q) != Sign::Negative) return in_prev == Sign::Positive && in_next == Sign::Positive;
+      return in_prev == Sign::Positive || in_next == Sign::Positive;  // a reflex corner
+    };
+    if (!into(i, chord[1]) || !into(j, chord[chord.size() - 2])) return false;
+    for (std::size_t k = 0; k + 1 < chord.size(); ++k)
+      for (std::size_t e = 0; e < n; ++e) {
+        const int a = cell[e], b = cell[(e + 1) % n];
+        const SegmentRelation rel = classify(pos[chord[k]], pos[chord[k + 1]], pos[a], pos[b]);
+        if (rel == SegmentRelation::Disjoint) continue;
+        if (rel != SegmentRelation::Touching) return false;
+        // Touching only at the chord's own ends on the boundary.
+        const bool at_end = (k == 0 && (a == chord[0] || b == chord[0])) ||
+                            (k + 2 == chord.size() && (a == chord.back() || b == chord.back()));
+        if (!at_end) return false;
+      }
+    return true;
+  }
+
   static bool insert_chord(std::vector<std::vector<int>>& cells, const std::vector<int>& chord,
                            const std::vector<Point2q>& pos) {
     const int u = chord.front(), w = chord.back();
-    const Point2q mid{(pos[u].x + pos[w].x) / 2, (pos[u].y + pos[w].y) / 2};
     for (std::size_t c = 0; c < cells.size(); ++c) {
       const auto& cell = cells[c];
-      const auto iu = std::find(cell.begin(), cell.end(), u), iw = std::find(cell.begin(), cell.end(), w);
-      if (iu == cell.end() || iw == cell.end()) continue;
-      bool inside = true;
-      for (std::size_t k = 0; k < cell.size() && inside; ++k)
-        inside = orient2d(pos[cell[k]], pos[cell[(k + 1) % cell.size()]], mid) == Sign::Positive;
-      if (!inside) continue;
-      const std::size_t n = cell.size(), i = iu - cell.begin(), j = iw - cell.begin();
-      std::vector<int> a, b;
-      for (std::size_t k = i;; k = (k + 1) % n) {
-        a.push_back(cell[k]);
-        if (k == j) break;
+      const std::size_t n = cell.size();
+      for (std::size_t i = 0; i < n; ++i) {
+        if (cell[i] != u) continue;
+        for (std::size_t j = 0; j < n; ++j) {
+          if (cell[j] != w || j == i || !chord_inside(cell, i, j, chord, pos)) continue;
+          std::vector<int> a, b;
+          for (std::size_t k = i;; k = (k + 1) % n) {
+            a.push_back(cell[k]);
+            if (k == j) break;
+          }
+          for (std::size_t k = chord.size() - 2; k >= 1; --k) a.push_back(chord[k]);
+          for (std::size_t k = j;; k = (k + 1) % n) {
+            b.push_back(cell[k]);
+            if (k == i) break;
+          }
+          for (std::size_t k = 1; k + 1 < chord.size(); ++k) b.push_back(chord[k]);
+          cells[c] = std::move(a);
+          cells.push_back(std::move(b));
+          return true;
+        }
       }
-      for (std::size_t k = chord.size() - 2; k >= 1; --k) a.push_back(chord[k]);
-      for (std::size_t k = j;; k = (k + 1) % n) {
-        b.push_back(cell[k]);
-        if (k == i) break;
-      }
-      for (std::size_t k = 1; k + 1 < chord.size(); ++k) b.push_back(chord[k]);
-      cells[c] = std::move(a);
-      cells.push_back(std::move(b));
-      return true;
     }
     return false;
   }
 
-  // Triangulates a convex cell (collinear vertices allowed) by clipping strictly convex corners
-  // whose cut-off chord passes through no other vertex.
+  // Triangulates a simple cell (counter-clockwise; collinear vertices and, where curves were
+  // merged or snapped, slightly reflex corners allowed) by clipping ears: strictly convex corners
+  // whose triangle holds no other vertex of the cell (exact).
   bool clip_cell(std::vector<int> cell, const std::vector<Point2q>& pos, const std::vector<int>& rid) {
     for (std::size_t guard = 0; cell.size() > 3 && guard < 4 * pos.size() + 8; ++guard) {
       const std::size_t n = cell.size();
@@ -324,7 +358,9 @@ class Builder {
         for (std::size_t k = 0; k < n && clear; ++k) {
           const int x = cell[k];
           if (x == a || x == b || x == c) continue;
-          clear = !on_segment(pos[x], pos[a], pos[c]);
+          // In the closed triangle: on the cut or inside.
+          clear = !(orient2d(pos[a], pos[b], pos[x]) != Sign::Negative && orient2d(pos[b], pos[c], pos[x]) != Sign::Negative &&
+                    orient2d(pos[c], pos[a], pos[x]) != Sign::Negative);
         }
         if (!clear) continue;
         triangles_.push_back({rid[a], rid[b], rid[c]});
@@ -798,37 +834,11 @@ FieldLayoutResult build_field_layout(const TriMesh& mesh, const std::vector<Vec3
       // patches that would have to be longer than itself: spiralling curves), the curves ending on
       // the contradicting patches are left out and the graph traced again.
       const std::vector<int> bad = contradicting_patches(r.layout, minimum_arc_lengths(r.layout));
-      if (std::getenv("IGM_TRACE_DEBUG") && !bad.empty()) {
-        std::vector<int> zero(r.layout.arcs.size(), 0);
-        const std::vector<int> bad0 = contradicting_patches(r.layout, zero, true);
-        std::fprintf(stderr, "with zero minimum lengths: %zu contradicting patches\n", bad0.size());
-      }
       if (bad.empty()) {
         r.ok = true;
         break;
       }
       r.stats.contradicting_patches = static_cast<int>(bad.size());
-      if (std::getenv("IGM_TRACE_DEBUG")) {
-        const std::vector<int> mins = minimum_arc_lengths(r.layout);
-        for (int p : bad) {
-          std::fprintf(stderr, "contradicting patch %d:", p);
-          for (int k = 0; k < 4; ++k) {
-            std::fprintf(stderr, " side%d[", k);
-            for (const ArcUse& u : r.layout.patches[p].sides[k]) {
-              const auto& vs = r.layout.arcs[u.arc].vertices;
-              double len = 0;
-              for (std::size_t i = 0; i + 1 < vs.size(); ++i) {
-                const Vec3d a = r.layout.positions[vs[i]], c = r.layout.positions[vs[i + 1]];
-                len += std::sqrt((a.x - c.x) * (a.x - c.x) + (a.y - c.y) * (a.y - c.y) + (a.z - c.z) * (a.z - c.z));
-              }
-              std::fprintf(stderr, " a%d(%s,len %.3g,min %d, nbr %d, ends %d-%d)", u.arc, u.forward ? "f" : "b", len, mins[u.arc],
-                           r.layout.arcs[u.arc].patch[u.forward ? 1 : 0], vs.front(), vs.back());
-            }
-            std::fprintf(stderr, " ]");
-          }
-          std::fprintf(stderr, "\n");
-        }
-      }
       r.failure = "the patches' side lengths contradict each other (" + std::to_string(bad.size()) + " patches, patch " +
                   std::to_string(bad.front()) + ")";
       b.blame_patches(r.layout, bad, 2);

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
 #include <cstdlib>
 #include <cmath>
 #include <map>
@@ -903,11 +902,6 @@ class Tracer {
     runners_.push_back(r);
     return static_cast<int>(runners_.size()) - 1;
   }
-  void finish_at(int c, int line, CurveEnd end) {
-    if (end == CurveEnd::Stuck && std::getenv("IGM_TRACE_DEBUG") && !graph_.curves[c].segment_face.empty())
-      std::fprintf(stderr, "stuck: curve %d at motorcycle.cpp:%d after %zu segments\n", c, line, graph_.curves[c].segment_face.size());
-    finish(c, end);
-  }
   void finish(int c, CurveEnd end) {
     graph_.curves[c].end = end;
     runners_[c].state = State::Done;
@@ -1007,7 +1001,7 @@ class Tracer {
   // Ends curve c at meeting m, its segment in face f with direction dir.
   void end_at_meet(int c, int f, int dir, const Meet& m) {
     if (m.degenerate) {
-      finish_at(c, __LINE__, CurveEnd::Stuck);
+      finish(c, CurveEnd::Stuck);
       return;
     }
     if (((dir - m.dir) % 2 + 2) % 2 == 0 && (m.point < 0 || graph_.points[m.point].kind != TracePoint::Kind::Vertex)) {
@@ -1017,16 +1011,8 @@ class Tracer {
       if (end_at_vertex_of(c, f, dir, m)) return;
       ++graph_.stats.parallel_meets;
       if ((dir - m.dir + 4) % 4 == 0) ++graph_.stats.same_direction_meets;
-      if (std::getenv("IGM_TRACE_DEBUG")) {
-        std::fprintf(stderr, "parallel meet: curve %d (dir %d) meets curve %d (dir %d, segment %d of %zu) in face %d at (%g,%g); c has %zu points\n", c, dir, m.curve, m.dir, m.segment,
-                     graph_.curves[m.curve].segment_face.size(), f, to_double(m.at.x), to_double(m.at.y), graph_.curves[c].points.size());
-        for (const FaceSegment& fs : face_segments_[f])
-          std::fprintf(stderr, "  segment of curve %d #%d dir %d: (%g,%g)-(%g,%g)\n", fs.curve, fs.segment, fs.dir, to_double(fs.a.x), to_double(fs.a.y), to_double(fs.b.x), to_double(fs.b.y));
-        const Point2q A = bary(graph_.curves[c].points.back(), f);
-        std::fprintf(stderr, "  from (%g,%g)\n", to_double(A.x), to_double(A.y));
-      }
       if (drop_curve(c)) return;
-      finish_at(c, __LINE__, CurveEnd::Stuck);
+      finish(c, CurveEnd::Stuck);
       return;
     }
     int p = m.point;
@@ -1056,9 +1042,24 @@ class Tracer {
            (on_segment(a, E2, O) && on_segment(b, E2, O));
   }
 
-  // The rays used at point p (not a vertex) by the curves through it or ending there.
+  // The rays used at point p (not a vertex) by the curves through it or ending there, and by the
+  // curves it lies on as a T-junction not inserted yet (a hit).
   std::vector<int> rays_at(int p) const {
     std::vector<int> out;
+    for (const Hit& h : hits_) {
+      if (h.point != p) continue;
+      const int f = graph_.curves[h.curve].segment_face[h.segment];
+      if (f >= 0) {
+        const auto it = face_segments_.find(f);
+        if (it == face_segments_.end()) continue;
+        for (const FaceSegment& fs : it->second)
+          if (fs.curve == h.curve && fs.segment == h.segment) out.push_back(ray_of(p, f, fs.dir)), out.push_back(ray_of(p, f, fs.dir + 2));
+      } else {
+        for (const auto& [ce, walks] : edge_walks_)
+          for (const EdgeWalk& w : walks)
+            if (w.curve == h.curve && w.segment == h.segment) out.push_back(ray_of(p, w.face, w.dir)), out.push_back(ray_of(p, w.face, w.dir + 2));
+      }
+    }
     auto it = point_curves_.find(p);
     if (it == point_curves_.end()) return out;
     for (int cc : it->second) {
@@ -1165,7 +1166,7 @@ class Tracer {
         if (he < 0 || TriMesh::face(he) != cur_face || mesh_.twin(he) < 0) return false;
         const Point2q Ba = bary(other.points[k], cur_face), Bb = bary(other.points[k + 1], cur_face);
         bool placed = false;
-        for (const Rational tq : {Rational(Q.t + step_t), Rational(Q.t - step_t)}) {
+        for (const Rational& tq : {Rational(Q.t + step_t), Rational(Q.t - step_t)}) {
           if (!(tq > 0 && tq < 1) || find_edge_point(ce, tq) >= 0 || walk_at(ce, tq)) continue;
           const Rational tl = he == ce ? tq : Rational(1 - tq);
           const Point2q qf = edge_bary(he, tl);
@@ -1187,7 +1188,13 @@ class Tracer {
       if (along_face_edge(from, yq)) return false;
       if (const auto mm = first_meet(cur_face, from, yq); mm && mm->point != y && !same(mm->at, yq)) return false;
       const int ray = ray_of(y, cur_face, cur_dir + 2);
-      const std::vector<int> used = rays_at(y);
+      std::vector<int> used = rays_at(y);
+      // Curve b runs through y (a point on its segment t not yet inserted into it): its rays too.
+      for (const FaceSegment& fs : face_segments_[cur_face])
+        if (fs.curve == b && fs.segment == t) {
+          used.push_back(ray_of(y, cur_face, fs.dir));
+          used.push_back(ray_of(y, cur_face, fs.dir + 2));
+        }
       if (std::find(used.begin(), used.end(), ray) != used.end()) return false;
       // Commit.
       for (const Piece& pc : pieces) {
@@ -1234,12 +1241,6 @@ class Tracer {
       (void)P;
       (void)i;
       const int ra = arrival_ray_for(c, x, f, frames_.direction(f, dir + 2));
-      if (std::getenv("IGM_TRACE_DEBUG")) {
-        std::fprintf(stderr, "  vertex join to %d (valence %d): ray %d; used:", x, rays(x).valence, ra);
-        if (auto it = vertex_rays_used_.find(pv); it != vertex_rays_used_.end())
-          for (auto [k, cc] : it->second) std::fprintf(stderr, " %d(c%d)", k, cc);
-        std::fprintf(stderr, "\n");
-      }
       if (ra < 0) continue;
       add_segment(c, pv, f, ra);
       record_face_segment(c, f, dir);
@@ -1356,7 +1357,7 @@ class Tracer {
     cur.segment_face.clear();
     cur.ray_back.resize(1);
     cur.ray_forward.resize(1);
-    finish_at(c, __LINE__, CurveEnd::Stuck);
+    finish(c, CurveEnd::Stuck);
     ++graph_.stats.dropped;
     return true;
   }
@@ -1373,7 +1374,7 @@ class Tracer {
       // A ray another curve already arrived by: a starting curve is that one (dropped), a
       // curve passing through ends here.
       if (used_ray(here, r.where.ray, c)) {
-        finish_at(c, __LINE__, cur.segment_face.empty() ? CurveEnd::Stuck : CurveEnd::Curve);
+        finish(c, cur.segment_face.empty() ? CurveEnd::Stuck : CurveEnd::Curve);
         return;
       }
     }
@@ -1381,7 +1382,7 @@ class Tracer {
     if (target >= 0) maybe_steer(r.where, [&](int x) { return x == target; });
     const Advance a = advance(r.where, [&](int x) { return x == target; });
     switch (a.kind) {
-      case Advance::Kind::Stuck: finish_at(c, __LINE__, CurveEnd::Stuck); return;
+      case Advance::Kind::Stuck: finish(c, CurveEnd::Stuck); return;
       case Advance::Kind::Edge: step_edge(c, a); return;
       case Advance::Kind::Vertex: step_vertex(c, a); return;
       case Advance::Kind::Walk: step_walk(c, a); return;
@@ -1402,7 +1403,7 @@ class Tracer {
     if (auto it = edge_walks_.find(ce); it != edge_walks_.end())
       for (const EdgeWalk& w : it->second)
         if (up ? w.t1 > t0 : w.t0 < t0) {
-          finish_at(c, __LINE__, CurveEnd::Stuck);
+          finish(c, CurveEnd::Stuck);
           return;
         }
     int first = -1;
@@ -1529,7 +1530,7 @@ class Tracer {
     const bool forward = ce == h;
     TraceCurve& cur = graph_.curves[c];
     if (edge_walks_.count(ce)) {
-      finish_at(c, __LINE__, cur.segment_face.empty() ? CurveEnd::Stuck : CurveEnd::Curve);
+      finish(c, cur.segment_face.empty() ? CurveEnd::Stuck : CurveEnd::Curve);
       return;
     }
     leave_vertex_ray(c);
@@ -1580,7 +1581,7 @@ class Tracer {
     const int px = vertex_point(x);
     if (ra < 0) {
       // Every ray on its side of the vertex is taken: the curve runs along one of those curves.
-      if (!drop_curve(c)) finish_at(c, __LINE__, CurveEnd::Stuck);
+      if (!drop_curve(c)) finish(c, CurveEnd::Stuck);
       return;
     }
     const VertexRays& rx = rays(x);

@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 #include <string>
 #include <vector>
@@ -42,6 +43,22 @@ Surface generated(int genus, std::int64_t faces, int boundaries, std::uint64_t s
   REQUIRE(set.components.size() == 1);
   const SurfaceComponent& c = set.components[0];
   return {TriMesh::from_triangles(static_cast<int>(c.positions.size()), c.triangles, boundaries > 0), c.positions};
+}
+
+// The layout with the trace options the pipeline uses for `quads` quads: curves ending near a node
+// snap to it within half a quad's side.
+FieldLayoutResult layout(const Surface& s, const std::vector<Vec3d>& d, double quads = 2000) {
+  double area = 0;
+  for (int f = 0; f < s.mesh.num_faces(); ++f) {
+    const auto v = s.mesh.face_vertices(f);
+    const Vec3d a = s.positions[v[0]], b = s.positions[v[1]], c = s.positions[v[2]];
+    const Vec3d u{b.x - a.x, b.y - a.y, b.z - a.z}, w{c.x - a.x, c.y - a.y, c.z - a.z};
+    const Vec3d n{u.y * w.z - u.z * w.y, u.z * w.x - u.x * w.z, u.x * w.y - u.y * w.x};
+    area += 0.5 * std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+  }
+  FieldLayoutOptions o;
+  o.trace.snap_length = 0.5 * std::sqrt(area / quads);
+  return build_field_layout(s.mesh, s.positions, d, o);
 }
 
 // The layout's facts every test checks: the independent check, and every patch a four-sided disk
@@ -105,14 +122,14 @@ TEST_CASE("field layout: generated closed surfaces of genus 0 to 20") {
     int sum = 0;
     for (int v = 0; v < s.mesh.num_vertices(); ++v) sum += 4 - g.valence[v];
     CHECK(sum == 8 - 8 * genus);
-    check_layout(build_field_layout(s.mesh, s.positions, d), "genus " + std::to_string(genus));
+    check_layout(layout(s, d), "genus " + std::to_string(genus));
   }
 }
 
 TEST_CASE("field layout: open surfaces, the boundary on arcs with no patch outside") {
   for (const auto& [genus, loops] : std::vector<std::pair<int, int>>{{0, 1}, {0, 3}, {1, 3}, {2, 1}}) {
     const Surface s = generated(genus, 4000, loops, 3);
-    const FieldLayoutResult r = build_field_layout(s.mesh, s.positions, directions(s));
+    const FieldLayoutResult r = layout(s, directions(s));
     check_layout(r, "genus " + std::to_string(genus) + ", " + std::to_string(loops) + " loops");
     int boundary_arcs = 0;
     for (const LayoutArc& a : r.layout.arcs) boundary_arcs += a.patch[1] < 0;
@@ -123,14 +140,14 @@ TEST_CASE("field layout: open surfaces, the boundary on arcs with no patch outsi
     const SurfaceSet set = validate_surfaces(read_soup(dir / "meshes/open" / name));
     const SurfaceComponent& c = set.components[0];
     const Surface s{TriMesh::from_triangles(static_cast<int>(c.positions.size()), c.triangles, true), c.positions};
-    check_layout(build_field_layout(s.mesh, s.positions, directions(s)), name);
+    check_layout(layout(s, directions(s)), name);
   }
 }
 
 TEST_CASE("field layout: the same input gives the same layout") {
   const Surface s = generated(3, 3000, 0, 11);
   const std::vector<Vec3d> d = directions(s);
-  const FieldLayoutResult a = build_field_layout(s.mesh, s.positions, d), b = build_field_layout(s.mesh, s.positions, d);
+  const FieldLayoutResult a = layout(s, d), b = layout(s, d);
   REQUIRE(a.ok);
   REQUIRE(b.ok);
   CHECK(a.layout.triangles == b.layout.triangles);
