@@ -179,3 +179,16 @@ TEST_CASE("field pipeline: the shared meshes with creases and extremities") {
     CHECK(r.quad_quality.sj_median >= 0.9);
   }
 }
+
+TEST_CASE("field pipeline: regression: the elk's field without curvature alignment (map_layout splits a chord of a split triangle)") {
+  // map_layout splits every edge joining two vertices of one patch side; the edges a split made were
+  // not indexed, and a second split in the same triangle threw std::out_of_range (map::at).
+  IGM_REQUIRE_DATA(dir);
+  const ValidMesh mesh = load_mesh(dir / "meshes/clean/elk.off");
+  PipelineOptions o = field_options(10000);
+  o.field.alignment = 0;
+  o.field_attempts.clear();
+  const PipelineResult r = compute_igm(mesh, o);
+  check_certified(r, mesh.genus);
+  CHECK(r.stats.layout == "field");
+}
