@@ -3,7 +3,7 @@
 // template, the disk's affine map, N = 4 per layout edge, uniform Tutte weights and uniform side
 // parameters) against the layouts of layout/quad_layout.h with sizing and per-patch maps.
 // usage: igm_bench_layouts [--quads Q] [--config NAME ...] [--only MESH ...] [--generated G,G,...]
-//   configs: before, paper, kite, spread, and the spread layout with one choice changed: s-nosm
+//   configs: before, paper, kite, spread, field (the field layout, its fallback named on the line), and the spread layout with one choice changed: s-nosm
 //   (not smoothed), s-udisk
 //   (uniform disk map, uniform sides), s-cotan, s-unif (cotangent or uniform patch weights),
 //   s-affine (the affine map); default: all. Every output is certified or the line says NOT CERTIFIED.
@@ -39,7 +39,7 @@ std::vector<Config> configs(std::int64_t quads) {
   before.patch_weights = igm::WeightKind::Uniform;  // genus 0: the orbifold map as it was
   before.smooth = false;
   c.push_back({"before", before});
-  for (igm::LayoutKind kind : {igm::LayoutKind::Paper, igm::LayoutKind::Kite, igm::LayoutKind::Spread}) {
+  for (igm::LayoutKind kind : {igm::LayoutKind::Paper, igm::LayoutKind::Kite, igm::LayoutKind::Spread, igm::LayoutKind::Field}) {
     igm::PipelineOptions o;
     o.layout = kind;
     o.quads = quads;
@@ -81,12 +81,12 @@ void run(const std::string& name, const igm::ValidMesh& mesh, const Config& c) {
     const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const igm::QuadQuality& q = r.quad_quality;
     const igm::IgmQuality& m = r.igm_quality;
-    std::printf("%-16s %-8s %6d %6d | %6.3f %6.3f %6.2f %6.1f %6.1f | %5.1f %5.1f | %7.1f %6.3f %6.1f | %6.2f %6.2f | %7.3g %7.3g %6.3g | %6.2f%s\n",
+    std::printf("%-16s %-8s %6d %6d | %6.3f %6.3f %6.2f %6.1f %6.1f | %5.1f %5.1f | %7.1f %6.3f %6.1f | %6.2f %6.2f | %7.3g %7.3g %6.3g | %6.2f%s%s\n",
                 name.c_str(), c.name.c_str(), r.stats.layout_quads, r.stats.quads, q.sj_median, q.sj_p5, q.sj_min,
                 100 * q.sj_below_half, 100 * q.sj_nonpositive, q.angle_deviation_median, q.angle_deviation_p95,
                 q.area_p95_over_p5, q.area_ratio, 100 * q.smallest_half_area, 100 * q.distance_max,
                 100 * q.distance_p99, m.conformal.p99, m.area.p99, m.symmetric_dirichlet, sec,
-                r.certified() ? "" : "  NOT CERTIFIED");
+                r.certified() ? "" : "  NOT CERTIFIED", r.stats.layout_fallback.empty() ? "" : ("  fallback: " + r.stats.layout_fallback).c_str());
   } catch (const igm::Error& e) {
     std::printf("%-16s %-8s error: %s\n", name.c_str(), c.name.c_str(), e.what());
   }

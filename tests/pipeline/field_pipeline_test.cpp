@@ -170,8 +170,9 @@ TEST_CASE("field pipeline: the same input gives the same output") {
 
 TEST_CASE("field pipeline: the shared meshes with creases and extremities") {
   IGM_REQUIRE_DATA(dir);
-  for (const char* name : {"fandisk.off", "elk.off", "anchor.off", "helmet.off"}) {
+  for (const std::string name : {"fandisk.off", "elk.off", "anchor.off", "helmet.off"}) {
     INFO(name);
+    if (igm_test::kSanitized && (name == "anchor.off" || name == "helmet.off")) continue;  // Release only
     const ValidMesh mesh = load_mesh(dir / "meshes/clean" / name);
     const PipelineResult r = compute_igm(mesh, field_options(3000));
     check_certified(r, mesh.genus);
