@@ -46,8 +46,10 @@ int usage(const std::string& message, bool help = false) {
                "  --quads Q       about Q quads (default %lld): each layout edge gets round(length / H) quads,\n"
                "                  H chosen so that the count is nearest to Q\n"
                "  --edge-length H quads of 3D edge length about H (in the mesh's units)\n"
-               "  --resolution N  N quads along every layout edge, N x N per layout quad (1..1024; the paper\n"
-               "                  layout needs N >= 3: below, its quad mesh has loops at the root)\n"
+               "  --resolution N  N quads along every layout edge, N x N per layout quad (1..1024)\n"
+               "                  whatever the size, every surface gets at least the quads its layout needs\n"
+               "                  for a manifold quad mesh (the floor: e.g. 3 along a torus's sides, 2 x 2\n"
+               "                  per unit on a sphere unless 1 x 1); the run says where it raised them\n"
                "  --layout L      the quad layout of the polygonal schema (genus >= 1): spread (default: root\n"
                "                  of valence 4g, 4g-4 vertices of valence 5), kite (4g at the root and the\n"
                "                  centre) or paper (Livesu's template: 8g at the root, 3g at the centre)\n"
@@ -147,6 +149,23 @@ std::function<std::filesystem::path(const char*)> write_outputs(const std::files
   return out;
 }
 
+// The surfaces the floor raised (PipelineOptions: the least quads of a manifold quad mesh), if any:
+// one line with the total against the count asked, the first few surfaces named.
+void print_floor(const igm::SurfacesResult& r) {
+  std::string named;
+  std::size_t raised = 0;
+  for (std::size_t c = 0; c < r.components.size(); ++c) {
+    const igm::PipelineStats& st = r.components[c].stats;
+    if (!st.raised_by_floor()) continue;
+    if (++raised <= 5) named += std::string(named.empty() ? "" : "; ") + "surface " + std::to_string(c) + " " + igm::floor_note(st);
+  }
+  if (raised == 0) return;
+  if (raised > 5) named += "; " + std::to_string(raised - 5) + " more";
+  std::printf("[sizing  ] %lld quads in all", static_cast<long long>(r.quads_total));
+  if (r.quads_asked > 0) std::printf(" for %lld asked", static_cast<long long>(r.quads_asked));
+  std::printf(": %s (every surface gets at least the quads its layout needs for a manifold quad mesh)\n", named.c_str());
+}
+
 // Several surfaces or open ones (igm::compute_igms): one output with all of them, the certificate
 // listing each surface.
 int run_surfaces(const igm::SurfaceSet& set, const std::string& name, const std::filesystem::path& dir,
@@ -174,14 +193,17 @@ int run_surfaces(const igm::SurfaceSet& set, const std::string& name, const std:
         << ", \"faces\": " << set.components[c].triangles.size() << ", \"genus\": " << set.components[c].genus
         << ", \"boundary_loops\": " << set.components[c].boundary_loops.size()
         << ", \"certified\": " << (rc.certified() ? "true" : "false") << ", \"quads\": " << rc.stats.quads
-        << ", \"layout_quads\": " << rc.stats.layout_quads << "}";
+        << ", \"layout_quads\": " << rc.stats.layout_quads << ", \"floor_quads\": " << rc.stats.floor_quads
+        << ", \"raised_by_floor\": " << (rc.stats.raised_by_floor() ? "true" : "false") << "}";
     }
-    s << "],\n\"stats\": {\"quads\": " << r.quads.quads.size() << ", \"seconds\": " << total << "},\n"
+    s << "],\n\"stats\": {\"quads\": " << r.quads.quads.size() << ", \"quads_asked\": " << r.quads_asked
+      << ", \"seconds\": " << total << "},\n"
       << "\"quality\": {\"igm\": " << igm::to_json(r.igm_quality) << ", \"quads\": " << igm::to_json(r.quad_quality)
       << "},\n"
       << "\"igm\": " << igm::certify::to_json(r.igm_report) << ",\n"
       << "\"quad\": " << igm::certify::to_json(r.quad_report) << "}\n";
   });
+  print_floor(r);
   if (base.quality) std::printf("[quality ] all surfaces: %s\n", igm::summary_line(r.igm_quality, r.quad_quality).c_str());
   std::printf("[total]    %8.3f s  peak memory %.0f MB\n", total, peak_rss_mb());
   std::printf("wrote %s/%s.{igm.obj,igm.exact,quad.obj,cert.json,quad.svg}\n", dir.string().c_str(), name.c_str());
@@ -210,7 +232,8 @@ int run_pipeline(const igm::ValidMesh& mesh, const std::string& name, const std:
       << ", \"layout\": \"" << (st.genus == 0 ? "pillowcase" : igm::to_string(options.layout)) << "\""
       << ", \"map\": \"" << igm::to_string(options.patch_map) << "\""
       << ", \"layout_quads\": " << st.layout_quads << ", \"chords\": " << st.chords << ", \"quads\": " << st.quads
-      << ", \"edge_length\": " << st.edge_length
+      << ", \"edge_length\": " << st.edge_length << ", \"floor_quads\": " << st.floor_quads
+      << ", \"quads_asked\": " << st.quads_asked << ", \"raised_by_floor\": " << (st.raised_by_floor() ? "true" : "false")
       << ", \"max_uv_bits\": " << st.max_uv_bits << ", \"tutte_iterations\": " << st.tutte.iterations
       << ", \"tutte_flips_double\": " << st.tutte.flips_double << ", \"smooth_iterations\": " << st.smooth.iterations
       << ", \"smooth_stop\": \"" << (options.smooth && !st.smooth_skipped ? igm::to_string(st.smooth.stop) : "off") << "\""
@@ -349,9 +372,6 @@ int run_command(const std::vector<std::string_view>& args) {
     if (set.components.size() != 1 || !set.components[0].boundary_loops.empty())
       return run_surfaces(set, name, dir, options);
     const igm::ValidMesh mesh = igm::to_valid_mesh(set.components[0], set.warnings);
-    if (mesh.genus > 0 && options.layout == igm::LayoutKind::Paper && options.resolution > 0 && options.resolution < 3)
-      return usage("--resolution must be in 3..1024 for the paper layout (below 3 its quad mesh has loops and "
-                   "multi-edges at the root)");
     return run_pipeline(mesh, name, dir, options);
   } catch (const igm::Error& e) {
     std::fprintf(stderr, "igm: %s: %s\n", mesh_path.c_str(), e.what());

@@ -87,6 +87,15 @@ SizingOptions sizing_options(const PipelineOptions& options, double scale) {
   return s;
 }
 
+std::string floor_note(const PipelineStats& stats) {
+  if (!stats.raised_by_floor()) return "";
+  if (stats.quads_asked > 0)
+    return format("at the floor of %.0f quads (%.0f asked)", double(stats.floor_quads), double(stats.quads_asked));
+  const bool grid = stats.genus == 0 && stats.boundary_loops == 0;
+  return format("%.0f ", stats.raised_chords) + (grid ? "grid count" : "chord") + (stats.raised_chords == 1 ? "" : "s") +
+         format(" raised to the floor (%.0f quads at least)", double(stats.floor_quads));
+}
+
 void StageReporter::done(const char* name, Clock::time_point t0, std::string detail) {
   StageEvent e{name, seconds_since(t0), std::move(detail)};
   stats.stages.push_back(e);
@@ -328,8 +337,12 @@ void map_disk(PipelineResult& result, CutDisk& cut, const PipelineOptions& optio
   pin.input_positions = &surface.input_positions;
   PatchMesh patches = build_patch_mesh(std::move(pin), !affine);
   const std::vector<double> lengths = layout_edge_lengths(layout, patches, scale);
-  const Sizing sizing = size_layout(layout, lengths, sizing_options(options, scale));
+  const SizingOptions size_options = sizing_options(options, scale);
+  const Sizing sizing = size_layout(layout, lengths, size_options);
   stats.edge_length = sizing.edge_length / scale;
+  stats.floor_quads = sizing.floor_quads;
+  stats.quads_asked = size_options.quads;
+  stats.raised_chords = sizing.raised_chords;
   PatchMapOptions map_options;
   map_options.kind = options.patch_map;
   map_options.weights = options.patch_weights;
@@ -349,6 +362,7 @@ void map_disk(PipelineResult& result, CutDisk& cut, const PipelineOptions& optio
                     double(stats.output_triangles) / std::max(1, stats.input_faces), double(sizing.quads)) +
                  (options.resolution > 0 ? format("at resolution %.0f", double(options.resolution))
                                          : format("of edge length %.3g", stats.edge_length)) +
+                 (stats.raised_by_floor() ? ", " + floor_note(stats) : std::string()) +
                  ", " + to_string(options.patch_map) + " maps" +
                  format(", %.0f patches refined, UV bits max %.0f", double(maps.stats.patches_refined),
                         double(stats.max_uv_bits)));

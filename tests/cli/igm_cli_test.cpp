@@ -415,9 +415,15 @@ TEST_CASE("igm run: layouts, sizes and maps from the command line, the quality r
   const Run paper = in_folder(cwd, igm_cmd + " run g2.obj -o c --layout paper --resolution 3");
   CHECK(paper.code == 0);
   CHECK(has(slurp(cwd / "c" / "g2.cert.json"), "\"quads\": 90"));  // 5g N^2
+  // Below the paper layout's floor (3 along its sides, which are loops at the root): raised to it,
+  // certified, and said.
+  const Run floor = in_folder(cwd, igm_cmd + " run g2.obj -o e --layout paper --resolution 2");
+  CHECK(floor.code == 0);
+  CHECK(has(floor.out, "chords raised to the floor (66 quads at least)"));
+  CHECK(has(slurp(cwd / "e" / "g2.cert.json"), "\"raised_by_floor\": true"));
   for (const std::string& a : {std::string(" --layout round"), std::string(" --map conformal"), std::string(" --quads 0"),
                               std::string(" --edge-length -1"), std::string(" --edge-length nan"),
-                              std::string(" --quads 10 --resolution 3"), std::string(" --layout paper --resolution 2")}) {
+                              std::string(" --quads 10 --resolution 3")}) {
     CAPTURE(a);
     CHECK(in_folder(cwd, igm_cmd + " run g2.obj -o d" + a).code == 2);
   }
