@@ -136,7 +136,9 @@ py::dict stats_dict(const igm::PipelineStats& st) {
                   "output_triangles"_a = st.output_triangles, "layout_quads"_a = st.layout_quads, "quads"_a = st.quads,
                   "chords"_a = st.chords, "edge_length"_a = st.edge_length, "max_uv_bits"_a = st.max_uv_bits,
                   "smooth_iterations"_a = st.smooth.iterations, "smooth_skipped"_a = st.smooth_skipped,
-                  "stages"_a = stages);
+                  "floor_quads"_a = st.floor_quads, "quads_asked"_a = st.quads_asked,
+                  "raised_by_floor"_a = st.raised_by_floor(), "floor_note"_a = igm::floor_note(st),
+                  "quad_defects"_a = st.quad_defects, "stages"_a = stages);
 }
 
 // The outputs as NumPy arrays and dicts (one surface, or several merged).
@@ -224,14 +226,16 @@ py::dict compute(const DoubleArray& v, const IndexArray& f, const py::kwargs& kw
     return result_dict(r.igm, r.quads, r.igm_report, r.quad_report, r.igm_quality, r.quad_quality, options.quality,
                        exact, stats_dict(r.stats), set.warnings);
   py::list per_surface;
-  int quads = 0;
+  bool raised = false;
   for (const igm::PipelineResult& c : surfaces.components) {
     per_surface.append(stats_dict(c.stats));
-    quads += c.stats.quads;
+    raised = raised || c.stats.raised_by_floor();
   }
   return result_dict(surfaces.igm, surfaces.quads, surfaces.igm_report, surfaces.quad_report, surfaces.igm_quality,
                      surfaces.quad_quality, options.quality, exact,
-                     py::dict("surfaces"_a = per_surface, "quads"_a = quads), set.warnings);
+                     py::dict("surfaces"_a = per_surface, "quads"_a = surfaces.quads_total,
+                              "quads_asked"_a = surfaces.quads_asked, "raised_by_floor"_a = raised),
+                     set.warnings);
 }
 
 // --- certify ---

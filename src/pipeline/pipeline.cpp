@@ -14,6 +14,7 @@
 #include "igm/embed/polygon.h"
 #include "igm/extract/isolines.h"
 #include "igm/extract/patch_grid.h"
+#include "igm/extract/quad_defects.h"
 #include "igm/igm/patch_mesh.h"
 #include "igm/mesh/scale.h"
 #include "igm/mesh/surface_point.h"
@@ -181,6 +182,10 @@ void smooth_extract_certify(PipelineResult& result, const PipelineOptions& optio
     stats.uv_doubles = stats.dyadic.on_grid;
   }
   const bool isolines = smoothing || !options.structured_extraction;
+  // What find_quad_defects needs if the certifier refuses the quads (kept slim: the located
+  // vertices are released with the extraction; per vertex its valence and boundary flag).
+  IsolineQuads slim;
+  std::vector<std::pair<int, bool>> valence;
   if (isolines) {
     IsolineInput in;  // the map lent to the extraction (it reads it only), not copied
     in.triangles = std::move(igm.triangles);
@@ -194,7 +199,11 @@ void smooth_extract_certify(PipelineResult& result, const PipelineOptions& optio
     result.igm_report = std::move(x.report);
     if (x.quads) {
       QuadMesh& quads = result.quads;
-      quads.quads = std::move(x.quads->quads);
+      quads.quads = x.quads->quads;
+      slim.quad_edges = std::move(x.quads->quad_edges);
+      slim.num_edges = x.quads->num_edges;
+      valence.reserve(x.quads->vertices.size());
+      for (const IsolineQuadVertex& v : x.quads->vertices) valence.emplace_back(v.valence, v.boundary);
       quads.positions.reserve(x.quads->vertices.size());
       quads.locations.reserve(x.quads->vertices.size());
       for (const IsolineQuadVertex& v : x.quads->vertices) add_quad_vertex(quads, igm, v.triangle, v.barycentric, input_positions);
@@ -209,7 +218,14 @@ void smooth_extract_certify(PipelineResult& result, const PipelineOptions& optio
              format("%.0f quads, %.0f vertices from ", stats.quads, double(result.quads.positions.size())) + how);
   t0 = Clock::now();
   certify_outputs(result, options, /*igm_report_done=*/isolines);
-  stage.done("certify", t0, "IGM: " + certify::summary(result.igm_report) + "; quads: " + certify::summary(result.quad_report));
+  if (isolines && result.igm_report.valid() && !result.quad_report.valid()) {
+    slim.quads = result.quads.quads;
+    slim.vertices.resize(valence.size());
+    for (std::size_t v = 0; v < valence.size(); ++v) slim.vertices[v].valence = valence[v].first, slim.vertices[v].boundary = valence[v].second;
+    stats.quad_defects = describe_quad_defects(slim, find_quad_defects(slim, 20));
+  }
+  stage.done("certify", t0, "IGM: " + certify::summary(result.igm_report) + "; quads: " + certify::summary(result.quad_report) +
+                                (stats.quad_defects.empty() ? std::string() : "; " + stats.quad_defects));
 }
 
 std::vector<SurfacePoint> take_locations(RefinedSurface& surface, std::size_t more) {

@@ -208,6 +208,27 @@ def test_open_surfaces_and_several_components():
     assert not igm.certify(*args, boundary=True)["valid"]
 
 
+def test_every_surface_gets_its_floor():
+    # A genus-3 surface beside a sphere 100 times smaller: the sphere's share of 600 quads by area
+    # is far below the 2 x 2 grid it needs (2 x 1 would be 4 quads on 6 vertices with a double edge).
+    Va, Fa = igm.generate(3, 800, seed=2)
+    Vb, Fb = igm.generate(0, 60, seed=5)
+    V = np.vstack([Va, 0.01 * Vb + [10.0, 0, 0]])
+    F = np.vstack([Fa, Fb + len(Va)])
+    r = igm.compute(V, F, quads=600, smooth_iterations=3, quality=False)
+    assert r["certified"] is True
+    small = r["stats"]["surfaces"][1]
+    assert small["genus"] == 0 and small["raised_by_floor"] and small["quads"] == small["floor_quads"] == 2
+    assert small["quads_asked"] < 2 and "at the floor of 2 quads" in small["floor_note"]
+    assert r["stats"]["raised_by_floor"] and r["stats"]["quads_asked"] == 600
+    assert r["stats"]["quads"] == len(r["quads"]["quads"])
+    # One surface: a resolution below the torus's floor (3 along its two sides) is raised to it.
+    V, F = igm.generate(1, 300)
+    t = igm.compute(V, F, resolution=1, smooth_iterations=3, quality=False)
+    assert t["certified"] and t["stats"]["quads"] == 9 and t["stats"]["raised_by_floor"]
+    assert t["stats"]["quad_defects"] == ""
+
+
 def test_smoothing_options():
     V, F = igm.generate(2, 1500)
     plain = igm.compute(V, F, quads=800, smooth=False)

@@ -144,6 +144,9 @@ struct PipelineStats {
   std::int64_t quads_asked = 0;
   int raised_chords = 0;
   /// The floor raised this surface's quads above what its size option asks (floor_note says how).
+  /// When the IGM is valid but its isolines are not a manifold quad mesh: why, for people
+  /// (extract/quad_defects.h: which quads, edges and cones); "" otherwise.
+  std::string quad_defects;
   bool raised_by_floor() const { return quads_asked > 0 ? quads_asked < floor_quads : raised_chords > 0; }
   std::size_t max_uv_bits = 0;  // largest bit_size of an exact UV coordinate
   PatchMapStats patch_maps;
