@@ -416,10 +416,12 @@ void print_summary(const std::vector<Json>& records, const std::vector<std::stri
   }
   std::printf("summary of %zu meshes (%s)\n", last.size(), file.string().c_str());
   for (const char* v : kVerdicts) std::printf("  %-14s %6zu\n", v, counts[v]);
-  for (const auto& [v, n] : counts)
+  for (const auto& entry : counts) {  // not a structured binding: the lambda captures it (clang 14)
+    const std::string& v = entry.first;
     if (std::find_if(std::begin(kVerdicts), std::end(kVerdicts), [&](const char* k) { return v == k; }) ==
         std::end(kVerdicts))
-      std::printf("  %-14s %6zu\n", v.c_str(), n);
+      std::printf("  %-14s %6zu\n", v.c_str(), entry.second);
+  }
   if (!seconds.empty() || !sj_median.empty() || !sj_below.empty())
     std::printf("%-14s %10s %10s %10s %10s %10s\n", "", "min", "median", "p90", "p99", "max");
   print_quantiles("seconds", seconds, 3);
