@@ -212,7 +212,13 @@ py::dict compute(const DoubleArray& v, const IndexArray& f, const py::kwargs& kw
   bool several = false;  // open or several components: compute_igms and the merged outputs
   {
     py::gil_scoped_release release;
-    set = igm::validate_surfaces(soup, surface_options);
+    try {
+      set = igm::validate_surfaces(soup, surface_options);
+    } catch (const igm::Error& e) {  // with how to go on, where split_nonmanifold would help
+      const std::string hint = igm::split_nonmanifold_hint(soup, surface_options, e, "split_nonmanifold=True");
+      if (hint.empty()) throw;
+      throw igm::Error(e.kind(), e.message() + "; " + hint, e.elements());
+    }
     several = set.components.size() != 1 || !set.components[0].boundary_loops.empty();
     if (several) {
       surfaces = igm::compute_igms(set, options);

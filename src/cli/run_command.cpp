@@ -359,16 +359,26 @@ int run_command(const std::vector<std::string_view>& args) {
   if ((options.resolution > 0) + (options.edge_length > 0) + (options.quads > 0) > 1)
     return usage("give at most one of --quads, --edge-length and --resolution");
   if (options.restarts != 0 && !options.normal_form) return usage("--restarts needs --normal-form");
+  igm::PolygonSoup soup;
+  try {
+    soup = igm::read_soup(std::filesystem::path(mesh_path));
+  } catch (const igm::Error& e) {  // its message names the path
+    std::fprintf(stderr, "igm: %s\n", e.what());
+    return e.kind() == igm::ErrorKind::Internal ? 3 : kExitInput;
+  }
   try {
     const std::string name = std::filesystem::path(mesh_path).stem().string();
     igm::SurfaceOptions so;
     so.split_nonmanifold = split_nonmanifold;
     igm::SurfaceSet set;
     try {
-      set = igm::validate_surfaces(igm::read_soup(std::filesystem::path(mesh_path)), so);
-    } catch (const igm::Error& e) {  // as load_mesh names them: the path first
-      throw igm::Error(e.kind(), mesh_path + ": " + e.what(), e.elements());
+      set = igm::validate_surfaces(soup, so);
+    } catch (const igm::Error& e) {  // with how to go on, where --split-nonmanifold would help
+      const std::string hint = igm::split_nonmanifold_hint(soup, so, e, "--split-nonmanifold");
+      if (hint.empty()) throw;
+      throw igm::Error(e.kind(), e.message() + "; " + hint, e.elements());
     }
+    soup = igm::PolygonSoup{};
     if (set.components.size() != 1 || !set.components[0].boundary_loops.empty())
       return run_surfaces(set, name, dir, options);
     const igm::ValidMesh mesh = igm::to_valid_mesh(set.components[0], set.warnings);

@@ -92,6 +92,20 @@ def test_bad_meshes_raise_igm_error_with_kind_and_elements():
     assert e.value.kind == "invalid_argument"
 
 
+def test_a_non_manifold_error_says_how_to_go_on():
+    # Two tetrahedra sharing vertex 0: a non-manifold vertex; split_nonmanifold=True cuts it apart
+    # into two closed spheres, which the error says.
+    V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [-1, 0, 0], [0, -1, 0], [0, 0, -1]], dtype=float)
+    F = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3], [0, 4, 5], [0, 6, 4], [0, 5, 6], [4, 6, 5]])
+    with pytest.raises(igm.Error) as e:
+        igm.compute(V, F)
+    assert e.value.kind == "non_manifold_vertex" and e.value.elements == [0]
+    assert "split_nonmanifold=True cuts its non-manifold vertices and edges apart: 2 surfaces" in str(e.value)
+    with pytest.warns(UserWarning, match="cut 1 non-manifold vertex into one copy per fan"):
+        r = igm.compute(V, F, split_nonmanifold=True, quality=False)
+    assert r["certified"] and [s["genus"] for s in r["stats"]["surfaces"]] == [0, 0]
+
+
 def test_certify_floats_strings_and_fractions():
     V, F, UV, FUV = square_torus(4)
     ok = igm.certify(V, F, UV, FUV)
