@@ -362,8 +362,10 @@ int run_command(const std::vector<std::string_view>& args) {
   igm::PolygonSoup soup;
   try {
     soup = igm::read_soup(std::filesystem::path(mesh_path));
-  } catch (const igm::Error& e) {  // its message names the path
-    std::fprintf(stderr, "igm: %s\n", e.what());
+  } catch (const igm::Error& e) {  // as every error of a run: "igm: MESH: KIND: MESSAGE" (igm batch reads it)
+    std::string message = e.message();
+    if (message.compare(0, mesh_path.size() + 2, mesh_path + ": ") == 0) message.erase(0, mesh_path.size() + 2);
+    std::fprintf(stderr, "igm: %s: %s: %s\n", mesh_path.c_str(), igm::to_string(e.kind()), message.c_str());
     return e.kind() == igm::ErrorKind::Internal ? 3 : kExitInput;
   }
   try {
