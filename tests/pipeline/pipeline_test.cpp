@@ -10,6 +10,7 @@
 #include "certify/certify.h"
 #include "igm/core/error.h"
 #include "igm/mesh/generate.h"
+#include "igm/mesh/validate_surfaces.h"
 #include "igm/mesh/validate.h"
 #include "igm/output/igm_mesh.h"
 #include "igm/pipeline/pipeline.h"
@@ -19,6 +20,8 @@
 #include "refinement_check.h"
 #include "test_data.h"
 #include "uv_area.h"
+// After refinement_check.h: its igm_test::to_string(Geometry) would hide igm::to_string there.
+#include "random_mesh.h"
 
 using namespace igm;
 using igm_test::refinement_violation;
@@ -648,4 +651,57 @@ TEST_CASE("a valid IGM whose isolines are no manifold quad mesh: the certify sta
   REQUIRE_FALSE(result.stats.stages.empty());
   CHECK(result.stats.stages.back().stage == "certify");
   CHECK(result.stats.stages.back().detail.find(result.stats.quad_defects) != std::string::npos);
+}
+
+TEST_CASE("the floor: small surfaces of every kind at the smallest sizes certify, at least at their floor") {
+  // Swept: --quads 1 and 4, --resolution 1 and 2, an edge length longer than the mesh; on the
+  // tetrahedron, the 12-face box, the smallest generated torus and genus 2 (every layout), genus 3,
+  // and open surfaces (disk, annulus, genus 0 with 3 loops, genus 1 with 1 loop).
+  struct Case {
+    std::string name;
+    PolygonSoup soup;
+    LayoutKind layout = LayoutKind::Spread;
+  };
+  auto generated = [](int genus, int boundaries, std::int64_t faces) {
+    GenerateOptions g;
+    g.genus = genus;
+    g.boundaries = boundaries;
+    g.faces = faces;
+    g.seed = 2;
+    return generate_mesh(g);
+  };
+  igm_test::RandomMeshSpec tetra;
+  tetra.genus = 0;
+  tetra.faces = 4;
+  std::vector<Case> cases{{"tetrahedron", igm_test::random_mesh(tetra)}, {"box", igm_test::box_soup()}};
+  for (LayoutKind kind : {LayoutKind::Spread, LayoutKind::Kite, LayoutKind::Paper}) {
+    cases.push_back({std::string("torus, ") + to_string(kind), generated(1, 0, 16), kind});
+    cases.push_back({std::string("genus 2, ") + to_string(kind), generated(2, 0, 16), kind});
+  }
+  cases.push_back({"genus 3", generated(3, 0, 16)});
+  cases.push_back({"disk", generated(0, 1, 200)});
+  cases.push_back({"annulus", generated(0, 2, 300)});
+  cases.push_back({"genus 0, 3 loops", generated(0, 3, 400)});
+  cases.push_back({"genus 1, 1 loop", generated(1, 1, 500)});
+  for (const Case& c : cases) {
+    const SurfaceSet set = validate_surfaces(c.soup);
+    REQUIRE(set.components.size() == 1);
+    for (int size = 0; size < 5; ++size) {
+      PipelineOptions o;
+      o.layout = c.layout;
+      o.quality = false;
+      o.smooth_iterations = 3;
+      if (size < 2) o.quads = size == 0 ? 1 : 4;
+      else if (size < 4) o.resolution = size - 1;
+      else o.edge_length = 1e9;
+      CAPTURE(c.name);
+      CAPTURE(size);
+      const SurfacesResult r = compute_igms(set, o);
+      const PipelineStats& st = r.components.at(0).stats;
+      CHECK_MESSAGE(r.certified(), certify::summary(r.quad_report) << " " << st.quad_defects);
+      CHECK(st.quads >= st.floor_quads);
+      if (size == 0 || size == 4) CHECK(st.quads == st.floor_quads);  // nothing asks for more
+      CHECK(st.quad_defects.empty());
+    }
+  }
 }
