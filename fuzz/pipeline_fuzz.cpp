@@ -12,6 +12,11 @@
 //   open: validate_surfaces() must give one surface of genus g with b loops, and compute_igm on it
 //   an output both reports accept in boundary mode, with that genus and those loops (the root
 //   moved to the first vertex off the boundary: a boundary root is a typed error).
+// Several components (flag bit 0x20): igm_test::random_surfaces (2..300 tetrahedra, boxes and
+// generated surfaces of genus 0..10, closed or open, sizes up to four orders of magnitude apart;
+// generated ones of up to max(50, 4000 / components) faces), the same perturbations; validate_surfaces must find every component
+// with its (genus, loops) and compute_igms with 200..1000 quads shared among them (most below
+// their floor) an output both reports accept in components and boundary mode.
 // No igm::Error is accepted (the mesh is valid by construction; with kGenus0Certifies false only
 // Unsupported for genus 0 was; with the normal form, Unsupported for its growth bound is): any igm::Error, any other exception, a rejected output, a crash
 // or a hang is a finding (abort).
@@ -97,6 +102,49 @@ int run_open(const igm::PolygonSoup& soup, const igm_test::RandomMeshSpec& s, st
   return 0;
 }
 
+// The several-components branch (see the top of the file).
+int run_surfaces(const igm::PolygonSoup& soup, const igm_test::RandomSurfaces& m, std::uint64_t flags) {
+  igm_test::RandomMeshSpec none;  // for the messages: the components are in m.description
+  none.genus = -1;
+  igm::SurfaceSet set;
+  try {
+    set = igm::validate_surfaces(soup);
+  } catch (const igm::Error& e) {
+    finding("validate_surfaces rejected several components", none, (e.what() + ("\n" + m.description)).c_str());
+  }
+  std::vector<igm::certify::ComponentTopology> expected, found;
+  for (const auto& t : m.topology) expected.push_back({t[0], t[1]});
+  for (const igm::SurfaceComponent& c : set.components)
+    found.push_back({c.genus, static_cast<std::int64_t>(c.boundary_loops.size())});
+  std::sort(expected.begin(), expected.end());
+  std::sort(found.begin(), found.end());
+  if (found != expected) finding("wrong surfaces, genus or loops from validate_surfaces", none, m.description.c_str());
+  igm::PipelineOptions o;
+  o.quads = 200 + static_cast<std::int64_t>(flags % 3) * 400;
+  o.max_witnesses = 3;
+  o.quality = false;
+  o.smooth_iterations = 3;
+  o.smooth_seconds = 0;
+  try {
+    const igm::SurfacesResult r = igm::compute_igms(set, o);
+    for (const igm::PipelineResult& c : r.components)
+      if (!c.certified() || c.stats.quads < c.stats.floor_quads)
+        finding("a surface not certified among several", none,
+                (igm::certify::summary(c.quad_report) + "; " + c.stats.quad_defects + "\n" + m.description).c_str());
+    if (!r.igm_report.valid()) finding("merged IGM rejected by the certifier", none, igm::certify::summary(r.igm_report).c_str());
+    if (!r.quad_report.valid()) finding("merged quads rejected by the certifier", none, igm::certify::summary(r.quad_report).c_str());
+    found.clear();
+    for (const auto& c : r.quad_report.components) found.push_back({c.genus.value_or(-1), c.boundary_loops.value_or(-1)});
+    std::sort(found.begin(), found.end());
+    if (found != expected) finding("wrong components of the merged quad mesh", none, m.description.c_str());
+  } catch (const igm::Error& e) {
+    finding("typed error on valid surfaces", none, (e.what() + ("\n" + m.description)).c_str());
+  } catch (const std::exception& e) {
+    finding("untyped exception", none, e.what());
+  }
+  return 0;
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -107,7 +155,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const bool open = first >= 208;  // 208 = 16 * 13: the closed genera stay uniform below it
   s.genus = open ? (first - 208) % 6 : first % 13;
   s.boundaries = open ? 1 + (first - 208) / 6 : 0;
-  s.faces = 4 + static_cast<std::int64_t>(in.get(2) % 1997);
+  const std::uint64_t faces = in.get(2);
+  s.faces = 4 + static_cast<std::int64_t>(faces % 1997);
   if (open) s.faces = std::max<std::int64_t>(s.faces, 200 + 250 * s.genus + 40 * s.boundaries);
   s.seed = in.get(8);
   s.geometry = static_cast<igm_test::Geometry>(in.get(1) % static_cast<unsigned>(igm_test::Geometry::Count));
@@ -119,7 +168,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   s.permute = (flags & 0x80) != 0;
   const int resolution = 3 + static_cast<int>(flags % 3);
 
-  igm::PolygonSoup soup = open ? igm_test::random_mesh(s) : igm_test::random_closed_mesh(s);
+  const bool several = (flags & 0x20) != 0;
+  igm_test::RandomSurfaces surfaces;
+  if (several) {  // 2..300 components (the faces field), genus up to the first byte's 0..10
+    const int k = 2 + static_cast<int>(faces % 299);
+    surfaces = igm_test::random_surfaces(s.seed, k, first % 11, std::max(50, 4000 / k));
+  }
+  igm::PolygonSoup soup = several ? std::move(surfaces.soup) : open ? igm_test::random_mesh(s) : igm_test::random_closed_mesh(s);
   auto& pos = soup.positions;
   const std::size_t nv = pos.size();
   for (int k = 0; k < 64 && in.n >= 5; ++k) {  // at most 64 perturbations
@@ -136,6 +191,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
   }
 
+  if (several) return run_surfaces(soup, surfaces, flags);
   if (open) return run_open(soup, s, root_bytes, flags);
 
   igm::ValidMesh mesh;

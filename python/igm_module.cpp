@@ -139,7 +139,9 @@ py::dict stats_dict(const igm::PipelineStats& st) {
                   "smooth_iterations"_a = st.smooth.iterations, "smooth_skipped"_a = st.smooth_skipped,
                   "layout"_a = st.layout,
                   "layout_fallback"_a = st.layout_fallback.empty() ? py::object(py::none()) : py::object(py::str(st.layout_fallback)),
-                  "stages"_a = stages);
+                  "floor_quads"_a = st.floor_quads, "quads_asked"_a = st.quads_asked,
+                  "raised_by_floor"_a = st.raised_by_floor(), "floor_note"_a = igm::floor_note(st),
+                  "quad_defects"_a = st.quad_defects, "stages"_a = stages);
 }
 
 // The outputs as NumPy arrays and dicts (one surface, or several merged).
@@ -213,7 +215,13 @@ py::dict compute(const DoubleArray& v, const IndexArray& f, const py::kwargs& kw
   bool several = false;  // open or several components: compute_igms and the merged outputs
   {
     py::gil_scoped_release release;
-    set = igm::validate_surfaces(soup, surface_options);
+    try {
+      set = igm::validate_surfaces(soup, surface_options);
+    } catch (const igm::Error& e) {  // with how to go on, where split_nonmanifold would help
+      const std::string hint = igm::split_nonmanifold_hint(soup, surface_options, e, "split_nonmanifold=True");
+      if (hint.empty()) throw;
+      throw igm::Error(e.kind(), e.message() + "; " + hint, e.elements());
+    }
     several = set.components.size() != 1 || !set.components[0].boundary_loops.empty();
     if (several) {
       surfaces = igm::compute_igms(set, options);
@@ -227,14 +235,16 @@ py::dict compute(const DoubleArray& v, const IndexArray& f, const py::kwargs& kw
     return result_dict(r.igm, r.quads, r.igm_report, r.quad_report, r.igm_quality, r.quad_quality, options.quality,
                        exact, stats_dict(r.stats), set.warnings);
   py::list per_surface;
-  int quads = 0;
+  bool raised = false;
   for (const igm::PipelineResult& c : surfaces.components) {
     per_surface.append(stats_dict(c.stats));
-    quads += c.stats.quads;
+    raised = raised || c.stats.raised_by_floor();
   }
   return result_dict(surfaces.igm, surfaces.quads, surfaces.igm_report, surfaces.quad_report, surfaces.igm_quality,
                      surfaces.quad_quality, options.quality, exact,
-                     py::dict("surfaces"_a = per_surface, "quads"_a = quads), set.warnings);
+                     py::dict("surfaces"_a = per_surface, "quads"_a = surfaces.quads_total,
+                              "quads_asked"_a = surfaces.quads_asked, "raised_by_floor"_a = raised),
+                     set.warnings);
 }
 
 // --- certify ---

@@ -9,12 +9,21 @@
 #      of the random meshes of tests/random (IGM_RANDOM_SCALE=0.25: ~10x slower under the
 #      sanitizers; the plain run does them all).
 #      IGM_TEST_ASAN=0 skips this part (for quick local runs; CI always runs it).
+#   Between them, the fuzz targets built with clang and run briefly (scripts/fuzz.sh smoke;
+#   IGM_TEST_FUZZ=0 skips it).
 # Tests that need ../shared read IGM_DATA_DIR (default: ../shared beside the checkout).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 bash scripts/build.sh -DIGM_BUILD_BENCH=ON -DIGM_BUILD_PYTHON=ON
 ctest --test-dir "${IGM_BUILD_DIR:-build}" --output-on-failure -j "$(nproc)"
+
+# The fuzz targets with clang + libFuzzer: built (only they, at -O1), each run a few seconds from
+# its corpus (scripts/fuzz.sh smoke; ~3 min on 2 cores, most of it the build). IGM_TEST_FUZZ=0 skips.
+if [ "${IGM_TEST_FUZZ:-1}" != 0 ]; then
+  echo "[test] the fuzz targets with clang: built, each run a few seconds (scripts/fuzz.sh smoke)"
+  bash scripts/fuzz.sh smoke
+fi
 
 if [ "${IGM_TEST_ASAN:-1}" != 0 ]; then
   ASAN_DIR="${IGM_ASAN_BUILD_DIR:-build-asan}"

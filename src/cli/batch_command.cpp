@@ -20,12 +20,14 @@
 // (resuming an interrupted batch runs each mesh once). A line:
 //   {"file": ABSOLUTE PATH, "id": ID, "verdict": V, "exit": CODE or null, "signal": SIG or null,
 //    ["error_kind": KIND, "error": MESSAGE,] "seconds": WALL, "peak_mb": PEAK RSS,
-//    ["quality": {"sj_median": X, "sj_below_half": Y}]}
+//    ["quads": Q, "raised_by_floor": B,] ["quality": {"sj_median": X, "sj_below_half": Y}]}
 // V: certified (exit 0), rejected (exit 1: the certifier refused an output), invalid_input
 // (exit 2; error_kind is the igm::Error kind or "usage"), timeout, out_of_memory (the run's own
 // memory stop, a failed allocation, a start refused for memory, a signal before any output
 // under --memory-mb, or a SIGKILL not ours: the OOM killer), crashed (any other signal or exit
 // code; error_kind "internal" for exit 3). quality copies quality.quads.sj_median and sj_below_half from the run's NAME.cert.json when present.
+// quads is its stats.quads; raised_by_floor whether the floor (PipelineOptions) raised a surface
+// above the size asked.
 // Progress: a bar on stderr when it is a terminal, else one line per mesh. At the end (not in
 // the one-MESH form) a summary of the job's lines on stdout: counts by verdict, time and
 // quality quantiles; `--summary` prints it for every line of OUT/results.jsonl.
@@ -161,6 +163,8 @@ struct Outcome {
   std::optional<int> exit_code, signal;
   double seconds = 0, peak_mb = 0;
   std::optional<double> sj_median, sj_below_half;
+  std::optional<double> quads;  // the run's quad count (stats.quads of NAME.cert.json)
+  bool raised_by_floor = false;  // a surface got more quads than asked: the least its layout allows
 };
 
 std::string slurp(const fs::path& p) {
@@ -172,7 +176,8 @@ std::string slurp(const fs::path& p) {
 
 bool has(const std::string& text, std::string_view needle) { return text.find(needle) != std::string::npos; }
 
-// The kind and message of `igm run`'s error line "igm: MESH: KIND: MESH: MESSAGE" in stderr.
+// The kind and message of `igm run`'s error line "igm: MESH: KIND: MESSAGE" in stderr (an older
+// `igm run` repeated "MESH: " before the message).
 void parse_run_error(const std::string& err, const std::string& mesh, Outcome& o) {
   const std::string prefix = "igm: " + mesh + ": ";
   const auto at = err.rfind(prefix);
@@ -306,6 +311,14 @@ Outcome classify(const Child& c, int status, const rusage& ru, const Settings& s
     if (std::optional<Json> cert = parse_json(slurp(dir / (fs::path(c.key).stem().string() + ".cert.json")))) {
       o.sj_median = cert->number_at({"quality", "quads", "sj_median"});
       o.sj_below_half = cert->number_at({"quality", "quads", "sj_below_half"});
+      o.quads = cert->number_at({"stats", "quads"});
+      const auto raised = [](const Json* j) {
+        const Json* b = j ? j->get("raised_by_floor") : nullptr;
+        return b && b->type == Json::Type::Bool && b->boolean;
+      };
+      o.raised_by_floor = raised(cert->get("stats"));
+      if (const Json* surfaces = cert->get("surfaces"))
+        for (const Json& one : surfaces->items) o.raised_by_floor = o.raised_by_floor || raised(&one);
     }
   }
   return o;
@@ -326,6 +339,7 @@ std::string json_line(const Child& c, const Outcome& o) {
   if (!o.error_kind.empty())
     l += ", \"error_kind\": " + json_quote(o.error_kind) + ", \"error\": " + json_quote(o.error);
   l += ", \"seconds\": " + number(o.seconds, 3) + ", \"peak_mb\": " + number(o.peak_mb, 1);
+  if (o.quads) l += ", \"quads\": " + number(*o.quads, 0) + ", \"raised_by_floor\": " + (o.raised_by_floor ? "true" : "false");
   if (o.sj_median || o.sj_below_half) {
     l += ", \"quality\": {";
     if (o.sj_median) l += "\"sj_median\": " + number(*o.sj_median, 6);
@@ -416,10 +430,12 @@ void print_summary(const std::vector<Json>& records, const std::vector<std::stri
   }
   std::printf("summary of %zu meshes (%s)\n", last.size(), file.string().c_str());
   for (const char* v : kVerdicts) std::printf("  %-14s %6zu\n", v, counts[v]);
-  for (const auto& [v, n] : counts)
+  for (const auto& entry : counts) {  // not a structured binding: the lambda captures it (clang 14)
+    const std::string& v = entry.first;
     if (std::find_if(std::begin(kVerdicts), std::end(kVerdicts), [&](const char* k) { return v == k; }) ==
         std::end(kVerdicts))
-      std::printf("  %-14s %6zu\n", v.c_str(), n);
+      std::printf("  %-14s %6zu\n", v.c_str(), entry.second);
+  }
   if (!seconds.empty() || !sj_median.empty() || !sj_below.empty())
     std::printf("%-14s %10s %10s %10s %10s %10s\n", "", "min", "median", "p90", "p99", "max");
   print_quantiles("seconds", seconds, 3);

@@ -11,6 +11,7 @@
 #include "certify/obj.h"
 #include "igm/core/error.h"
 #include "igm/extract/isolines.h"
+#include "igm/extract/quad_defects.h"
 #include "igm/io/read_mesh.h"
 #include "igm/io/write_mesh.h"
 #include "igm/output/igm_mesh.h"
@@ -55,7 +56,7 @@ void print_witnesses(const igm::certify::Report& r) {
   }
 }
 
-std::string stats_json(const igm::IsolineQuads& q) {
+std::string stats_json(const igm::IsolineQuads& q, const std::string& defects) {
   const igm::IsolineStats& s = q.stats;
   std::ostringstream o;
   o << "{\"quads\": " << q.quads.size() << ", \"vertices\": " << q.vertices.size()
@@ -68,17 +69,19 @@ std::string stats_json(const igm::IsolineQuads& q) {
     << ", \"boundary_corners\": " << s.boundary_corners
     << ", \"traces\": " << s.traces << ", \"trace_steps\": " << s.trace_steps
     << ", \"max_trace_steps\": " << s.max_trace_steps
-    << ", \"vertex_crossings\": " << s.vertex_crossings << ", \"seconds\": " << s.seconds_total
-    << "}";
+    << ", \"vertex_crossings\": " << s.vertex_crossings << ", \"seconds\": " << s.seconds_total;
+  if (!defects.empty()) o << ", \"quad_defects\": \"" << defects << "\"";  // ids, digits and plain words only
+  o << "}";
   return o.str();
 }
 
 // {"extractor", "exit_code", "extraction": stats or null, "igm": report, "quad": report or null}.
 void write_json(const std::string& path, int code, const igm::certify::Report& igm_report,
-                const igm::IsolineQuads* quads, const igm::certify::Report* quad_report) {
+                const igm::IsolineQuads* quads, const igm::certify::Report* quad_report,
+                const std::string& defects = "") {
   std::string s = "{\n\"extractor\": \"igm extract\",\n\"exit_code\": " + std::to_string(code) +
                   ",\n\"extraction\": ";
-  s += quads ? stats_json(*quads) : std::string("null");
+  s += quads ? stats_json(*quads, defects) : std::string("null");
   s += ",\n\"igm\": " + igm::certify::to_json(igm_report) + ",\n\"quad\": ";
   s += quad_report ? igm::certify::to_json(*quad_report) : std::string("null\n");
   s += "}\n";
@@ -182,7 +185,9 @@ int extract_command(const std::vector<std::string_view>& args) {
     igm::write_quad_obj(obj_text, mesh);
     igm::write_text_file(out_path, obj_text.str());
     const int code = quad_report.valid() ? kExitCertified : kExitRejected;
-    if (!json_path.empty()) write_json(json_path, code, x.report, &q, &quad_report);
+    // Why the quads are refused, when they are (a grid too coarse for the cones).
+    const std::string why = quad_report.valid() ? "" : igm::describe_quad_defects(q, igm::find_quad_defects(q, 20));
+    if (!json_path.empty()) write_json(json_path, code, x.report, &q, &quad_report, why);
     const igm::IsolineStats& s = q.stats;
     std::printf(
         "%zu quads, %zu vertices (%lld on mesh vertices, %lld on edges, %lld in triangles; %lld "
@@ -194,9 +199,7 @@ int extract_command(const std::vector<std::string_view>& args) {
         q.boundary_loops, in.triangles.size(), seconds, out_path.c_str(),
         quad_report.valid() ? "certified" : "NOT CERTIFIED");
     if (!quad_report.valid()) {
-      std::printf(
-          "  (a coarse grid has loops or multiple edges, which the certifier's quad check "
-          "refuses)\n");
+      if (!why.empty()) std::printf("  %s\n", why.c_str());
       print_witnesses(quad_report);
     }
     return code;

@@ -10,6 +10,7 @@
 #include <exception>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -116,11 +117,28 @@ std::string ids_text(const std::vector<std::int64_t>& ids, std::size_t max) {
   return s;
 }
 
-// Prints the report (`more` prints lines before the status and says whether the mesh's surfaces
-// are valid although the single-closed-surface check found problems: boundaries or several
-// components, which `igm run` maps one by one); returns the exit code.
-int print_report(const std::string& name, const igm::MeshReport& r,
-                 const std::function<bool()>& more) {
+// Whether `igm run` maps the mesh as one or several surfaces (validate_surfaces): several
+// components and boundary loops are facts, not problems.
+bool surface_fact(igm::ErrorKind kind) {
+  return kind == igm::ErrorKind::Boundary || kind == igm::ErrorKind::SeveralComponents;
+}
+
+// The report of `igm info`: the counts, the genus (per surface where there are several or open
+// ones), the problems `igm run` refuses (with --split-nonmanifold: what remains after the cuts)
+// with how to go on, the surfaces and the status; returns the exit code (0: `igm run` accepts it).
+int print_report(const std::string& name, const igm::PolygonSoup& soup, const igm::MeshReport& r, bool split) {
+  // What `igm run` makes of it: its surfaces, or why not.
+  igm::SurfaceOptions o;
+  o.split_nonmanifold = split;
+  std::optional<igm::SurfaceSet> set;
+  std::optional<igm::Error> refused;
+  if (r.topology_checked || r.problems.empty()) {
+    try {
+      set = igm::validate_surfaces(soup, o);
+    } catch (const igm::Error& e) {
+      refused = e;
+    }
+  }
   std::printf("mesh: %s\n", name.c_str());
   std::printf("vertices: %lld", static_cast<long long>(r.vertices));
   if (r.unreferenced_vertices > 0) std::printf(" (%lld unreferenced)", static_cast<long long>(r.unreferenced_vertices));
@@ -141,65 +159,68 @@ int print_report(const std::string& name, const igm::MeshReport& r,
   } else if (r.faces > 0 && r.vertices > 0) {
     std::printf("topology: not checked (the faces are malformed, see problems)\n");
   }
-  if (r.genus >= 0)
+  const bool one_closed = set && set->components.size() == 1 && set->components[0].boundary_loops.empty();
+  if (r.genus >= 0 && !(set && !one_closed)) {
     std::printf("genus: %d\n", r.genus);
-  else
+  } else if (set) {  // per surface, in the order listed below
+    std::string list;
+    for (std::size_t i = 0; i < set->components.size(); ++i) {
+      if (i == 20) {
+        list += ", ...";
+        break;
+      }
+      list += (i ? ", " : "") + std::to_string(set->components[i].genus);
+    }
+    std::printf("genus: %s (per surface)\n", list.c_str());
+  } else {
     std::printf("genus: undefined (invalid mesh)\n");
+  }
   for (const std::string& w : r.warnings) std::printf("warning: %s\n", w.c_str());
-  for (const igm::MeshProblem& p : r.problems) {
-    std::printf("problem: %s (%lld): %s\n", igm::to_string(p.kind), static_cast<long long>(p.count), p.message.c_str());
-    if (!p.elements.empty()) std::printf("  elements: %s\n", ids_text(p.elements, 20).c_str());
+  // The problems `igm run` refuses: all of inspect()'s but the surfaces' facts; with the split,
+  // only what remains after it.
+  std::vector<const igm::MeshProblem*> problems;
+  if (!set)
+    for (const igm::MeshProblem& p : r.problems)
+      if (!surface_fact(p.kind) && !(split && (p.kind == igm::ErrorKind::NonManifoldEdge ||
+                                               p.kind == igm::ErrorKind::NonManifoldVertex)))
+        problems.push_back(&p);
+  for (const igm::MeshProblem* p : problems) {
+    std::printf("problem: %s (%lld): %s\n", igm::to_string(p->kind), static_cast<long long>(p->count), p->message.c_str());
+    if (!p->elements.empty()) std::printf("  elements: %s\n", ids_text(p->elements, 20).c_str());
   }
-  const bool surfaces_valid = more();
-  if (r.problems.empty()) {
-    std::printf("status: valid\n");
+  if (refused && problems.empty()) std::printf("problem: %s\n", refused->what());  // found only by the split
+  if (refused) {
+    const std::string hint = igm::split_nonmanifold_hint(soup, o, *refused, "--split-nonmanifold");
+    if (!hint.empty()) std::printf("hint: %s\n", hint.c_str());
+  }
+  if (set && !one_closed) {
+    std::printf("surfaces: %zu\n", set->components.size());
+    for (std::size_t i = 0; i < set->components.size(); ++i) {
+      const igm::SurfaceComponent& c = set->components[i];
+      std::printf(
+          "surface %zu: faces %zu, vertices %zu, boundary loops %zu, genus %d, "
+          "euler characteristic %lld, first face %lld\n",
+          i, c.triangles.size(), c.positions.size(), c.boundary_loops.size(), c.genus,
+          static_cast<long long>(c.euler_characteristic), static_cast<long long>(c.input_face[0]));
+    }
+  }
+  if (set)  // the warnings not printed already (the cuts, and the repairs after them)
+    for (const std::string& w : set->warnings)
+      if (std::find(r.warnings.begin(), r.warnings.end(), w) == r.warnings.end())
+        std::printf("surfaces warning: %s\n", w.c_str());
+  if (set) {
+    if (one_closed)
+      std::printf("status: valid\n");
+    else
+      std::printf("status: valid (%zu surface%s: `igm run%s` maps each, boundaries on integer isolines)\n",
+                  set->components.size(), set->components.size() == 1 ? "" : "s", split ? " --split-nonmanifold" : "");
     return kExitOk;
   }
-  if (surfaces_valid) {
-    std::printf("status: valid as surfaces (open or several: `igm run` maps each, boundaries on integer isolines)\n");
-    return kExitOk;
-  }
-  std::printf("status: invalid (%zu problem kinds)\n", r.problems.size());
-  const igm::MeshProblem& first = r.problems.front();
-  std::fprintf(stderr, "igm: %s: invalid mesh: %s: %s\n", name.c_str(), igm::to_string(first.kind),
-               first.message.c_str());
+  std::printf("status: invalid\n");
+  const std::string first = refused ? refused->what()
+                                    : std::string(igm::to_string(problems.front()->kind)) + ": " + problems.front()->message;
+  std::fprintf(stderr, "igm: %s: invalid mesh: %s\n", name.c_str(), first.c_str());
   return kExitInvalid;
-}
-
-// With boundaries, several components or non-manifold elements: the surfaces that
-// validate_surfaces finds (one line each), or why it rejects the mesh. Nothing otherwise. Returns
-// whether it accepts them.
-bool print_surfaces(const igm::PolygonSoup& soup, const igm::MeshReport& r, bool split) {
-  if (!r.topology_checked || r.problems.empty() ||
-      (r.components <= 1 && r.boundary_loops == 0 && r.non_manifold_edges == 0 &&
-       r.non_manifold_vertices == 0))
-    return false;
-  igm::SurfaceOptions o;
-  o.split_nonmanifold = split;
-  igm::SurfaceSet set;
-  try {
-    set = igm::validate_surfaces(soup, o);
-  } catch (const igm::Error& e) {
-    std::printf("surfaces: rejected: %s%s\n", e.what(),
-                split || (r.non_manifold_edges == 0 && r.non_manifold_vertices == 0)
-                    ? ""
-                    : " (--split-nonmanifold cuts non-manifold vertices and edges apart)");
-    return false;
-  }
-  std::printf("surfaces: %zu\n", set.components.size());
-  for (std::size_t i = 0; i < set.components.size(); ++i) {
-    const igm::SurfaceComponent& c = set.components[i];
-    std::printf(
-        "surface %zu: faces %zu, vertices %zu, boundary loops %zu, genus %d, "
-        "euler characteristic %lld, first face %lld\n",
-        i, c.triangles.size(), c.positions.size(), c.boundary_loops.size(), c.genus,
-        static_cast<long long>(c.euler_characteristic), static_cast<long long>(c.input_face[0]));
-  }
-  // The warnings not printed already (the cuts, and the repairs after them).
-  for (const std::string& w : set.warnings)
-    if (std::find(r.warnings.begin(), r.warnings.end(), w) == r.warnings.end())
-      std::printf("surfaces warning: %s\n", w.c_str());
-  return true;
 }
 
 int cmd_info(const Args& args) {
@@ -223,8 +244,7 @@ int cmd_info(const Args& args) {
     std::fprintf(stderr, "igm: cannot read the mesh: %s\n", e.what());  // the message names the path
     return kExitInvalid;
   }
-  const igm::MeshReport report = igm::inspect(soup);
-  return print_report(path, report, [&] { return print_surfaces(soup, report, split); });
+  return print_report(path, soup, igm::inspect(soup), split);
 }
 
 bool parse_int(std::string_view s, std::int64_t& out) {

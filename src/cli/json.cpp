@@ -133,7 +133,7 @@ struct Parser {
         if (!close(':')) return false;
         Json member;
         if (!value(member, depth + 1)) return false;
-        v.members.emplace_back(std::move(key), std::move(member));
+        v.members.push_back({std::move(key), std::move(member)});
         return true;
       });
     }

@@ -11,13 +11,14 @@
 namespace igm_cli {
 
 struct Json {
+  struct Member;  // a (name, value) pair; defined below, once Json is complete
   enum class Type { Null, Bool, Number, String, Array, Object };
   Type type = Type::Null;
   bool boolean = false;
   double number = 0;
   std::string string;
   std::vector<Json> items;                            // Array
-  std::vector<std::pair<std::string, Json>> members;  // Object, in file order
+  std::vector<Member> members;                        // Object, in file order
 
   /// The member `key` of an object (the first one of that name), or nullptr.
   const Json* get(std::string_view key) const;
@@ -25,6 +26,13 @@ struct Json {
   std::optional<double> number_at(std::initializer_list<std::string_view> path) const;
   /// The string member `key`, or "" when absent or not a string.
   std::string string_of(std::string_view key) const;
+};
+
+// Not std::pair<std::string, Json>: a pair's members must be complete where the vector above is
+// declared (libstdc++ under clang refuses it).
+struct Json::Member {
+  std::string first;
+  Json second;
 };
 
 /// Parses one JSON text (RFC 8259; \u escapes to UTF-8, surrogate pairs joined). nullopt when

@@ -46,8 +46,10 @@ int usage(const std::string& message, bool help = false) {
                "  --quads Q       about Q quads (default %lld): each layout edge gets round(length / H) quads,\n"
                "                  H chosen so that the count is nearest to Q\n"
                "  --edge-length H quads of 3D edge length about H (in the mesh's units)\n"
-               "  --resolution N  N quads along every layout edge, N x N per layout quad (1..1024; the paper\n"
-               "                  layout needs N >= 3: below, its quad mesh has loops at the root)\n"
+               "  --resolution N  N quads along every layout edge, N x N per layout quad (1..1024)\n"
+               "                  whatever the size, every surface gets at least the quads its layout needs\n"
+               "                  for a manifold quad mesh (the floor: e.g. 3 along a torus's sides, 2 x 2\n"
+               "                  per unit on a sphere unless 1 x 1); the run says where it raised them\n"
                "  --layout L      the quad layout of the polygonal schema (genus >= 1): spread (default: root\n"
                "                  of valence 4g, 4g-4 vertices of valence 5), kite (4g at the root and the\n"
                "                  centre) or paper (Livesu's template: 8g at the root, 3g at the centre)\n"
@@ -167,6 +169,23 @@ std::function<std::filesystem::path(const char*)> write_outputs(const std::files
   return out;
 }
 
+// The surfaces the floor raised (PipelineOptions: the least quads of a manifold quad mesh), if any:
+// one line with the total against the count asked, the first few surfaces named.
+void print_floor(const igm::SurfacesResult& r) {
+  std::string named;
+  std::size_t raised = 0;
+  for (std::size_t c = 0; c < r.components.size(); ++c) {
+    const igm::PipelineStats& st = r.components[c].stats;
+    if (!st.raised_by_floor()) continue;
+    if (++raised <= 5) named += std::string(named.empty() ? "" : "; ") + "surface " + std::to_string(c) + " " + igm::floor_note(st);
+  }
+  if (raised == 0) return;
+  if (raised > 5) named += "; " + std::to_string(raised - 5) + " more";
+  std::printf("[sizing  ] %lld quads in all", static_cast<long long>(r.quads_total));
+  if (r.quads_asked > 0) std::printf(" for %lld asked", static_cast<long long>(r.quads_asked));
+  std::printf(": %s (every surface gets at least the quads its layout needs for a manifold quad mesh)\n", named.c_str());
+}
+
 // Several surfaces or open ones (igm::compute_igms): one output with all of them, the certificate
 // listing each surface.
 int run_surfaces(const igm::SurfaceSet& set, const std::string& name, const std::filesystem::path& dir,
@@ -194,10 +213,12 @@ int run_surfaces(const igm::SurfaceSet& set, const std::string& name, const std:
         << ", \"faces\": " << set.components[c].triangles.size() << ", \"genus\": " << set.components[c].genus
         << ", \"boundary_loops\": " << set.components[c].boundary_loops.size()
         << ", \"certified\": " << (rc.certified() ? "true" : "false") << ", \"quads\": " << rc.stats.quads
-        << ", \"layout_quads\": " << rc.stats.layout_quads << ", \"layout\": \"" << rc.stats.layout
+        << ", \"layout_quads\": " << rc.stats.layout_quads << ", \"floor_quads\": " << rc.stats.floor_quads
+        << ", \"raised_by_floor\": " << (rc.stats.raised_by_floor() ? "true" : "false") << ", \"layout\": \"" << rc.stats.layout
         << "\", \"layout_fallback\": " << fallback_json(rc.stats) << "}";
     }
-    s << "],\n\"stats\": {\"quads\": " << r.quads.quads.size() << ", \"seconds\": " << total << ", \"surfaces\": [";
+    s << "],\n\"stats\": {\"quads\": " << r.quads.quads.size() << ", \"quads_asked\": " << r.quads_asked
+      << ", \"seconds\": " << total << ", \"surfaces\": [";
     for (std::size_t c = 0; c < r.components.size(); ++c)
       s << (c ? ", " : "") << "{\"layout\": \"" << r.components[c].stats.layout
         << "\", \"layout_fallback\": " << fallback_json(r.components[c].stats) << ", \"field\": " << field_json(r.components[c].stats) << "}";
@@ -207,6 +228,7 @@ int run_surfaces(const igm::SurfaceSet& set, const std::string& name, const std:
       << "\"igm\": " << igm::certify::to_json(r.igm_report) << ",\n"
       << "\"quad\": " << igm::certify::to_json(r.quad_report) << "}\n";
   });
+  print_floor(r);
   if (base.quality) std::printf("[quality ] all surfaces: %s\n", igm::summary_line(r.igm_quality, r.quad_quality).c_str());
   std::printf("[total]    %8.3f s  peak memory %.0f MB\n", total, peak_rss_mb());
   std::printf("wrote %s/%s.{igm.obj,igm.exact,quad.obj,cert.json,quad.svg}\n", dir.string().c_str(), name.c_str());
@@ -236,7 +258,8 @@ int run_pipeline(const igm::ValidMesh& mesh, const std::string& name, const std:
       << ", \"field\": " << field_json(st)
       << ", \"map\": \"" << igm::to_string(options.patch_map) << "\""
       << ", \"layout_quads\": " << st.layout_quads << ", \"chords\": " << st.chords << ", \"quads\": " << st.quads
-      << ", \"edge_length\": " << st.edge_length
+      << ", \"edge_length\": " << st.edge_length << ", \"floor_quads\": " << st.floor_quads
+      << ", \"quads_asked\": " << st.quads_asked << ", \"raised_by_floor\": " << (st.raised_by_floor() ? "true" : "false")
       << ", \"max_uv_bits\": " << st.max_uv_bits << ", \"tutte_iterations\": " << st.tutte.iterations
       << ", \"tutte_flips_double\": " << st.tutte.flips_double << ", \"smooth_iterations\": " << st.smooth.iterations
       << ", \"smooth_stop\": \"" << (options.smooth && !st.smooth_skipped ? igm::to_string(st.smooth.stop) : "off") << "\""
@@ -373,22 +396,31 @@ int run_command(const std::vector<std::string_view>& args) {
   if ((options.resolution > 0) + (options.edge_length > 0) + (options.quads > 0) > 1)
     return usage("give at most one of --quads, --edge-length and --resolution");
   if (options.restarts != 0 && !options.normal_form) return usage("--restarts needs --normal-form");
+  igm::PolygonSoup soup;
+  try {
+    soup = igm::read_soup(std::filesystem::path(mesh_path));
+  } catch (const igm::Error& e) {  // as every error of a run: "igm: MESH: KIND: MESSAGE" (igm batch reads it)
+    std::string message = e.message();
+    if (message.compare(0, mesh_path.size() + 2, mesh_path + ": ") == 0) message.erase(0, mesh_path.size() + 2);
+    std::fprintf(stderr, "igm: %s: %s: %s\n", mesh_path.c_str(), igm::to_string(e.kind()), message.c_str());
+    return e.kind() == igm::ErrorKind::Internal ? 3 : kExitInput;
+  }
   try {
     const std::string name = std::filesystem::path(mesh_path).stem().string();
     igm::SurfaceOptions so;
     so.split_nonmanifold = split_nonmanifold;
     igm::SurfaceSet set;
     try {
-      set = igm::validate_surfaces(igm::read_soup(std::filesystem::path(mesh_path)), so);
-    } catch (const igm::Error& e) {  // as load_mesh names them: the path first
-      throw igm::Error(e.kind(), mesh_path + ": " + e.what(), e.elements());
+      set = igm::validate_surfaces(soup, so);
+    } catch (const igm::Error& e) {  // with how to go on, where --split-nonmanifold would help
+      const std::string hint = igm::split_nonmanifold_hint(soup, so, e, "--split-nonmanifold");
+      if (hint.empty()) throw;
+      throw igm::Error(e.kind(), e.message() + "; " + hint, e.elements());
     }
+    soup = igm::PolygonSoup{};
     if (set.components.size() != 1 || !set.components[0].boundary_loops.empty())
       return run_surfaces(set, name, dir, options);
     const igm::ValidMesh mesh = igm::to_valid_mesh(set.components[0], set.warnings);
-    if (mesh.genus > 0 && options.layout == igm::LayoutKind::Paper && options.resolution > 0 && options.resolution < 3)
-      return usage("--resolution must be in 3..1024 for the paper layout (below 3 its quad mesh has loops and "
-                   "multi-edges at the root)");
     return run_pipeline(mesh, name, dir, options);
   } catch (const igm::Error& e) {
     std::fprintf(stderr, "igm: %s: %s\n", mesh_path.c_str(), e.what());

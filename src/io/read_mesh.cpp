@@ -64,10 +64,7 @@ PolygonSoup read_soup(const std::filesystem::path& path) {
 }
 
 Error with_path(const Error& e, const std::filesystem::path& path) {
-  std::string message = e.what();
-  const std::string prefix = std::string(to_string(e.kind())) + ": ";
-  if (message.compare(0, prefix.size(), prefix) == 0) message.erase(0, prefix.size());
-  return Error(e.kind(), path.string() + ": " + message, e.elements());
+  return Error(e.kind(), path.string() + ": " + e.message(), e.elements());
 }
 
 }  // namespace igm

@@ -60,9 +60,6 @@ std::vector<int> minimum_chord_counts(const QuadLayout& L) {
     if (a == b) minimum[L.chord[s]] = 3;
     by_ends[{std::min(a, b), std::max(a, b)}].push_back(s);
   }
-  for (const auto& [ends, list] : by_ends)
-    if (list.size() > 1)
-      for (int s : list) minimum[L.chord[s]] = std::max(minimum[L.chord[s]], 2);
   for (std::size_t q = 0; q < L.quads.size(); ++q) {
     const auto& Q = L.quads[q];
     if (L.layout_vertex[Q[0]] == L.layout_vertex[Q[2]] || L.layout_vertex[Q[1]] == L.layout_vertex[Q[3]])
@@ -71,7 +68,42 @@ std::vector<int> minimum_chord_counts(const QuadLayout& L) {
         m = std::max(m, 2);
       }
   }
+  // Parallel edges (one pair of layout vertices): at most one of them may stay a single quad edge.
+  // Two in one chord force it to 2; the others are raised, then lowered back to 1 chord by chord
+  // (those sizing the most layout quads first) while no pair has two single edges left.
+  std::vector<std::vector<int>> groups;  // per pair with several edges: its edges' chords
+  std::vector<char> parallel(L.num_chords, 0);
+  for (const auto& [ends, list] : by_ends) {
+    if (list.size() < 2) continue;
+    std::vector<int> chords;
+    for (int s : list) chords.push_back(L.chord[s]);
+    std::sort(chords.begin(), chords.end());
+    for (std::size_t i = 0; i + 1 < chords.size(); ++i)
+      if (chords[i] == chords[i + 1]) minimum[chords[i]] = std::max(minimum[chords[i]], 2);
+    for (int c : chords) parallel[c] = 1;
+    groups.push_back(std::move(chords));
+  }
+  std::vector<int> quads_sized(L.num_chords, 0), candidates;
+  for (std::size_t q = 0; q < L.quads.size(); ++q)
+    for (int k = 0; k < 2; ++k) ++quads_sized[L.chord[L.surface_edge[L.quad_edge[q][k]]]];
+  for (int c = 0; c < L.num_chords; ++c)
+    if (parallel[c] && minimum[c] == 1) minimum[c] = 2, candidates.push_back(c);
+  std::stable_sort(candidates.begin(), candidates.end(), [&](int x, int y) { return quads_sized[x] > quads_sized[y]; });
+  std::vector<std::vector<int>> chord_groups(L.num_chords);
+  for (std::size_t g = 0; g < groups.size(); ++g)
+    for (int c : groups[g]) chord_groups[c].push_back(static_cast<int>(g));
+  for (int c : candidates) {  // bound: the chords; each group scanned per chord in it
+    bool free = true;
+    for (int g : chord_groups[c])
+      for (int d : groups[g]) free = free && (d == c || minimum[d] > 1);
+    if (free) minimum[c] = 1;
+  }
   return minimum;
+}
+
+std::array<int, 2> pillowcase_grid_floor(std::array<int, 2> n) {
+  if ((n[0] == 1) != (n[1] == 1)) n = {std::max(n[0], 2), std::max(n[1], 2)};
+  return n;
 }
 
 Sizing size_layout(const QuadLayout& L, const std::vector<double>& length, const SizingOptions& o) {
@@ -83,12 +115,7 @@ Sizing size_layout(const QuadLayout& L, const std::vector<double>& length, const
     if (o.resolution > kMaxCount) throw Error(ErrorKind::InvalidArgument, "size_layout: resolution past 2^20");
     s.chord_count.assign(L.num_chords, o.resolution);
     for (int c = 0; c < L.num_chords; ++c)
-      if (o.resolution < s.chord_minimum[c])
-        throw Error(ErrorKind::InvalidArgument,
-                    "resolution " + std::to_string(o.resolution) + " is below " + std::to_string(s.chord_minimum[c]) +
-                        ", the least count of chord " + std::to_string(c) + " of the " + to_string(L.kind) +
-                        " layout (fewer would give the quad mesh a loop or a double edge at the root)",
-                    {c});
+      if (o.resolution < s.chord_minimum[c]) s.chord_count[c] = s.chord_minimum[c], ++s.raised_chords;
   } else {
     std::vector<double> mean(L.num_chords, 0.0);
     std::vector<int> members(L.num_chords, 0);
@@ -121,6 +148,9 @@ Sizing size_layout(const QuadLayout& L, const std::vector<double>& length, const
       throw Error(ErrorKind::InvalidArgument, "size_layout: needs a resolution, an edge length or a quad count");
     }
     s.chord_count = counts_for(mean, s.chord_minimum, s.edge_length);
+    const std::vector<int> ones(L.num_chords, 1);
+    const std::vector<int> asked = counts_for(mean, ones, s.edge_length);
+    for (int c = 0; c < L.num_chords; ++c) s.raised_chords += s.chord_minimum[c] > asked[c];
   }
   s.edge_count.resize(L.num_surface_edges);
   for (int e = 0; e < L.num_surface_edges; ++e) s.edge_count[e] = s.chord_count[L.chord[e]];
@@ -128,6 +158,7 @@ Sizing size_layout(const QuadLayout& L, const std::vector<double>& length, const
   for (std::size_t q = 0; q < L.quads.size(); ++q)
     s.quad_size[q] = {s.edge_count[L.surface_edge[L.quad_edge[q][0]]], s.edge_count[L.surface_edge[L.quad_edge[q][1]]]};
   s.quads = total_quads(L, s.chord_count);
+  s.floor_quads = total_quads(L, s.chord_minimum);
   return s;
 }
 

@@ -259,6 +259,37 @@ SurfaceSet validate_surfaces(const PolygonSoup& soup, const SurfaceOptions& opti
   return out;
 }
 
+std::string split_nonmanifold_hint(const PolygonSoup& soup, const SurfaceOptions& options, const Error& refused,
+                                   const std::string& option) {
+  if (options.split_nonmanifold ||
+      (refused.kind() != ErrorKind::NonManifoldEdge && refused.kind() != ErrorKind::NonManifoldVertex))
+    return "";
+  SurfaceOptions split = options;
+  split.split_nonmanifold = true;
+  SurfaceSet set;
+  try {
+    set = validate_surfaces(soup, split);
+  } catch (const Error& e) {
+    return option + " would cut its non-manifold vertices and edges apart, but then: " + e.what();
+  }
+  // The surfaces by (genus, loops), the commonest first few.
+  std::map<std::pair<int, std::size_t>, std::size_t> kinds;
+  for (const SurfaceComponent& c : set.components) ++kinds[{c.genus, c.boundary_loops.size()}];
+  std::string list;
+  std::size_t shown = 0;
+  for (const auto& [topology, n] : kinds) {
+    if (shown++ == kMaxNamed) {
+      list += ", ...";
+      break;
+    }
+    if (!list.empty()) list += ", ";
+    list += std::to_string(n) + " of genus " + std::to_string(topology.first) + " with " +
+            plural(topology.second, "boundary loop", "boundary loops");
+  }
+  return option + " cuts its non-manifold vertices and edges apart: " +
+         plural(set.components.size(), "surface", "surfaces") + " (" + list + "), all valid input";
+}
+
 ValidMesh to_valid_mesh(const SurfaceComponent& component, std::vector<std::string> warnings) {
   if (!component.boundary_loops.empty()) throw_boundary({component}, "");
   ValidMesh m;

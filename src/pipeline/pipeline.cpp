@@ -15,6 +15,7 @@
 #include "igm/extract/isolines.h"
 #include "igm/extract/patch_grid.h"
 #include "igm/igm/layout_map.h"
+#include "igm/extract/quad_defects.h"
 #include "igm/igm/patch_mesh.h"
 #include "igm/mesh/scale.h"
 #include "igm/mesh/surface_point.h"
@@ -86,6 +87,15 @@ SizingOptions sizing_options(const PipelineOptions& options, double scale) {
   else if (options.edge_length > 0) s.edge_length = options.edge_length * scale;
   else s.quads = options.quads > 0 ? options.quads : kDefaultQuads;
   return s;
+}
+
+std::string floor_note(const PipelineStats& stats) {
+  if (!stats.raised_by_floor()) return "";
+  if (stats.quads_asked > 0)
+    return format("at the floor of %.0f quads (%.0f asked)", double(stats.floor_quads), double(stats.quads_asked));
+  const bool grid = stats.genus == 0 && stats.boundary_loops == 0;
+  return format("%.0f ", stats.raised_chords) + (grid ? "grid count" : "chord") + (stats.raised_chords == 1 ? "" : "s") +
+         format(" raised to the floor (%.0f quads at least)", double(stats.floor_quads));
 }
 
 void StageReporter::done(const char* name, Clock::time_point t0, std::string detail) {
@@ -173,6 +183,10 @@ void smooth_extract_certify(PipelineResult& result, const PipelineOptions& optio
     stats.uv_doubles = stats.dyadic.on_grid;
   }
   const bool isolines = smoothing || !options.structured_extraction || !structured;
+  // What find_quad_defects needs if the certifier refuses the quads (kept slim: the located
+  // vertices are released with the extraction; per vertex its valence and boundary flag).
+  IsolineQuads slim;
+  std::vector<std::pair<int, bool>> valence;
   if (isolines) {
     IsolineInput in;  // the map lent to the extraction (it reads it only), not copied
     in.triangles = std::move(igm.triangles);
@@ -186,7 +200,11 @@ void smooth_extract_certify(PipelineResult& result, const PipelineOptions& optio
     result.igm_report = std::move(x.report);
     if (x.quads) {
       QuadMesh& quads = result.quads;
-      quads.quads = std::move(x.quads->quads);
+      quads.quads = x.quads->quads;
+      slim.quad_edges = std::move(x.quads->quad_edges);
+      slim.num_edges = x.quads->num_edges;
+      valence.reserve(x.quads->vertices.size());
+      for (const IsolineQuadVertex& v : x.quads->vertices) valence.emplace_back(v.valence, v.boundary);
       quads.positions.reserve(x.quads->vertices.size());
       quads.locations.reserve(x.quads->vertices.size());
       for (const IsolineQuadVertex& v : x.quads->vertices) add_quad_vertex(quads, igm, v.triangle, v.barycentric, input_positions);
@@ -201,7 +219,14 @@ void smooth_extract_certify(PipelineResult& result, const PipelineOptions& optio
              format("%.0f quads, %.0f vertices from ", stats.quads, double(result.quads.positions.size())) + how);
   t0 = Clock::now();
   certify_outputs(result, options, /*igm_report_done=*/isolines);
-  stage.done("certify", t0, "IGM: " + certify::summary(result.igm_report) + "; quads: " + certify::summary(result.quad_report));
+  if (isolines && result.igm_report.valid() && !result.quad_report.valid()) {
+    slim.quads = result.quads.quads;
+    slim.vertices.resize(valence.size());
+    for (std::size_t v = 0; v < valence.size(); ++v) slim.vertices[v].valence = valence[v].first, slim.vertices[v].boundary = valence[v].second;
+    stats.quad_defects = describe_quad_defects(slim, find_quad_defects(slim, 20));
+  }
+  stage.done("certify", t0, "IGM: " + certify::summary(result.igm_report) + "; quads: " + certify::summary(result.quad_report) +
+                                (stats.quad_defects.empty() ? std::string() : "; " + stats.quad_defects));
 }
 
 std::vector<SurfacePoint> take_locations(RefinedSurface& surface, std::size_t more) {
@@ -330,8 +355,12 @@ void map_disk(PipelineResult& result, CutDisk& cut, const PipelineOptions& optio
   pin.input_positions = &surface.input_positions;
   PatchMesh patches = build_patch_mesh(std::move(pin));
   const std::vector<double> lengths = layout_edge_lengths(layout, patches, scale);
-  const Sizing sizing = size_layout(layout, lengths, sizing_options(options, scale));
+  const SizingOptions size_options = sizing_options(options, scale);
+  const Sizing sizing = size_layout(layout, lengths, size_options);
   stats.edge_length = sizing.edge_length / scale;
+  stats.floor_quads = sizing.floor_quads;
+  stats.quads_asked = size_options.quads;
+  stats.raised_chords = sizing.raised_chords;
   IgmMesh& igm = result.igm;
   PatchMapStats map_stats;
   if (!affine) {
@@ -385,6 +414,7 @@ void map_disk(PipelineResult& result, CutDisk& cut, const PipelineOptions& optio
                     double(stats.output_triangles) / std::max(1, stats.input_faces), double(sizing.quads)) +
                  (options.resolution > 0 ? format("at resolution %.0f", double(options.resolution))
                                          : format("of edge length %.3g", stats.edge_length)) +
+                 (stats.raised_by_floor() ? ", " + floor_note(stats) : std::string()) +
                  ", " + to_string(options.patch_map) + " maps" +
                  format(", %.0f patches refined, UV bits max %.0f", double(map_stats.patches_refined),
                         double(stats.max_uv_bits)));

@@ -94,15 +94,19 @@ PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions&
   }
   lx /= 2, ly /= 2;  // per unit of the domain's area 2
   if (!std::isfinite(lx) || !std::isfinite(ly)) lx = ly = 0;
-  auto counts = [&](double H) {
+  // Raw counts by H, and the grid: its floor (pillowcase_grid_floor), the nearest manifold grid.
+  auto raw_counts = [&](double H) {
     auto c = [&](double l) { return static_cast<int>(std::min(4096.0, std::max(1.0, std::nearbyint(l / H)))); };
     return std::array<int, 2>{c(lx), c(ly)};
   };
+  auto counts = [&](double H) { return pillowcase_grid_floor(raw_counts(H)); };
   std::array<int, 2> n{options.resolution, options.resolution};
+  stats.floor_quads = 2;
   if (options.resolution <= 0) {
     double H = options.edge_length * scale;
     if (H <= 0) {
       const std::int64_t target = options.quads > 0 ? options.quads : kDefaultQuads;
+      stats.quads_asked = target;
       const double hi = 2 * std::max(lx, ly);
       H = hi > 0 ? edge_length_for_quads(
                        [&](double h) {
@@ -113,6 +117,8 @@ PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions&
                  : 1;
     }
     n = counts(H);
+    const std::array<int, 2> raw = raw_counts(H);
+    stats.raised_chords = (n[0] > raw[0]) + (n[1] > raw[1]);
     stats.edge_length = H / scale;
   }
   stats.grid = n;
@@ -141,8 +147,9 @@ PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions&
   stats.output_triangles = nf;
   stats.layout_quads = 2;
   stats.layout = "orbifold";
-  std::snprintf(line, sizeof line, "%d triangles (%.2fx input), UV bits max %zu", nf,
-                double(nf) / std::max(1, stats.input_faces), stats.max_uv_bits);
+  std::snprintf(line, sizeof line, "%d triangles (%.2fx input), %d x %d quads per unit (%lld quads)%s, UV bits max %zu", nf,
+                double(nf) / std::max(1, stats.input_faces), n[0], n[1], 2LL * n[0] * n[1],
+                stats.raised_by_floor() ? (", " + floor_note(stats)).c_str() : "", stats.max_uv_bits);
   done("igm", line);
 
   // --- the picture: the disk in UV, its 6 sides coloured by pair, the domain's grid, the cones ---

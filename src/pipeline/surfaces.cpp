@@ -37,6 +37,7 @@ SurfacesResult compute_igms(const SurfaceSet& set, const PipelineOptions& option
   }
   const bool share_quads = options.resolution <= 0 && options.edge_length <= 0;
   const std::int64_t quads = options.quads > 0 ? options.quads : kDefaultQuads;
+  if (share_quads) out.quads_asked = quads;
   for (std::size_t c = 0; c < set.components.size(); ++c) {
     const SurfaceComponent& comp = set.components[c];
     PipelineOptions o = options;
@@ -69,6 +70,7 @@ SurfacesResult compute_igms(const SurfaceSet& set, const PipelineOptions& option
     for (const SurfacePoint& p : r.quads.locations) out.quads.locations.push_back(shifted(p));
     for (const auto& q : r.quads.quads) out.quads.quads.push_back({q[0] + q0, q[1] + q0, q[2] + q0, q[3] + q0});
     for (const Vec3d& p : comp.positions) out.input_positions.push_back(p);
+    out.quads_total += r.stats.quads;
     loops += static_cast<int>(comp.boundary_loops.size());
     expected.push_back({comp.genus, static_cast<std::int64_t>(comp.boundary_loops.size())});
   }

@@ -443,7 +443,10 @@ std::vector<std::pair<int, int>> leg_order(const Work& w, int genus, int root, d
   std::vector<Link> links;
   std::vector<char> settled(n, 0);
   while (!pq.empty()) {  // each node settled once
-    const auto [d, x] = pq.top();
+    // Plain locals, not a structured binding: the lambda below captures them (C++20 allows
+    // capturing bindings, clang 14 does not).
+    const double d = pq.top().first;
+    const int x = pq.top().second;
     pq.pop();
     if (d > dist[x] || settled[x]) continue;
     settled[x] = 1;
@@ -520,7 +523,8 @@ void legs_step(Work& w, int genus, int root, OpenCutStats& stats) {
     }
     int found = -1;
     while (!pq.empty()) {  // each node settled once
-      const auto [d, x] = pq.top();
+      const double d = pq.top().first;  // plain locals: captured below (clang 14)
+      const int x = pq.top().second;
       pq.pop();
       if (d > dist[x]) continue;
       if (target(x)) {

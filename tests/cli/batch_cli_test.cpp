@@ -155,6 +155,8 @@ TEST_CASE("igm batch over a folder: a verdict per mesh, the summary's counts, --
     if (has(l, "polygon_mesh.off")) CHECK(field(l, "error_kind") == "non_manifold_vertex");  // without --split-nonmanifold
     if (field(l, "verdict") == "certified") {
       CHECK(!has(l, "error_kind"));
+      CHECK(has(l, "\"quads\": "));
+      CHECK(has(l, "\"raised_by_floor\": false"));  // 10,000 quads: above every floor here
       const fs::path stem = fs::path(field(l, "file")).stem();
       CHECK(fs::file_size(cwd / "out/runs" / field(l, "id") / (stem.string() + ".quad.obj")) > 0);
     }
@@ -172,6 +174,11 @@ TEST_CASE("igm batch over a folder: a verdict per mesh, the summary's counts, --
   const Proc inner = igm(cwd, {"batch", "in", "-o", "in/out"});
   CHECK(inner.code == 0);
   CHECK(has(inner.err, "[batch] 9 meshes, 9 done already, 0 to run"));
+  // The floor in a batch: the tetrahedron asked 1 quad gets the 2 of its 1 x 1 pillowcase, said.
+  const Proc floor = igm(cwd, {"batch", "in/tetrahedron.off", "-o", "floor", "--", "--quads", "1"});
+  CHECK(floor.code == 0);
+  CHECK(has(contents(cwd / "floor/results.jsonl"), "\"verdict\": \"certified\""));
+  CHECK(has(contents(cwd / "floor/results.jsonl"), "\"quads\": 2, \"raised_by_floor\": true"));
   fs::remove_all(cwd);
 }
 

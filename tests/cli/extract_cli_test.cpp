@@ -168,8 +168,22 @@ TEST_CASE(
   CHECK(small.code == 1);
   CHECK(contains(small.out, "4 quads, 4 vertices"));
   CHECK(contains(small.out, "NOT CERTIFIED"));
+  // ... and says why: the double edges, named.
+  CHECK(contains(small.out, "the integer isolines are no manifold quad mesh"));
+  CHECK(contains(small.out, "2 edges ("));
+  CHECK(contains(small.out, "more quads separate them"));
   CHECK(std::filesystem::exists(dir / "small.quad.obj"));
   CHECK(contains(read_text(dir / "small.json"), "\"exit_code\": 1"));
+  CHECK(contains(read_text(dir / "small.json"), "\"quad_defects\": \"the integer isolines"));
+  // The genus-0 pillow of 2 x 1 quads a side (issue 47's 4 quads on 6 vertices): the double edge
+  // lies in the quads of all four cones.
+  igm::certify::IgmInput pillow = certify_test::pillow(2);
+  for (auto& uv : pillow.corner_uv) uv = {uv[0], uv[1] / 2};
+  const ExtractRun flat = extract_igm(dir, "pillow.obj", pillow, "-o pillow.quad.obj");
+  CHECK(flat.code == 1);
+  CHECK(contains(flat.out, "4 quads, 6 vertices"));
+  CHECK(contains(flat.out, "2 edges ("));
+  CHECK(contains(flat.out, "which share the cones"));
 }
 
 TEST_CASE(

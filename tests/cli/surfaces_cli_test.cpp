@@ -53,6 +53,11 @@ bool has(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
 }
 
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
 }  // namespace
 
 TEST_CASE("generate --boundaries writes one surface of genus G with B loops, info reports it") {
@@ -69,13 +74,13 @@ TEST_CASE("generate --boundaries writes one surface of genus G with B loops, inf
   const std::string vertices = std::to_string(s.components[0].positions.size());
   CHECK(has(w.out, "wrote " + file + ": " + vertices + " vertices, " + faces + " faces, genus 2"));
 
-  // info: the closed-mesh report (a boundary is a problem for one closed surface), then the
-  // surface, which `igm run` maps: valid.
+  // info: boundary loops are a fact (the surface is what `igm run` maps), not a problem.
   const Output r = run_igm("info " + q(file));
   CHECK(r.code == 0);
-  CHECK(has(r.out, "status: valid as surfaces"));
+  CHECK(has(r.out, "status: valid (1 surface: `igm run` maps each"));
   CHECK(has(r.out, "boundary loops: 4\n"));
-  CHECK(has(r.out, "problem: boundary (4)"));
+  CHECK(has(r.out, "genus: 2 (per surface)\n"));
+  CHECK_FALSE(has(r.out, "problem:"));
   CHECK(has(
       r.out,
       "surfaces: 1\nsurface 0: faces " + faces + ", vertices " + vertices +
@@ -148,11 +153,15 @@ TEST_CASE("info on the shared meshes: surfaces per component, non-manifold ones 
   {
     const Output r = run_igm("info " + q((m / "polygon_mesh.off").string()));
     CHECK(r.code == 2);
-    CHECK(has(r.out, "surfaces: rejected: non_manifold_vertex: 2 vertices"));
-    CHECK(has(r.out, "(--split-nonmanifold cuts non-manifold vertices and edges apart)"));
+    CHECK(has(r.out, "problem: non_manifold_vertex (2): 2 vertices"));
+    CHECK(has(r.out, "hint: --split-nonmanifold cuts its non-manifold vertices and edges apart: 1 surface (1 of "
+                     "genus 4 with 14 boundary loops), all valid input\n"));
+    CHECK_FALSE(has(r.out, "problem: boundary"));  // a fact once cut
     const Output s = run_igm("info --split-nonmanifold " + q((m / "polygon_mesh.off").string()));
     CHECK(s.code == 0);  // cut apart, its surfaces are what `igm run --split-nonmanifold` maps
-    CHECK(has(s.out, "status: valid as surfaces"));
+    CHECK(has(s.out, "status: valid (1 surface: `igm run --split-nonmanifold` maps each"));
+    CHECK_FALSE(has(s.out, "problem:"));
+    CHECK_FALSE(has(s.out, "hint:"));
     CHECK(has(s.out, "non-manifold vertices: 2\n"));
     // 16,344 vertices + 3 copies - 48,612 edges + 32,245 faces = -20 = 2 - 2 * 4 - 14
     CHECK(has(s.out,
@@ -238,5 +247,35 @@ TEST_CASE("run on shared meshes with several components and non-manifold element
     CHECK(has(r.err + r.out, "cut 421 non-manifold vertices"));
     CHECK(has(file_text(d / "p" / "pig.cert.json"), "\"surfaces\": 17}"));
   }
+  fs::remove_all(d);
+}
+
+TEST_CASE("run and info on a non-manifold mesh name --split-nonmanifold, and what would still be wrong") {
+  const fs::path d = scratch();
+  // Two tetrahedra sharing vertex 0 (a bow tie of spheres): cut apart, two closed surfaces.
+  const std::string bow = (d / "bow.obj").string();
+  write_text(bow,
+             "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv -1 0 0\nv 0 -1 0\nv 0 0 -1\n"
+             "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\nf 1 5 6\nf 1 7 5\nf 1 6 7\nf 5 7 6\n");
+  const Output r = run_igm("run " + q(bow) + " -o " + q((d / "mapped").string()));
+  CHECK(r.code == 2);
+  CHECK(has(r.err, "non_manifold_vertex: 1 vertex has faces forming more than one fan: vertex 0 (2 fans); "
+                   "--split-nonmanifold cuts its non-manifold vertices and edges apart: 2 surfaces"));
+  const Output i = run_igm("info " + q(bow));
+  CHECK(i.code == 2);
+  CHECK(has(i.out, "hint: --split-nonmanifold cuts its non-manifold vertices and edges apart: 2 surfaces"));
+  const Output s = run_igm("run --split-nonmanifold " + q(bow) + " -o " + q((d / "mapped").string()));
+  CHECK(s.code == 0);
+  // A Moebius strip touching a triangle at vertex 0: cutting leaves a non-orientable surface.
+  const std::string moebius = (d / "moebius.obj").string();
+  write_text(moebius,
+             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 1\nv -1 0 0\nv -1 -1 0\n"
+             "f 1 2 3\nf 2 3 4\nf 3 4 5\nf 4 5 1\nf 5 1 2\nf 1 6 7\n");
+  const Output m = run_igm("run " + q(moebius) + " -o " + q((d / "mapped").string()));
+  CHECK(m.code == 2);
+  CHECK(has(m.err, "--split-nonmanifold would cut its non-manifold vertices and edges apart, but then: non_orientable"));
+  const Output mi = run_igm("info " + q(moebius));
+  CHECK(has(mi.out, "hint: --split-nonmanifold would cut its non-manifold vertices and edges apart, but then: "
+                    "non_orientable"));
   fs::remove_all(d);
 }

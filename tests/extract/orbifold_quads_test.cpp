@@ -9,6 +9,7 @@
 #include "igm/core/error.h"
 #include "igm/embed/orbifold_tutte.h"
 #include "igm/extract/orbifold_quads.h"
+#include "igm/layout/sizing.h"
 #include "igm/mesh/generate.h"
 #include "igm/mesh/validate.h"
 #include "generated_mesh.h"
@@ -95,6 +96,31 @@ TEST_CASE("orbifold quads: 2N^2 quads, 2N^2+2 vertices, four of valence 2, certi
     REQUIRE(r.check(5) != nullptr);
     CHECK(r.check(5)->histogram.at(2) == 4);
   }
+}
+
+TEST_CASE("genus-0 floor: the nx x ny pillowcase is a manifold quad mesh iff 1 x 1 or both >= 2 (pillowcase_grid_floor)") {
+  // Swept on the maps of generated spheres of 16 and 300 faces: a single row or column around the
+  // pillowcase (one count 1, the other >= 2) joins two vertices by two edges.
+  for (std::int64_t faces : {16, 300}) {
+    const Embedded e = embed(faces, 3);
+    for (int nx = 1; nx <= 4; ++nx)
+      for (int ny = 1; ny <= 4; ++ny) {
+        CAPTURE(faces);
+        CAPTURE(nx);
+        CAPTURE(ny);
+        const OrbifoldQuadMesh q = extract_orbifold_quads(e.cut.disk_triangles, e.map.uv, nx, ny);
+        certify::QuadInput in;
+        in.quads = q.quads;
+        in.num_vertices = static_cast<std::int64_t>(q.triangle.size());
+        certify::Options o;
+        o.expected_genus = 0;
+        const bool floor = pillowcase_grid_floor({nx, ny}) == std::array<int, 2>{nx, ny};
+        CHECK(certify::certify_quads(in, o).valid() == floor);
+        CHECK(floor == ((nx == 1 && ny == 1) || (nx >= 2 && ny >= 2)));
+      }
+  }
+  CHECK(pillowcase_grid_floor({5, 1}) == std::array<int, 2>{5, 2});
+  CHECK(pillowcase_grid_floor({1, 3}) == std::array<int, 2>{2, 3});
 }
 
 TEST_CASE("orbifold quads: typed errors for a bad resolution and for orbits no triangle holds") {

@@ -79,9 +79,11 @@ TEST_CASE("patch grid: --resolution N gives the paper layout its 5g N^2 quads, v
   CHECK(layout_valences.count(8 * g) == 1);
   CHECK(layout_valences.count(3 * g) == 1);
   CHECK(layout_valences.count(3) == static_cast<std::size_t>(3 * g));
-  // Below the paper layout's minimum (its sides are loops at the root) the sizing refuses.
+  // Below the paper layout's floor (its sides are loops at the root) the sizing raises them to it.
   so.resolution = 2;
-  CHECK_THROWS_AS(size_layout(s.layout, layout_edge_lengths(s.layout, s.mesh), so), Error);
+  const Sizing raised = size_layout(s.layout, layout_edge_lengths(s.layout, s.mesh), so);
+  CHECK(raised.raised_chords > 0);
+  CHECK(raised.quads == raised.floor_quads);
 }
 
 TEST_CASE("patch grid: UVs that do not cover a patch's rectangle are an Internal error, not a guess") {

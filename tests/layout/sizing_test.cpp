@@ -20,7 +20,7 @@ QuadLayout build(int g, LayoutKind kind) {
 
 }  // namespace
 
-TEST_CASE("sizing: the least counts keep the quad mesh simple (paper 3 for loops, kite 2 for double spokes, spread 1)") {
+TEST_CASE("sizing: the floor (paper 3 for loops, kite 2 for some double spokes, spread 1)") {
   for (int g : {2, 3, 6}) {
     CAPTURE(g);
     const auto paper = minimum_chord_counts(build(g, LayoutKind::Paper));
@@ -94,8 +94,34 @@ TEST_CASE("sizing: bad options and lengths are typed errors") {
   CHECK_THROWS_AS(size_layout(L, len, o), Error);
   len[0] = 1;
   o = SizingOptions{};
-  o.resolution = 1;  // the kite's spokes need 2
-  CHECK_THROWS_AS(size_layout(L, len, o), Error);
   o.resolution = 2;
   CHECK(size_layout(L, len, o).quads == 4 * 4 * 2);
+  CHECK(size_layout(L, len, o).raised_chords == 0);
+}
+
+TEST_CASE("sizing: below the floor every option is raised to it, and says so") {
+  const QuadLayout L = build(2, LayoutKind::Kite);  // some spokes need 2
+  const std::vector<double> len(L.num_surface_edges, 1.0);
+  const std::vector<int> minimum = minimum_chord_counts(L);
+  const int raised = static_cast<int>(std::count(minimum.begin(), minimum.end(), 2));
+  REQUIRE(raised > 0);
+  SizingOptions o;
+  o.resolution = 1;
+  Sizing s = size_layout(L, len, o);
+  CHECK(s.chord_count == minimum);
+  CHECK(s.raised_chords == raised);
+  CHECK(s.quads == s.floor_quads);
+  o = SizingOptions{};
+  o.edge_length = 10;  // round(1 / 10) = 0 quads per chord asked
+  s = size_layout(L, len, o);
+  CHECK(s.chord_count == minimum);
+  CHECK(s.raised_chords == raised);
+  o = SizingOptions{};
+  o.quads = 1;
+  s = size_layout(L, len, o);
+  CHECK(s.quads == s.floor_quads);
+  o.quads = 100000;
+  s = size_layout(L, len, o);
+  CHECK(s.quads > 4 * s.floor_quads);
+  CHECK(s.raised_chords == 0);
 }

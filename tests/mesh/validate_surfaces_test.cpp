@@ -480,3 +480,26 @@ TEST_CASE("shared invalid meshes: components, loops and genus, non-manifold ones
           }) == 1);  // names every cut vertex
   }
 }
+
+TEST_CASE("split_nonmanifold_hint: what cutting a non-manifold input apart would give, or what would still be wrong") {
+  // Two triangles sharing a vertex: cut apart, two disks.
+  const PolygonSoup bow = make_soup(5, {{0, 1, 2}, {0, 3, 4}});
+  CHECK(split_nonmanifold_hint(bow, {}, error_of(bow), "--split") ==
+        "--split cuts its non-manifold vertices and edges apart: 2 surfaces (2 of genus 0 with 1 boundary loop), "
+        "all valid input");
+  // A Moebius strip touching a triangle at vertex 0: cut apart, still not orientable.
+  Faces faces;
+  for (int i = 0; i < 5; ++i) faces.push_back({i, (i + 1) % 5, (i + 2) % 5});
+  faces.push_back({0, 5, 6});
+  const PolygonSoup moebius = make_soup(7, faces);
+  const Error e = error_of(moebius);
+  REQUIRE(e.kind() == ErrorKind::NonManifoldVertex);
+  const std::string hint = split_nonmanifold_hint(moebius, {}, e, "split=True");
+  CHECK(contains(hint, "split=True would cut its non-manifold vertices and edges apart, but then: non_orientable: "));
+  // Nothing to say: the split already asked for, or another problem.
+  CHECK(split_nonmanifold_hint(bow, split_options(), e, "--split").empty());
+  SurfaceOptions closed;
+  closed.allow_boundary = false;
+  const PolygonSoup disk = make_soup(3, {{0, 1, 2}});
+  CHECK(split_nonmanifold_hint(disk, closed, error_of(disk, closed), "--split").empty());
+}

@@ -10,13 +10,18 @@
 #include "certify/certify.h"
 #include "igm/core/error.h"
 #include "igm/mesh/generate.h"
+#include "igm/mesh/validate_surfaces.h"
 #include "igm/mesh/validate.h"
 #include "igm/output/igm_mesh.h"
 #include "igm/pipeline/pipeline.h"
+#include "../certify/igm_builders.h"
+#include "../../src/pipeline/pipeline_internal.h"
 #include "generated_mesh.h"
 #include "refinement_check.h"
 #include "test_data.h"
 #include "uv_area.h"
+// After refinement_check.h: its igm_test::to_string(Geometry) would hide igm::to_string there.
+#include "random_mesh.h"
 
 using namespace igm;
 using igm_test::refinement_violation;
@@ -50,7 +55,7 @@ PipelineStats check_run(const ValidMesh& mesh, PipelineOptions options, bool che
   CHECK(r.igm_report.valid());
   CHECK(r.quad_report.valid());
   CHECK(r.stats.layout_quads == expected_layout_quads(options.layout, g));
-  if (options.resolution > 0) {
+  if (options.resolution > 0 && !r.stats.raised_by_floor()) {
     CHECK(static_cast<int>(r.quads.quads.size()) == r.stats.layout_quads * options.resolution * options.resolution);
   } else {
     CHECK(r.quads.quads.size() >= static_cast<std::size_t>(r.stats.layout_quads));
@@ -148,8 +153,13 @@ TEST_CASE("the paper's layout at resolution N keeps its 5g N^2 quads and the aff
     affine.layout = LayoutKind::Spread;
     check_run(mesh, affine);
   }
-  // Below 3 the paper layout's sides are loops at the root: refused, not a broken quad mesh.
-  CHECK_THROWS_AS(compute_igm(igm_test::generated_mesh(2, 600, 1), with_resolution(2, LayoutKind::Paper)), Error);
+  // Below 3 the paper layout's sides are loops at the root: raised to its floor (3 on those
+  // chords), certified, and said.
+  const PipelineStats floor = check_run(igm_test::generated_mesh(2, 600, 1), with_resolution(2, LayoutKind::Paper));
+  CHECK(floor.raised_by_floor());
+  CHECK(floor.raised_chords > 0);
+  CHECK(floor.quads == floor.floor_quads);
+  CHECK(floor.floor_quads == 66);
 }
 
 TEST_CASE("generated genus 12, 25 and 50 (odd and even): certified") {
@@ -607,5 +617,91 @@ TEST_CASE("the refinement check rejects a corrupted refinement (genus 2 and genu
     rejects([&](IgmMesh& m) { std::swap(m.triangles[0][1], m.triangles[0][2]); }, "not positively oriented");
     rejects([&](IgmMesh& m) { m.triangles.pop_back(); }, "cover a fraction");
     rejects([&](IgmMesh& m) { m.triangles.push_back(m.triangles[0]); }, "cover a fraction");
+  }
+}
+
+TEST_CASE("a valid IGM whose isolines are no manifold quad mesh: the certify stage names the quads, edges and cones") {
+  // The stages after the map (smooth_extract_certify) on the genus-0 pillow of 2 x 1 quads a side:
+  // a valid IGM whose 4 quads on 6 vertices join two vertices by two edges (what the floor now
+  // prevents in the pipeline itself: tests/extract/orbifold_quads_test.cpp).
+  const certify::IgmInput pillow = certify_test::pillow(2);
+  PipelineResult result;
+  IgmMesh& igm = result.igm;
+  for (std::int64_t v = 0; v < pillow.num_vertices; ++v) {
+    igm.positions.push_back({double(v), double(v % 3), double(v % 5)});
+    igm.locations.push_back(SurfacePoint::vertex(static_cast<int>(v)));
+  }
+  igm.triangles = pillow.faces;
+  for (std::size_t f = 0; f < pillow.faces.size(); ++f) {
+    std::array<Point2q, 3> t;
+    for (int i = 0; i < 3; ++i) t[i] = {Rational(pillow.corner_uv[3 * f + i][0]), Rational(pillow.corner_uv[3 * f + i][1] / 2)};
+    igm.corner_uv.push_back(t);
+  }
+  PipelineOptions options;
+  options.smooth = false;
+  result.stats.genus = 0;
+  StageReporter stage{result.stats, options};
+  const std::vector<Vec3d> positions = igm.positions;
+  smooth_extract_certify(result, options, stage, positions, [] { return std::string("unused"); });
+  CHECK(result.igm_report.valid());
+  CHECK_FALSE(result.quad_report.valid());
+  CHECK(result.quads.quads.size() == 4);
+  CHECK(result.stats.quad_defects.find("2 edges (") != std::string::npos);
+  CHECK(result.stats.quad_defects.find("which share the cones") != std::string::npos);
+  REQUIRE_FALSE(result.stats.stages.empty());
+  CHECK(result.stats.stages.back().stage == "certify");
+  CHECK(result.stats.stages.back().detail.find(result.stats.quad_defects) != std::string::npos);
+}
+
+TEST_CASE("the floor: small surfaces of every kind at the smallest sizes certify, at least at their floor") {
+  // Swept: --quads 1 and 4, --resolution 1 and 2, an edge length longer than the mesh; on the
+  // tetrahedron, the 12-face box, the smallest generated torus and genus 2 (every layout), genus 3,
+  // and open surfaces (disk, annulus, genus 0 with 3 loops, genus 1 with 1 loop).
+  struct Case {
+    std::string name;
+    PolygonSoup soup;
+    LayoutKind layout = LayoutKind::Spread;
+  };
+  auto generated = [](int genus, int boundaries, std::int64_t faces) {
+    GenerateOptions g;
+    g.genus = genus;
+    g.boundaries = boundaries;
+    g.faces = faces;
+    g.seed = 2;
+    return generate_mesh(g);
+  };
+  igm_test::RandomMeshSpec tetra;
+  tetra.genus = 0;
+  tetra.faces = 4;
+  std::vector<Case> cases{{"tetrahedron", igm_test::random_mesh(tetra)}, {"box", igm_test::box_soup()}};
+  for (LayoutKind kind : {LayoutKind::Spread, LayoutKind::Kite, LayoutKind::Paper}) {
+    cases.push_back({std::string("torus, ") + to_string(kind), generated(1, 0, 16), kind});
+    cases.push_back({std::string("genus 2, ") + to_string(kind), generated(2, 0, 16), kind});
+  }
+  cases.push_back({"genus 3", generated(3, 0, 16)});
+  cases.push_back({"disk", generated(0, 1, 200)});
+  cases.push_back({"annulus", generated(0, 2, 300)});
+  cases.push_back({"genus 0, 3 loops", generated(0, 3, 400)});
+  cases.push_back({"genus 1, 1 loop", generated(1, 1, 500)});
+  for (const Case& c : cases) {
+    const SurfaceSet set = validate_surfaces(c.soup);
+    REQUIRE(set.components.size() == 1);
+    for (int size = 0; size < 5; ++size) {
+      PipelineOptions o;
+      o.layout = c.layout;
+      o.quality = false;
+      o.smooth_iterations = 3;
+      if (size < 2) o.quads = size == 0 ? 1 : 4;
+      else if (size < 4) o.resolution = size - 1;
+      else o.edge_length = 1e9;
+      CAPTURE(c.name);
+      CAPTURE(size);
+      const SurfacesResult r = compute_igms(set, o);
+      const PipelineStats& st = r.components.at(0).stats;
+      CHECK_MESSAGE(r.certified(), certify::summary(r.quad_report) << " " << st.quad_defects);
+      CHECK(st.quads >= st.floor_quads);
+      if (size == 0 || size == 4) CHECK(st.quads == st.floor_quads);  // nothing asks for more
+      CHECK(st.quad_defects.empty());
+    }
   }
 }

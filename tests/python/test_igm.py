@@ -92,6 +92,20 @@ def test_bad_meshes_raise_igm_error_with_kind_and_elements():
     assert e.value.kind == "invalid_argument"
 
 
+def test_a_non_manifold_error_says_how_to_go_on():
+    # Two tetrahedra sharing vertex 0: a non-manifold vertex; split_nonmanifold=True cuts it apart
+    # into two closed spheres, which the error says.
+    V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [-1, 0, 0], [0, -1, 0], [0, 0, -1]], dtype=float)
+    F = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3], [0, 4, 5], [0, 6, 4], [0, 5, 6], [4, 6, 5]])
+    with pytest.raises(igm.Error) as e:
+        igm.compute(V, F)
+    assert e.value.kind == "non_manifold_vertex" and e.value.elements == [0]
+    assert "split_nonmanifold=True cuts its non-manifold vertices and edges apart: 2 surfaces" in str(e.value)
+    with pytest.warns(UserWarning, match="cut 1 non-manifold vertex into one copy per fan"):
+        r = igm.compute(V, F, split_nonmanifold=True, quality=False)
+    assert r["certified"] and [s["genus"] for s in r["stats"]["surfaces"]] == [0, 0]
+
+
 def test_certify_floats_strings_and_fractions():
     V, F, UV, FUV = square_torus(4)
     ok = igm.certify(V, F, UV, FUV)
@@ -210,6 +224,27 @@ def test_open_surfaces_and_several_components():
     assert igm.certify(*args, boundary=True, components=True)["valid"]
     assert not igm.certify(*args)["valid"]
     assert not igm.certify(*args, boundary=True)["valid"]
+
+
+def test_every_surface_gets_its_floor():
+    # A genus-3 surface beside a sphere 100 times smaller: the sphere's share of 600 quads by area
+    # is far below the 2 x 2 grid it needs (2 x 1 would be 4 quads on 6 vertices with a double edge).
+    Va, Fa = igm.generate(3, 800, seed=2)
+    Vb, Fb = igm.generate(0, 60, seed=5)
+    V = np.vstack([Va, 0.01 * Vb + [10.0, 0, 0]])
+    F = np.vstack([Fa, Fb + len(Va)])
+    r = igm.compute(V, F, quads=600, smooth_iterations=3, quality=False)
+    assert r["certified"] is True
+    small = r["stats"]["surfaces"][1]
+    assert small["genus"] == 0 and small["raised_by_floor"] and small["quads"] == small["floor_quads"] == 2
+    assert small["quads_asked"] < 2 and "at the floor of 2 quads" in small["floor_note"]
+    assert r["stats"]["raised_by_floor"] and r["stats"]["quads_asked"] == 600
+    assert r["stats"]["quads"] == len(r["quads"]["quads"])
+    # One surface: a resolution below the torus's floor (3 along its two sides) is raised to it.
+    V, F = igm.generate(1, 300)
+    t = igm.compute(V, F, resolution=1, smooth_iterations=3, quality=False)
+    assert t["certified"] and t["stats"]["quads"] == 9 and t["stats"]["raised_by_floor"]
+    assert t["stats"]["quad_defects"] == ""
 
 
 def test_smoothing_options():

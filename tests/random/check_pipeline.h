@@ -3,7 +3,10 @@
 // compute_igm returns outputs that both certifier reports accept.
 #include <doctest/doctest.h>
 
+#include <array>
+#include <set>
 #include <sstream>
+#include <vector>
 #include <string>
 
 #include "certify/certify.h"
@@ -148,6 +151,64 @@ inline Outcome run_open_pipeline(const igm::PolygonSoup& soup, int expected_genu
   CHECK_MESSAGE(rq.valid(), igm::certify::summary(rq));
   out.certified = r.certified();
   out.genus = *r.quad_report.genus;
+  out.quads = static_cast<int>(r.quads.quads.size());
+  return out;
+}
+
+// Several components (random_surfaces): validate_surfaces finds them with their (genus, loops),
+// compute_igms with a quad count `quads` shared among them certifies every one and the merged
+// outputs in components (and boundary) mode, with their (genus, loops) as a multiset; every surface
+// has at least its floor; the written merged files certify through the certifier's reader too.
+inline Outcome run_surfaces(const igm::PolygonSoup& soup, const std::vector<std::array<int, 2>>& topology,
+                            std::int64_t quads) {
+  Outcome out;
+  const igm::SurfaceSet set = igm::validate_surfaces(soup);
+  REQUIRE(set.components.size() == topology.size());
+  std::multiset<std::array<int, 2>> expected(topology.begin(), topology.end()), found;
+  for (const igm::SurfaceComponent& c : set.components) found.insert({c.genus, static_cast<int>(c.boundary_loops.size())});
+  REQUIRE(found == expected);
+  igm::PipelineOptions o;
+  o.quads = quads;
+  o.quality = false;
+  o.smooth_iterations = 3;
+  o.smooth_seconds = 0;
+  igm::SurfacesResult r;
+  try {
+    r = igm::compute_igms(set, o);
+  } catch (const igm::Error& e) {
+    FAIL("compute_igms threw on valid surfaces: " << std::string(e.what()));
+    return out;
+  }
+  REQUIRE(r.components.size() == topology.size());
+  bool loops = false;
+  for (std::size_t c = 0; c < r.components.size(); ++c) {
+    const igm::PipelineResult& rc = r.components[c];
+    CAPTURE(c);
+    CHECK_MESSAGE(rc.certified(), igm::certify::summary(rc.igm_report) << " | " << igm::certify::summary(rc.quad_report));
+    CHECK(rc.stats.quads >= rc.stats.floor_quads);
+    loops = loops || rc.stats.boundary_loops > 0;
+  }
+  CHECK_MESSAGE(r.igm_report.valid(), igm::certify::summary(r.igm_report));
+  CHECK_MESSAGE(r.quad_report.valid(), igm::certify::summary(r.quad_report));
+  found.clear();
+  for (const auto& c : r.quad_report.components)
+    found.insert({static_cast<int>(c.genus.value_or(-1)), static_cast<int>(c.boundary_loops.value_or(-1))});
+  CHECK(found == expected);
+  CHECK(r.quads_total == static_cast<std::int64_t>(r.quads.quads.size()));
+  CHECK(uv_area2(r.igm) == igm::Rational(2 * static_cast<long>(r.quads.quads.size())));
+  std::ostringstream exact, quad_text;
+  igm::write_igm_obj(exact, r.igm, true);
+  igm::write_quad_obj(quad_text, r.quads);
+  igm::certify::Options co;
+  co.allow_components = true;
+  co.allow_boundary = loops;
+  const igm::certify::Report re = igm::certify::certify_igm_text(exact.str(), co);
+  CHECK_MESSAGE(re.valid(), igm::certify::summary(re));
+  co.expected_components.clear();
+  for (const auto& t : topology) co.expected_components.push_back({t[0], t[1]});
+  const igm::certify::Report rq = igm::certify::certify_quads_text(quad_text.str(), co);
+  CHECK_MESSAGE(rq.valid(), igm::certify::summary(rq));
+  out.certified = r.certified() && re.valid() && rq.valid();
   out.quads = static_cast<int>(r.quads.quads.size());
   return out;
 }

@@ -236,3 +236,25 @@ TEST_CASE("random closed and open meshes with hostile geometry through the field
   MESSAGE("seed " << seed << ": " << certified << " of " << n << " certified, " << field << " with the field layout");
   CHECK(certified == n);
 }
+
+TEST_CASE("random meshes of 2..300 components up to four orders of magnitude apart in size certify, each surface at least at its floor") {
+  // Count: 4 meshes (IGM_RANDOM_SCALE scales it), the first of 300 components, the others 2..300
+  // log-uniform: 4-face tetrahedra, 12-face boxes and generated surfaces of genus 0..10 (closed, or
+  // open with 1..3 loops) of up to 300 faces, sizes 10^[0, 4]; 2000 quads shared by area, so most
+  // get shares far below their floor.
+  const std::uint64_t seed = base_seed() + 47;
+  std::mt19937_64 rng(seed);
+  const int n = scaled(4);
+  int certified = 0;
+  for (int i = 0; i < n; ++i) {
+    const double u = std::uniform_real_distribution<double>(0, 1)(rng);
+    const int components = i == 0 ? 300 : static_cast<int>(std::lround(2 * std::pow(150.0, u)));
+    const igm_test::RandomSurfaces m = igm_test::random_surfaces(rng(), components, 10, 300);
+    CAPTURE(seed);
+    CAPTURE(i);
+    INFO(components << " components:\n" << m.description);
+    certified += igm_test::run_surfaces(m.soup, m.topology, 2000).certified;
+  }
+  MESSAGE("seed " << seed << ": " << certified << " of " << n << " random multi-component meshes certified");
+  CHECK(certified == n);
+}

@@ -11,6 +11,7 @@
 // with `boundaries` loops in every one.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <map>
@@ -255,6 +256,83 @@ inline igm::PolygonSoup random_mesh(const RandomMeshSpec& spec) {
   apply_geometry(soup.positions, spec.geometry, rng);
   if (spec.permute) soup = permute_soup(soup, rng);
   return soup;
+}
+
+/// A closed 12-face box (the unit cube, two triangles a side, outward).
+inline igm::PolygonSoup box_soup() {
+  igm::PolygonSoup soup;
+  for (int i = 0; i < 8; ++i) soup.positions.push_back({double(i & 1), double((i >> 1) & 1), double((i >> 2) & 1)});
+  const std::array<std::array<std::int64_t, 4>, 6> sides{{{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                                          {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}}};
+  for (const auto& q : sides) {
+    soup.add_face({q[0], q[1], q[2]});
+    soup.add_face({q[0], q[2], q[3]});
+  }
+  return soup;
+}
+
+/// A mesh of several components (tests/random, fuzz/pipeline_fuzz.cpp): each a 4-face tetrahedron
+/// or a 12-face box (3/8 each), or a random_mesh of genus floor((max_genus + 1) u^3) (closed, or
+/// open with 1..3 loops a quarter of the time), scaled
+/// by 10^u, u uniform in [0, orders] (sizes up to `orders` orders of magnitude apart) and moved
+/// apart; faces of the generated ones log-uniform from what the generator needs up to max_faces.
+struct RandomSurfaces {
+  igm::PolygonSoup soup;
+  std::vector<std::array<int, 2>> topology;  // per component, in soup order: (genus, boundary loops)
+  std::string description;                   // one line per component, for failure messages
+};
+
+inline RandomSurfaces random_surfaces(std::uint64_t seed, int components, int max_genus, std::int64_t max_faces,
+                                      double orders = 4) {
+  std::mt19937_64 rng(seed);
+  RandomSurfaces out;
+  double x = 0;  // components side by side along x
+  for (int c = 0; c < components; ++c) {  // bound: components
+    const unsigned kind = static_cast<unsigned>(rng() % 8 / 3);  // 0: tetrahedron, 1: box (3/8 each), 2: generated
+    igm::PolygonSoup part;
+    RandomMeshSpec s;
+    s.seed = rng();
+    if (kind == 0) {
+      s.genus = 0;
+      s.faces = 4;
+      part = random_mesh(s);
+      out.description += "tetrahedron";
+    } else if (kind == 1) {
+      s.genus = 0;
+      part = permute_soup(box_soup(), rng);
+      out.description += "box";
+    } else {
+      // Low genera more often: genus = floor((max_genus + 1) u^3).
+      const double u = std::uniform_real_distribution<double>(0, 1)(rng);
+      s.genus = std::min(max_genus, static_cast<int>((max_genus + 1) * u * u * u));
+      s.boundaries = rng() % 4 == 0 ? 1 + static_cast<int>(rng() % 3) : 0;
+      const double least = s.boundaries > 0 ? 200.0 + 250.0 * s.genus + 40.0 * s.boundaries : 16.0 + 60.0 * s.genus;
+      const double most = std::max(least, static_cast<double>(max_faces));
+      s.faces = static_cast<std::int64_t>(least * std::pow(most / least, std::uniform_real_distribution<double>(0, 1)(rng)));
+      s.jitter = std::uniform_real_distribution<double>(0, 0.45)(rng);
+      s.edge_splits = static_cast<int>(rng() % 6);
+      s.face_splits = static_cast<int>(rng() % 6);
+      part = random_mesh(s);
+      out.description += describe(s);
+    }
+    // Its size: 10^u of a unit, u in [0, orders]; placed beyond the components before it.
+    const double size = std::pow(10.0, std::uniform_real_distribution<double>(0, orders)(rng));
+    double lo = HUGE_VAL, hi = -HUGE_VAL;
+    for (const igm::Vec3d& p : part.positions) lo = std::min(lo, p.x), hi = std::max(hi, p.x);
+    const double extent = std::max({hi - lo, 1.0, 1e-300});
+    const double k = size / extent;
+    const auto base = static_cast<std::int64_t>(out.soup.positions.size());
+    for (const igm::Vec3d& p : part.positions) out.soup.positions.push_back({x + k * (p.x - lo), k * p.y, k * p.z});
+    for (std::size_t f = 0; f < part.num_faces(); ++f) {
+      std::vector<std::int64_t> face;
+      for (std::size_t i = part.face_begin[f]; i < part.face_begin[f + 1]; ++i) face.push_back(part.corners[i] + base);
+      out.soup.add_face(face.begin(), face.end());
+    }
+    x += 1.5 * size;
+    out.topology.push_back({s.genus, s.boundaries});
+    out.description += ", size " + std::to_string(size) + "\n";
+  }
+  return out;
 }
 
 /// random_mesh for a closed spec (boundaries = 0), as the closed-mesh suites call it.

@@ -39,6 +39,8 @@ class Error : public std::runtime_error {
         kind_(kind),
         elements_(std::move(elements)) {}
   ErrorKind kind() const noexcept { return kind_; }
+  /// what() without its "kind: " prefix (to add to a message and throw again).
+  std::string message() const { return std::string(what()).substr(std::char_traits<char>::length(to_string(kind_)) + 2); }
   const std::vector<std::int64_t>& elements() const noexcept { return elements_; }
 
  private:

@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "igm/core/error.h"
 #include "igm/mesh/soup.h"
 #include "igm/mesh/validate.h"
 
@@ -73,6 +74,16 @@ struct SurfaceOptions {
 /// Post: every component has at least one triangle and its genus is >= 0. Cost O(C log C) for
 /// C corners.
 SurfaceSet validate_surfaces(const PolygonSoup& soup, const SurfaceOptions& options = {});
+
+/// How to go on after validate_surfaces(soup, options) threw `refused`: "" unless `refused` is a
+/// non-manifold edge or vertex and options.split_nonmanifold is off. Then what cutting them apart
+/// would give, with the caller's name for the option (`option`: "--split-nonmanifold" for the CLI,
+/// "split_nonmanifold=True" for Python): "OPTION cuts its non-manifold vertices and edges apart
+/// (N surfaces: genus g with b loops, ...)" when validate_surfaces accepts the soup with it, else
+/// "OPTION would cut its non-manifold vertices and edges apart, but then: KIND: MESSAGE" (what
+/// would still be wrong). Cost: validate_surfaces with the split, O(C log C).
+std::string split_nonmanifold_hint(const PolygonSoup& soup, const SurfaceOptions& options, const Error& refused,
+                                   const std::string& option);
 
 /// A closed component as validate()'s ValidMesh (with `warnings`, e.g. the set's). Throws
 /// igm::Error(Boundary) naming one input face per loop if the component has boundary loops.

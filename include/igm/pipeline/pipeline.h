@@ -51,9 +51,10 @@ struct PipelineOptions {
   ///  - edge_length H > 0: each chord gets round(mean 3D length of its layout edges / H) quads;
   ///  - quads Q > 0: H is chosen so that the quad count is nearest to Q;
   ///  - none: quads = kDefaultQuads.
-  /// Every chord gets at least the count that keeps the quad mesh simple (no loop or double edge:
-  /// 3 for the paper's layout, 2 for the kite's spokes, 1 otherwise), so never fewer quads than
-  /// layout quads.
+  /// Whatever they say, every surface gets at least the quads its layout needs for a manifold
+  /// quad mesh (the floor, layout/sizing.h: every chord at least 3 where a layout edge is a loop,
+  /// as the torus's square and the paper's sides, 2 for some of the kite's spokes, 1 otherwise;
+  /// genus 0: the 1 x 1 grid or both counts >= 2); PipelineStats says when it raised the counts.
   int resolution = 0;
   double edge_length = 0;
   std::int64_t quads = 0;
@@ -166,6 +167,18 @@ struct PipelineStats {
   int layout_edges = 0;             // surface edges of the layout
   double edge_length = 0;           // the H of the sizing (0 with a resolution)
   std::array<int, 2> grid{0, 0};    // genus 0: quads per unit of the pillowcase in x and y
+  /// The floor (PipelineOptions, sizes): the least quad count of a manifold quad mesh of this
+  /// surface's layout (genus 0: 2); the quad count aimed at (the option, the default or, among
+  /// several surfaces, this one's share; 0 with an edge length or a resolution); the chords (genus
+  /// 0: grid counts) the floor raised above what the edge length or resolution gives them.
+  std::int64_t floor_quads = 0;
+  std::int64_t quads_asked = 0;
+  int raised_chords = 0;
+  /// The floor raised this surface's quads above what its size option asks (floor_note says how).
+  /// When the IGM is valid but its isolines are not a manifold quad mesh: why, for people
+  /// (extract/quad_defects.h: which quads, edges and cones); "" otherwise.
+  std::string quad_defects;
+  bool raised_by_floor() const { return quads_asked > 0 ? quads_asked < floor_quads : raised_chords > 0; }
   std::size_t max_uv_bits = 0;  // largest bit_size of an exact UV coordinate
   PatchMapStats patch_maps;
   SmoothStats smooth;           // with PipelineOptions::smooth (iterations 0 otherwise)
@@ -180,6 +193,10 @@ struct PipelineStats {
   OrbifoldTutteStats orbifold;
   std::vector<StageEvent> stages;
 };
+
+/// "" unless stats.raised_by_floor(); else a phrase for humans, e.g. "at the floor of 8 quads (4
+/// asked)" or "2 chords raised to the floor (18 quads at least)".
+std::string floor_note(const PipelineStats& stats);
 
 struct PipelineResult {
   IgmMesh igm;                       // refinement of the input: exact per-corner UV, exact vertex locations
@@ -224,12 +241,16 @@ struct SurfacesResult {
   IgmQuality igm_quality;                   // with PipelineOptions::quality, over all of it
   QuadQuality quad_quality;
   std::vector<Vec3d> input_positions;       // the components' input vertices, merged
+  /// The quad count shared among the surfaces (the option or the default; 0 with an edge length
+  /// or a resolution) and the quads they got: more when a surface's share is below its floor.
+  std::int64_t quads_asked = 0, quads_total = 0;
   bool certified() const { return igm_report.valid() && quad_report.valid(); }
 };
 
 /// Runs compute_igm on every component of `surfaces` and merges them (above). A quad count (given,
 /// or the default) is shared among several surfaces in proportion to their 3D areas; an edge
-/// length or a resolution applies to each. The progress events of component c carry its index in
+/// length or a resolution applies to each. Every surface gets at least its floor (PipelineOptions),
+/// so the total can exceed the count (quads_total > quads_asked; each surface's stats say which). The progress events of component c carry its index in
 /// their detail ("surface c: ..."). Cost: the sum.
 SurfacesResult compute_igms(const SurfaceSet& surfaces, const PipelineOptions& options = {});
 
