@@ -9,8 +9,11 @@
 
 #include <cmath>
 
+#include "../core/parallel.h"
 #include "igm/arrange/overlay.h"
 #include "igm/core/error.h"
+#include "igm/core/memory.h"
+#include "igm/core/threads.h"
 #include "igm/embed/polygon.h"
 #include "igm/extract/isolines.h"
 #include "igm/extract/patch_grid.h"
@@ -87,8 +90,17 @@ SizingOptions sizing_options(const PipelineOptions& options, double scale) {
   return s;
 }
 
+StageReporter::StageReporter(PipelineStats& s, const PipelineOptions& o)
+    : stats(s), options(o), cpu(process_cpu_seconds()) {
+  if (options.measure_stage_memory) peak_resident_mb(true);
+}
+
 void StageReporter::done(const char* name, Clock::time_point t0, std::string detail) {
   StageEvent e{name, seconds_since(t0), std::move(detail)};
+  if (options.measure_stage_memory) e.peak_mb = peak_resident_mb(true);
+  const double now = process_cpu_seconds();
+  e.cpu_seconds = now - cpu;
+  cpu = now;
   stats.stages.push_back(e);
   if (options.progress) options.progress(e);
 }
@@ -100,6 +112,7 @@ void certify_outputs(PipelineResult& result, const PipelineOptions& options, boo
   certify::Options copt;
   copt.max_witnesses = options.max_witnesses;
   copt.allow_boundary = result.stats.boundary_loops > 0;
+  copt.threads = resolve_threads(options.threads);
   if (!igm_report_done) result.igm_report = certify::certify_igm(certify_input(igm, igm.corner_uv), copt);
   certify::QuadInput qin;
   qin.quads = quads.quads;
@@ -124,8 +137,9 @@ void measure_quality(PipelineResult& result, const std::vector<Vec3d>& input_pos
   if (!options.quality) return;
   const auto t0 = Clock::now();
   std::vector<std::array<Vec2d, 3>> uv(result.igm.corner_uv.size());
-  for (std::size_t t = 0; t < uv.size(); ++t)
+  parallel::for_each_index(static_cast<std::int64_t>(uv.size()), 4096, [&](std::int64_t t) {
     for (int i = 0; i < 3; ++i) uv[t][i] = {approximate(result.igm.corner_uv[t][i].x), approximate(result.igm.corner_uv[t][i].y)};
+  });
   result.igm_quality = measure_igm(result.igm.positions, result.igm.triangles, uv);
   QuadQualityOptions qo;
   qo.distance = options.quality_distance;
@@ -139,23 +153,17 @@ void smooth_extract_certify(PipelineResult& result, const PipelineOptions& optio
   PipelineStats& stats = result.stats;
   auto t0 = Clock::now();
   std::string how;
-  stats.smooth_skipped = options.smooth && options.smooth_seconds < 0 &&
-                         igm.triangles.size() > options.smooth_auto_max_triangles;
-  const bool smoothing = options.smooth && !stats.smooth_skipped;
-  if (stats.smooth_skipped)
-    stage.done("smooth", t0,
-               format("skipped: %.0f triangles, more than %.0f for the automatic budget (give one in seconds to smooth)",
-                      double(igm.triangles.size()), double(options.smooth_auto_max_triangles)));
+  const bool smoothing = options.smooth;
   if (smoothing) {
     SmoothOptions so;
     so.max_iterations = options.smooth_iterations;
-    so.time_budget_seconds = options.smooth_seconds >= 0
-                                 ? options.smooth_seconds
-                                 : std::clamp(1e-4 * static_cast<double>(igm.triangles.size()), 5.0, 60.0);
+    so.min_relative_decrease = options.smooth_min_decrease;
+    so.time_budget_seconds = options.smooth_seconds;
     so.stall_step = options.smooth_stall_step;
     so.certify = false;  // the isolines' extraction runs the certifier on the result below
     so.progress = options.smooth_progress;
-    SmoothResult smoothed = smooth_igm(igm, so);
+    so.threads = resolve_threads(options.threads);
+    SmoothResult smoothed = smooth_igm_releasing(igm, so);
     igm.corner_uv = std::move(smoothed.corner_uv);
     stats.smooth = std::move(smoothed.stats);
     stats.uv_doubles = stats.smooth.returned != SmoothReturned::InputExact;
@@ -179,6 +187,7 @@ void smooth_extract_certify(PipelineResult& result, const PipelineOptions& optio
     IsolineOptions io;
     io.max_witnesses = options.max_witnesses;
     io.allow_boundary = stats.boundary_loops > 0;
+    io.threads = resolve_threads(options.threads);
     IsolineResult x = extract_isolines(in, io);
     igm.triangles = std::move(in.triangles);
     igm.corner_uv = std::move(in.corner_uv);
@@ -416,6 +425,12 @@ void map_disk(PipelineResult& result, CutDisk& cut, const PipelineOptions& optio
 }
 
 PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& options) {
+  PipelineResult result;
+  with_threads(options.threads, [&] { result = compute_igm_closed(input, options); });
+  return result;
+}
+
+PipelineResult compute_igm_closed(const ValidMesh& input, const PipelineOptions& options) {
   check_sizes(options);
   if (input.genus == 0) return compute_igm_sphere(input, options);  // sphere_pipeline.cpp
   if (!options.cones.empty())

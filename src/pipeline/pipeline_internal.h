@@ -21,7 +21,11 @@ struct StageReporter {
   using Clock = std::chrono::steady_clock;
   PipelineStats& stats;
   const PipelineOptions& options;
-  /// The stage `name` ran from t0 until now.
+  double cpu = 0;  // process CPU seconds at the end of the last stage
+  /// Starts the memory measurement of the first stage (options.measure_stage_memory).
+  StageReporter(PipelineStats& s, const PipelineOptions& o);
+  /// The stage `name` ran from t0 until now (with its peak memory when measured; the next stage's
+  /// measurement starts here).
   void done(const char* name, Clock::time_point t0, std::string detail);
 };
 
@@ -57,6 +61,12 @@ struct CutDisk {
 /// and stats (layout, sizing, maps). Moves the surface's data out of `cut`.
 void map_disk(PipelineResult& result, CutDisk& cut, const PipelineOptions& options, StageReporter& stage,
               const std::vector<Vec3d>& input_positions);
+
+/// compute_igm in the caller's thread arena (compute_igm sets it up from options.threads).
+PipelineResult compute_igm_closed(const ValidMesh& input, const PipelineOptions& options);
+
+/// compute_igms in the caller's thread arena.
+SurfacesResult compute_igms_here(const SurfaceSet& set, const PipelineOptions& options);
 
 /// compute_igm for input.genus == 0 (options already range-checked by compute_igm).
 PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions& options);
