@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <numeric>
 #include <chrono>
 #include <cstdint>
 #include <string>
@@ -63,6 +64,160 @@ void for_blocks(Long blocks, bool parallel, const F& body) {
       for (Long b = r.begin(); b != r.end(); ++b) body(b);
     }, tbb::simple_partitioner());
   });
+}
+
+// Nested-dissection elimination order by BFS level-set separators: BFS from a pseudo-peripheral
+// vertex (the last vertex of a first BFS); among the levels preceded by 30% .. 70% of the
+// vertices the smallest becomes the separator, eliminated after both sides, which are ordered
+// the same way (explicit task stack). Disconnected parts are split into components; parts of
+// <= kLeaf vertices are leaves in BFS order. Every task either emits its vertices (leaf),
+// emits a non-empty separator and two strictly smaller parts, or splits into two non-empty
+// components: at most 2n tasks, each O(size) work; O(n log n) for balanced splits.
+// Output: order[p] = vertex at position p. (The project's first factorization ordered by this; it
+// is kept as Ordering::LevelSets, the cheapest good order of a disk's Laplacian: bench/README.md.)
+void level_set_order(const std::vector<int>& xadj, const std::vector<int>& adj, std::vector<Long>& order) {
+  struct NdNode {
+    int s0, s1, parent;
+  };
+  std::vector<NdNode> nodes;
+  constexpr int kLeaf = 32;
+  const int n = static_cast<int>(xadj.size()) - 1;
+  order.assign(n, -1);
+  std::vector<int> work(n), owner(n, -1), level(n, -1), queue, level_count;
+  std::iota(work.begin(), work.end(), 0);
+  struct Task {
+    int begin, end, out, parent;  // vertices work[begin, end) take positions out .. out+size-1
+  };
+  std::vector<Task> tasks{{0, n, 0, -1}};
+  int stamp = 0;
+  queue.reserve(n);
+  auto bfs = [&](int s, int tag) {  // BFS restricted to the task's vertices (owner == tag)
+    queue.clear();
+    queue.push_back(s);
+    level[s] = 0;
+    owner[s] = tag + 1;
+    for (std::size_t h = 0; h < queue.size(); ++h) {
+      const int v = queue[h];
+      for (int k = xadj[v]; k < xadj[v + 1]; ++k) {
+        const int w = adj[k];
+        if (owner[w] == tag) {
+          owner[w] = tag + 1;
+          level[w] = level[v] + 1;
+          queue.push_back(w);
+        }
+      }
+    }
+    for (int v : queue) owner[v] = tag;
+  };
+  auto leaf = [&](const Task& t) {
+    for (int k = 0; k < static_cast<int>(queue.size()); ++k) order[t.out + k] = queue[k];
+    nodes.push_back({t.out, t.out + static_cast<int>(queue.size()), t.parent});
+  };
+  while (!tasks.empty()) {
+    const Task t = tasks.back();
+    tasks.pop_back();
+    const int size = t.end - t.begin;
+    if (size <= 0) continue;
+    const int tag = 2 * (++stamp);
+    for (int k = t.begin; k < t.end; ++k) owner[work[k]] = tag;
+    bfs(work[t.begin], tag);
+    const int reached = static_cast<int>(queue.size());
+    if (reached < size) {  // several components: split this one off
+      for (int v : queue) owner[v] = tag + 1;
+      std::vector<int> rest;
+      rest.reserve(size - reached);
+      for (int k = t.begin; k < t.end; ++k)
+        if (owner[work[k]] == tag) rest.push_back(work[k]);
+      std::copy(queue.begin(), queue.end(), work.begin() + t.begin);
+      std::copy(rest.begin(), rest.end(), work.begin() + t.begin + reached);
+      tasks.push_back({t.begin, t.begin + reached, t.out, t.parent});
+      tasks.push_back({t.begin + reached, t.end, t.out + reached, t.parent});
+      continue;
+    }
+    if (size <= kLeaf) {
+      leaf(t);
+      continue;
+    }
+    bfs(queue.back(), tag);  // from a far vertex
+    const int L = level[queue.back()];
+    if (L < 2) {
+      leaf(t);
+      continue;
+    }
+    level_count.assign(L + 1, 0);
+    for (int v : queue) ++level_count[level[v]];
+    int mid = -1;
+    {
+      long before = 0, best = -1, best_dist = 0;
+      for (int l = 0; l <= L; ++l) {
+        if (l >= 1 && l <= L - 1 && 10 * before >= 3L * size && 10 * before <= 7L * size) {
+          const long dist = std::labs(2 * before + level_count[l] - size);
+          if (best < 0 || level_count[l] < best || (level_count[l] == best && dist < best_dist)) {
+            best = level_count[l];
+            best_dist = dist;
+            mid = l;
+          }
+        }
+        before += level_count[l];
+      }
+      if (mid < 0) mid = std::clamp(level[queue[size / 2]], 1, L - 1);
+    }
+    int na = 0, nsep = 0;
+    for (int v : queue) {
+      if (level[v] < mid)
+        ++na;
+      else if (level[v] == mid)
+        ++nsep;
+    }
+    const int nb = size - na - nsep;
+    // queue is sorted by level: [A | S | B].
+    std::copy(queue.begin(), queue.begin() + na, work.begin() + t.begin);
+    std::copy(queue.begin() + na + nsep, queue.end(), work.begin() + t.begin + na);
+    const int s0 = t.out + na + nb;
+    for (int k = 0; k < nsep; ++k) order[s0 + k] = queue[na + k];
+    const int id = static_cast<int>(nodes.size());
+    nodes.push_back({s0, t.out + size, t.parent});
+    tasks.push_back({t.begin, t.begin + na, t.out, id});
+    tasks.push_back({t.begin + na, t.begin + na + nb, t.out + na, id});
+  }
+}
+
+// Eigen's triangular solves with several right-hand sides block by L1 / (4 x its panel's bytes)
+// (KcFactor 4 in SolveTriangular.h): at least 48 for any L1 >= 16 KB. Triangles of at most kTri,
+// the rest by products (blocked by L1 / 1x: >= 200 > kDenseBlock).
+constexpr Long kTri = 32;
+
+// X <- X L^-T for the w x w lower triangle L (w <= kDenseBlock) and the rows x w block X.
+void solve_xlt(const double* L, Long ldl, Long w, double* X, Long rows, Long ldx) {
+  for (Long c0 = 0; c0 < w; c0 += kTri) {
+    const Long c1 = std::min(w, c0 + kTri), bw = c1 - c0;
+    Mat Xc = block(X + c0 * ldx, rows, bw, ldx);
+    if (c0 > 0)
+      Xc.noalias() -= block(X, rows, c0, ldx) * block(const_cast<double*>(L) + c0, bw, c0, ldl).transpose();
+    block(const_cast<double*>(L) + c0 + c0 * ldl, bw, bw, ldl)
+        .triangularView<Eigen::Lower>()
+        .transpose()
+        .solveInPlace<Eigen::OnTheRight>(Xc);
+  }
+}
+
+// y <- L^-1 y (forward) or L^-T y (backward) for the w x w lower triangle L and the w x nc y.
+template <class Y>
+void solve_l(const double* L, Long ldl, Long w, Y&& y, bool transposed) {
+  double* Lp = const_cast<double*>(L);
+  if (!transposed) {
+    for (Long c0 = 0; c0 < w; c0 += kTri) {
+      const Long c1 = std::min(w, c0 + kTri), bw = c1 - c0;
+      if (c0 > 0) y.middleRows(c0, bw).noalias() -= block(Lp + c0, bw, c0, ldl) * y.topRows(c0);
+      block(Lp + c0 + c0 * ldl, bw, bw, ldl).triangularView<Eigen::Lower>().solveInPlace(y.middleRows(c0, bw));
+    }
+  } else {
+    for (Long c0 = ((w - 1) / kTri) * kTri; c0 >= 0; c0 -= kTri) {
+      const Long c1 = std::min(w, c0 + kTri), bw = c1 - c0;
+      if (c1 < w) y.middleRows(c0, bw).noalias() -= block(Lp + c1 + c0 * ldl, w - c1, bw, ldl).transpose() * y.bottomRows(w - c1);
+      block(Lp + c0 + c0 * ldl, bw, bw, ldl).triangularView<Eigen::Lower>().transpose().solveInPlace(y.middleRows(c0, bw));
+    }
+  }
 }
 
 // C -= A B^T on the lower trapezoid of C (nr x nc, nr >= nc, entries i >= j), B = the first nc
@@ -138,7 +293,8 @@ SparseCholesky::~SparseCholesky() = default;
 SparseCholesky::SparseCholesky(SparseCholesky&&) noexcept = default;
 SparseCholesky& SparseCholesky::operator=(SparseCholesky&&) noexcept = default;
 
-void SparseCholesky::analyze(const std::vector<int>& xadj, const std::vector<int>& adj, const std::vector<int>& group) {
+void SparseCholesky::analyze(const std::vector<int>& xadj, const std::vector<int>& adj, const std::vector<int>& group,
+                             Ordering ordering) {
   const auto t0 = Clock::now();
   const Long n = static_cast<Long>(xadj.size()) - 1;
   if (n < 0 || xadj.front() != 0 || xadj.back() != static_cast<int>(adj.size())) bad("inconsistent CSR sizes");
@@ -205,9 +361,13 @@ void SparseCholesky::analyze(const std::vector<int>& xadj, const std::vector<int
       std::copy(b, e, gi + gp[j]);
     }
     std::vector<Long>().swap(rowi);
-    stats_.metis = n >= kMetisMinUnknowns;
-    const int ok = stats_.metis ? cholmod_l_metis(G, nullptr, 0, 0, gperm.data(), &cm)
-                                : cholmod_l_amd(G, nullptr, 0, gperm.data(), &cm);
+    stats_.metis = ordering == Ordering::Metis || (ordering == Ordering::Automatic && n >= kMetisMinUnknowns);
+    int ok = 1;
+    if (ordering == Ordering::LevelSets && group.empty())
+      level_set_order(xadj, adj, gperm);
+    else
+      ok = stats_.metis ? cholmod_l_metis(G, nullptr, 0, 0, gperm.data(), &cm)
+                        : cholmod_l_amd(G, nullptr, 0, gperm.data(), &cm);
     cholmod_l_free_sparse(&G, &cm);
     if (!ok) throw Error(ErrorKind::Internal, "SparseCholesky: CHOLMOD's ordering failed (status " + std::to_string(cm.status) + ")");
   }
@@ -441,8 +601,7 @@ bool SparseCholesky::Impl::front(Long s, const std::vector<double>& val, const s
       const Long rb = 2 * kB;
       for_blocks((below + rb - 1) / rb, parallel, [&](Long b) {
         const Long r0 = c1 + b * rb, r1 = std::min(m, r0 + rb);
-        Mat P = block(F + r0 + c0 * m, r1 - r0, w, m);
-        D.triangularView<Eigen::Lower>().transpose().solveInPlace<Eigen::OnTheRight>(P);
+        solve_xlt(F + c0 + c0 * m, m, w, F + r0 + c0 * m, r1 - r0, m);
       });
       const double* P = F + c1 + c0 * m;
       lower_update(F + c1 + c1 * m, m, below, k - c1, P, m, w);  // the supernode's later columns
@@ -498,7 +657,7 @@ void SparseCholesky::Impl::solve_supernodal(Eigen::MatrixXd& b) const {
     double* F = const_cast<double*>(Lx.data()) + px[s];
     for (Long c0 = 0; c0 < k; c0 += kB) {
       const Long c1 = std::min(k, c0 + kB), w = c1 - c0;
-      block(F + c0 + c0 * m, w, w, m).triangularView<Eigen::Lower>().solveInPlace(z.middleRows(c0, w));
+      solve_l(F + c0 + c0 * m, m, w, z.middleRows(c0, w), false);
       if (m > c1) z.bottomRows(m - c1).noalias() -= block(F + c1 + c0 * m, m - c1, w, m) * z.middleRows(c0, w);
     }
     for (Long a = 0; a < m; ++a) y.row(R[a]) = z.row(a);
@@ -515,7 +674,7 @@ void SparseCholesky::Impl::solve_supernodal(Eigen::MatrixXd& b) const {
         const Long r1 = std::min(m, r0 + kB);
         z.middleRows(c0, w).noalias() -= block(F + r0 + c0 * m, r1 - r0, w, m).transpose() * z.middleRows(r0, r1 - r0);
       }
-      block(F + c0 + c0 * m, w, w, m).triangularView<Eigen::Lower>().transpose().solveInPlace(z.middleRows(c0, w));
+      solve_l(F + c0 + c0 * m, m, w, z.middleRows(c0, w), true);
     }
     for (Long a = 0; a < k; ++a) y.row(R[a]) = z.row(a);
   }
@@ -548,9 +707,9 @@ bool SparseCholesky::factorize_numeric(const std::vector<double>& val, const std
 }
 
 void SparseCholesky::factorize(const std::vector<int>& xadj, const std::vector<int>& adj, const std::vector<double>& val,
-                               const std::vector<double>& diag) {
+                               const std::vector<double>& diag, Ordering ordering) {
   if (xadj.size() != diag.size() + 1 || adj.size() != val.size()) bad("inconsistent CSR sizes");
-  analyze(xadj, adj);
+  analyze(xadj, adj, {}, ordering);
   if (!factorize_numeric(val, diag))
     throw Error(ErrorKind::Internal, "SparseCholesky: matrix not numerically positive definite");
 }

@@ -46,8 +46,15 @@ class SparseCholesky {
  public:
   /// Dense blocks: the widest panel any dense product works on (see above).
   static constexpr int kDenseBlock = 128;
-  /// Systems of at least this many unknowns are ordered by METIS, smaller ones by AMD
-  /// (bench/README.md, "Sparse Cholesky": AMD's ordering is cheaper to compute and as good on them).
+  /// The fill-reducing order: METIS (nested dissection: the least fill on surfaces, but the dearer
+  /// analysis) or AMD (minimum degree: a cheap analysis, more fill); Automatic: METIS from
+  /// kMetisMinUnknowns unknowns on. Measured in bench/README.md ("Sparse Cholesky"): systems
+  /// factorized once (the Tutte maps) are fastest with AMD, the Newton systems that smoothing
+  /// factorizes at every iteration with METIS once they are large.
+  /// LevelSets: nested dissection by BFS level sets (the project's own, O(n log n)): on a disk's
+  /// Laplacian (the Tutte maps) as little fill as METIS for a fraction of its time; on surfaces with
+  /// handles its level sets wrap around them (bad fronts). Ignores groups.
+  enum class Ordering { Automatic, Metis, Amd, LevelSets };
   static constexpr int kMetisMinUnknowns = 20000;
 
   SparseCholesky();
@@ -61,7 +68,8 @@ class SparseCholesky {
   /// used): unknowns of one group are ordered together, the order computed on the graph of groups.
   /// Throws igm::Error(InvalidArgument) on malformed input. Cost: the ordering (METIS about
   /// O(n log n)) and the symbolic factorization, O(nnz(L)).
-  void analyze(const std::vector<int>& xadj, const std::vector<int>& adj, const std::vector<int>& group = {});
+  void analyze(const std::vector<int>& xadj, const std::vector<int>& adj, const std::vector<int>& group = {},
+               Ordering ordering = Ordering::Automatic);
 
   /// Numeric factorization of the analyzed pattern with off-diagonal values `val` (aligned with
   /// adj, symmetric) and diagonal `diag`. False if the matrix is not numerically positive definite
@@ -71,7 +79,7 @@ class SparseCholesky {
   /// analyze() then factorize_numeric(); throws igm::Error(InvalidArgument) on malformed input,
   /// igm::Error(Internal) if the matrix is not numerically positive definite.
   void factorize(const std::vector<int>& xadj, const std::vector<int>& adj, const std::vector<double>& val,
-                 const std::vector<double>& diag);
+                 const std::vector<double>& diag, Ordering ordering = Ordering::Automatic);
 
   /// Solves A X = B in place for the n x k matrix B (several right-hand sides share the factor).
   /// Pre: a successful factorization. Cost O(k * factor_entries()).
