@@ -281,8 +281,11 @@ Outcome classify(const Child& c, int status, const rusage& ru, const Settings& s
   close(c.exec_errno_fd);
   const fs::path dir = s.out / "runs" / c.id;
   const std::string err = slurp(dir / "igm.err");
+  // (under an address-space limit the loader may fail to map a shared library, a thread its stack)
   const bool memory_words = has(err, "bad_alloc") || has(err, "Cannot allocate memory") ||
-                            (has(err, "unsupported") && has(err, "memory limit"));
+                            (has(err, "unsupported") && has(err, "memory limit")) ||
+                            (s.memory_mb > 0 && (has(err, "failed to map segment") ||
+                                                 has(err, "Resource temporarily unavailable")));
   if (status != -1 && WIFSIGNALED(status)) o.signal = WTERMSIG(status);
   if (status != -1 && WIFEXITED(status)) o.exit_code = WEXITSTATUS(status);
   if (c.timed_out) {

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <new>
 #include <numeric>
 #include <chrono>
 #include <cstdint>
@@ -348,7 +349,7 @@ void SparseCholesky::analyze(const std::vector<int>& xadj, const std::vector<int
           if (gid(i) < gid(adj[k])) rowi[fill[gid(adj[k])]++] = gid(i);
     }
     cholmod_sparse* G = cholmod_l_allocate_sparse(ng, ng, std::max<Long>(colp[ng], 1), 1, 1, 1, CHOLMOD_PATTERN, &cm);
-    if (!G) throw Error(ErrorKind::Internal, "SparseCholesky: CHOLMOD could not allocate the graph");
+    if (!G) throw std::bad_alloc();
     Long* gp = static_cast<Long*>(G->p);
     Long* gi = static_cast<Long*>(G->i);
     gp[0] = 0;
@@ -369,6 +370,7 @@ void SparseCholesky::analyze(const std::vector<int>& xadj, const std::vector<int
       ok = stats_.metis ? cholmod_l_metis(G, nullptr, 0, 0, gperm.data(), &cm)
                         : cholmod_l_amd(G, nullptr, 0, gperm.data(), &cm);
     cholmod_l_free_sparse(&G, &cm);
+    if (!ok && cm.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
     if (!ok) throw Error(ErrorKind::Internal, "SparseCholesky: CHOLMOD's ordering failed (status " + std::to_string(cm.status) + ")");
   }
   std::vector<Long> uperm;  // the order of the unknowns: each group's members together
@@ -391,7 +393,7 @@ void SparseCholesky::analyze(const std::vector<int>& xadj, const std::vector<int
     }
     for (Long j = 0; j < n; ++j) count[j + 1] += count[j];
     I.A = cholmod_l_allocate_sparse(n, n, std::max<Long>(count[n], 1), 1, 1, 1, CHOLMOD_REAL, &cm);
-    if (!I.A) throw Error(ErrorKind::Internal, "SparseCholesky: CHOLMOD could not allocate the matrix");
+    if (!I.A) throw std::bad_alloc();
     Long* ap = static_cast<Long*>(I.A->p);
     Long* ai = static_cast<Long*>(I.A->i);
     std::copy(count.begin(), count.end(), ap);
@@ -416,6 +418,7 @@ void SparseCholesky::analyze(const std::vector<int>& xadj, const std::vector<int
   cm.supernodal = CHOLMOD_AUTO;
   cm.final_ll = 1;  // simplicial: LL^T, whose pivots must be positive
   I.L = cholmod_l_analyze_p(I.A, n > 0 ? uperm.data() : nullptr, nullptr, 0, &cm);
+  if (cm.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
   if (!I.L) throw Error(ErrorKind::Internal, "SparseCholesky: CHOLMOD's analysis failed (status " + std::to_string(cm.status) + ")");
   stats_.flops = cm.fl;
   stats_.factor_entries = static_cast<std::size_t>(cm.lnz);
@@ -700,6 +703,7 @@ bool SparseCholesky::factorize_numeric(const std::vector<double>& val, const std
       if (I.to_a[k] >= 0) ax[I.to_a[k]] = val[k];
     ok = cholmod_l_factorize(I.A, I.L, &I.cm) && I.cm.status == CHOLMOD_OK &&
          static_cast<Long>(I.L->minor) == I.n;
+    if (I.cm.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
   }
   stats_.seconds_factorize = since(t0);
   I.factorized = ok;
@@ -734,6 +738,7 @@ void SparseCholesky::solve(Eigen::MatrixXd& b) const {
   B.dtype = CHOLMOD_DOUBLE;
   cholmod_common& cm = const_cast<cholmod_common&>(I.cm);
   cholmod_dense* X = cholmod_l_solve(CHOLMOD_A, I.L, &B, &cm);
+  if (!X && cm.status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
   if (!X) throw Error(ErrorKind::Internal, "SparseCholesky: CHOLMOD's solve failed");
   std::copy(static_cast<const double*>(X->x), static_cast<const double*>(X->x) + B.nzmax, b.data());
   cholmod_l_free_dense(&X, &cm);
