@@ -1,7 +1,9 @@
 #include "igm/core/threads.h"
 
+#include <oneapi/tbb/info.h>
 #include <oneapi/tbb/task_arena.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <string>
 #include <thread>
@@ -24,7 +26,9 @@ int resolve_threads(int threads) {
 }
 
 void with_threads(int threads, const std::function<void()>& fn) {
-  tbb::task_arena arena(resolve_threads(threads));
+  // oneTBB has at most its default concurrency of workers (every core); an arena asking for more
+  // would make it print a warning (the library never prints), and would not run faster.
+  tbb::task_arena arena(std::min(resolve_threads(threads), tbb::info::default_concurrency()));
   arena.execute(fn);
 }
 

@@ -255,9 +255,10 @@ struct SparseCholesky::Impl {
   bool factorized = false;
   // Supernodal: CHOLMOD's symbolic factor, copied.
   Long ns = 0;
-  std::vector<Long> perm, super, pi, px, rows;
+  std::vector<Long> perm, super, pi, px;
+  std::vector<std::int32_t> rows;  // the supernodes' rows (n < 2^31: the input is CSR of int)
   std::vector<Long> parent, child_begin, children;  // children in increasing order
-  std::vector<Long> rel;       // per border row of a supernode: its position in the parent's rows
+  std::vector<std::int32_t> rel;  // per border row of a supernode: its position in the parent's rows
   std::vector<Long> first;     // first supernode of each subtree (postorder: the subtree is [first, s])
   // per supernode, the input values it holds: entry_src (k >= 0: off-diagonal value k, -1 - i:
   // diagonal i) goes to its block's offset entry_dst
@@ -441,7 +442,7 @@ void SparseCholesky::Impl::setup_supernodal(SparseCholeskyStats& st, const std::
   perm.assign(Lperm, Lperm + n);
   super.assign(static_cast<const Long*>(L->super), static_cast<const Long*>(L->super) + ns + 1);
   pi.assign(static_cast<const Long*>(L->pi), static_cast<const Long*>(L->pi) + ns + 1);
-  rows.assign(static_cast<const Long*>(L->s), static_cast<const Long*>(L->s) + pi[ns]);
+  rows.assign(static_cast<const Long*>(L->s), static_cast<const Long*>(L->s) + pi[ns]);  // each < n
   px.assign(ns + 1, 0);
   for (Long s = 0; s < ns; ++s) px[s + 1] = px[s] + k_of(s) * m_of(s);
   st.supernodes = static_cast<int>(ns);
@@ -493,7 +494,7 @@ void SparseCholesky::Impl::setup_supernodal(SparseCholeskyStats& st, const std::
           const Long r = rows[pi[ch] + a];
           const Long w = where[r];
           if (w < 0 || rows[pi[p] + w] != r) throw Error(ErrorKind::Internal, "SparseCholesky: a child's row is not its parent's");
-          rel[pi[ch] + a] = w;
+          rel[pi[ch] + a] = static_cast<std::int32_t>(w);
         }
       }
     }
@@ -507,9 +508,9 @@ void SparseCholesky::Impl::setup_supernodal(SparseCholeskyStats& st, const std::
     if (r < super[s + 1]) {
       a = r - super[s];
     } else {
-      const Long* b = rows.data() + pi[s] + k;
-      const Long* e = rows.data() + pi[s] + m;
-      const Long* it = std::lower_bound(b, e, r);
+      const std::int32_t* b = rows.data() + pi[s] + k;
+      const std::int32_t* e = rows.data() + pi[s] + m;
+      const std::int32_t* it = std::lower_bound(b, e, r);
       if (it == e || *it != r) throw Error(ErrorKind::Internal, "SparseCholesky: an entry outside the symbolic factor");
       a = k + (it - b);
     }
@@ -574,7 +575,7 @@ bool SparseCholesky::Impl::front(Long s, const std::vector<double>& val, const s
   std::vector<double> U(static_cast<std::size_t>(u * u), 0.0);
   for (Long c = child_begin[s]; c < child_begin[s + 1]; ++c) {  // extend-add, children in order
     const Long ch = children[c], kc = k_of(ch), uc = m_of(ch) - kc;
-    const Long* r = rel.data() + pi[ch] + kc;
+    const std::int32_t* r = rel.data() + pi[ch] + kc;
     std::vector<double>& Uc = update[ch];
     const bool parallel = static_cast<double>(uc) * static_cast<double>(uc) > 2 * kSplitFlops;
     for_blocks((uc + kB - 1) / kB, parallel, [&](Long bb) {  // each column of Uc lands in its own column
@@ -654,7 +655,7 @@ void SparseCholesky::Impl::solve_supernodal(Eigen::MatrixXd& b) const {
   Eigen::MatrixXd z;
   for (Long s = 0; s < ns; ++s) {  // forward: L z = y, supernode by supernode, panel by panel
     const Long k = k_of(s), m = m_of(s);
-    const Long* R = rows.data() + pi[s];
+    const std::int32_t* R = rows.data() + pi[s];
     z.resize(m, nc);
     for (Long a = 0; a < m; ++a) z.row(a) = y.row(R[a]);
     double* F = const_cast<double*>(Lx.data()) + px[s];
@@ -667,7 +668,7 @@ void SparseCholesky::Impl::solve_supernodal(Eigen::MatrixXd& b) const {
   }
   for (Long s = ns - 1; s >= 0; --s) {  // backward: L^T x = z
     const Long k = k_of(s), m = m_of(s);
-    const Long* R = rows.data() + pi[s];
+    const std::int32_t* R = rows.data() + pi[s];
     z.resize(m, nc);
     for (Long a = 0; a < m; ++a) z.row(a) = y.row(R[a]);
     double* F = const_cast<double*>(Lx.data()) + px[s];

@@ -406,9 +406,11 @@ void map_disk(PipelineResult& result, CutDisk& cut, const PipelineOptions& optio
     for (int i = 0; i < 3; ++i)
       if (t[i] < t[(i + 1) % 3])
         d.mesh_edges.push_back({to_vec2d(overlay.mesh.positions[t[i]]), to_vec2d(overlay.mesh.positions[t[(i + 1) % 3]])});
-  // Release the stages' data before the certifier makes its own copy of the mesh.
+  // Release the stages' data before the certifier makes its own copy of the mesh (and before
+  // smoothing: the patch mesh serves only the rectangles' extraction).
   overlay = OverlayResult{};
   disk = PlanarTriangulation{};
+  if (options.smooth || !options.structured_extraction) patches = PatchMesh{};
 
   // --- smooth, extract (the a x b grid of every layout quad, or the smoothed map's isolines),
   // certify ---

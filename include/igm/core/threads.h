@@ -12,8 +12,9 @@ namespace igm {
 /// igm::Error(InvalidArgument).
 int resolve_threads(int threads);
 
-/// Runs fn with the library's parallel loops limited to resolve_threads(threads) threads (a oneTBB
-/// task arena of that concurrency; nested calls make their own). Exceptions from fn propagate.
+/// Runs fn with the library's parallel loops limited to resolve_threads(threads) threads, at most
+/// the cores oneTBB sees (a oneTBB task arena of that concurrency; nested calls make their own).
+/// Exceptions from fn propagate.
 void with_threads(int threads, const std::function<void()>& fn);
 
 }  // namespace igm
