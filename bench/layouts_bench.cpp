@@ -6,7 +6,8 @@
 //   configs: before, paper, kite, spread, field (the field layout, its fallback named on the line), and the spread layout with one choice changed: s-nosm
 //   (not smoothed), s-udisk
 //   (uniform disk map, uniform sides), s-cotan, s-unif (cotangent or uniform patch weights),
-//   s-affine (the affine map); default: all. Every output is certified or the line says NOT CERTIFIED.
+//   s-affine (the affine map), s-d1e-2 .. s-d1e-4 and s-it100 (smoothing's relative-decrease stop);
+//   default: all. Every output is certified or the line says NOT CERTIFIED.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -65,6 +66,17 @@ std::vector<Config> configs(std::int64_t quads) {
   o.quads = quads;
   o.patch_map = igm::PatchMapKind::Affine;
   c.push_back({"s-affine", o});
+  // Smoothing's stop (PipelineOptions::smooth_min_decrease; bench/README.md, "Smoothing's stop"):
+  // s-dX stops after an iteration that lowers the energy by less than X of it, s-it100 runs the
+  // 100 iterations (the stall rule and convergence stop all of them too).
+  for (const char* x : {"1e-2", "3e-3", "1e-3", "3e-4", "1e-4"}) {
+    o = igm::PipelineOptions{};
+    o.quads = quads;
+    o.smooth_min_decrease = std::atof(x);
+    c.push_back({std::string("s-d") + x, o});
+  }
+  o.smooth_min_decrease = 0;
+  c.push_back({"s-it100", o});
   return c;
 }
 
@@ -119,7 +131,8 @@ int main(int argc, char** argv) {
   const char* env = std::getenv("IGM_DATA_DIR");
   const std::filesystem::path data = env && *env ? env : "../shared";
   std::vector<std::pair<std::string, igm::ValidMesh>> meshes;
-  for (const char* m : {"pipe", "mpi_triang", "knot", "eight", "joint", "helmet", "elephant", "anchor", "couplingdown"}) {
+  for (const char* m : {"pipe", "mpi_triang", "knot", "eight", "joint", "helmet", "elephant", "anchor", "couplingdown",
+                        "cheese"}) {
     if (!only.empty() && !only.count(m)) continue;
     const auto path = data / "meshes" / "clean" / (std::string(m) + ".off");
     if (std::filesystem::exists(path)) meshes.emplace_back(m, igm::load_mesh(path));

@@ -73,9 +73,10 @@ const std::map<std::string, Setter>& option_setters() {
       {"smooth", field(&igm::PipelineOptions::smooth)},
       {"smooth_iterations", field(&igm::PipelineOptions::smooth_iterations)},
       {"smooth_seconds", field(&igm::PipelineOptions::smooth_seconds)},
-      {"smooth_auto_max_triangles", field(&igm::PipelineOptions::smooth_auto_max_triangles)},
+      {"smooth_min_decrease", field(&igm::PipelineOptions::smooth_min_decrease)},
       {"smooth_stall_step", field(&igm::PipelineOptions::smooth_stall_step)},
       {"quality_distance", field(&igm::PipelineOptions::quality_distance)},
+      {"threads", field(&igm::PipelineOptions::threads)},
   };
   return setters;
 }
@@ -130,13 +131,14 @@ void warn_all(const std::vector<std::string>& warnings) {
 py::dict stats_dict(const igm::PipelineStats& st) {
   py::list stages;
   for (const igm::StageEvent& e : st.stages)
-    stages.append(py::dict("stage"_a = e.stage, "seconds"_a = e.seconds, "detail"_a = e.detail));
+    stages.append(py::dict("stage"_a = e.stage, "seconds"_a = e.seconds, "detail"_a = e.detail, "peak_mb"_a = e.peak_mb,
+                           "cpu_seconds"_a = e.cpu_seconds));
   return py::dict("genus"_a = st.genus, "boundary_loops"_a = st.boundary_loops, "input_vertices"_a = st.input_vertices,
                   "input_faces"_a = st.input_faces, "refined_vertices"_a = st.refined_vertices,
                   "refined_faces"_a = st.refined_faces, "output_vertices"_a = st.output_vertices,
                   "output_triangles"_a = st.output_triangles, "layout_quads"_a = st.layout_quads, "quads"_a = st.quads,
                   "chords"_a = st.chords, "edge_length"_a = st.edge_length, "max_uv_bits"_a = st.max_uv_bits,
-                  "smooth_iterations"_a = st.smooth.iterations, "smooth_skipped"_a = st.smooth_skipped,
+                  "smooth_iterations"_a = st.smooth.iterations, "smooth_stop"_a = igm::to_string(st.smooth.stop),
                   "layout"_a = st.layout,
                   "layout_fallback"_a = st.layout_fallback.empty() ? py::object(py::none()) : py::object(py::str(st.layout_fallback)),
                   "floor_quads"_a = st.floor_quads, "quads_asked"_a = st.quads_asked,
@@ -392,8 +394,9 @@ PYBIND11_MODULE(_igm, m) {
         "F: (m, k) vertex ids, k >= 3), closed or open (boundaries on integer isolines), one or several\n"
         "components (one IGM each, merged; stats['surfaces'] per surface). Options: quads, edge_length,\n"
         "resolution, layout ('spread', 'kite', 'paper'), map ('tutte', 'affine'), smooth, smooth_iterations,\n"
-        "smooth_seconds, smooth_auto_max_triangles, smooth_stall_step, quality, quality_distance, root,\n"
-        "normal_form, restarts, cones, memory_limit_bytes, max_witnesses (igm::PipelineOptions), split_nonmanifold (cut\n"
+        "smooth_min_decrease, smooth_stall_step, smooth_seconds, quality, quality_distance, root, normal_form,\n"
+        "restarts, cones, memory_limit_bytes, max_witnesses, threads (0: all cores; the outputs are the same\n"
+        "for any count) (igm::PipelineOptions), split_nonmanifold (cut\n"
         "non-manifold elements apart first), exact (also the UVs as 'p/q' strings).\n"
         "Returns {'igm': {'vertices', 'faces', 'uv' (t, 3, 2) [, 'uv_exact']}, 'quads': {'vertices', 'quads'},\n"
         "'certificate': {'igm', 'quad'} (the certifier's JSON), 'certified', 'stats', 'warnings'}.\n"

@@ -143,7 +143,13 @@ Report certify_igm_data(IgmData& d, const Options& opt, const std::string& sourc
   rep.source = source;
   const std::size_t W = opt.max_witnesses;
   const std::int64_t F = std::int64_t(d.face_begin.size()) - 1;
-  for (auto& p : d.uv) prepare(p);
+  // The per-element work runs on opt.threads threads over a static partition of the elements
+  // (certify/README.md, "Threads"); every count, histogram and witness list is merged in element
+  // order, so the report does not depend on the thread count.
+  const std::int64_t NU = std::int64_t(d.uv.size());
+  detail::parallel_ranges(NU, detail::range_count(NU, opt.threads), [&](int, std::int64_t b, std::int64_t e) {
+    for (std::int64_t i = b; i < e; ++i) prepare(d.uv[i]);
+  });
   auto uv = [&](std::int64_t corner) -> const ExactPoint& { return d.uv[d.corner_uv[corner]]; };
 
   // ---- check 1: topology ----
@@ -158,11 +164,13 @@ Report certify_igm_data(IgmData& d, const Options& opt, const std::string& sourc
   c2.id = 2;
   c2.name = "uv_orientation";
   std::vector<signed char> orient(static_cast<std::size_t>(F));
+  detail::parallel_ranges(F, detail::range_count(F, opt.threads), [&](int, std::int64_t b, std::int64_t e) {
+    for (std::int64_t f = b; f < e; ++f) orient[f] = static_cast<signed char>(orient2d(uv(3 * f), uv(3 * f + 1), uv(3 * f + 2)));
+  });
   std::int64_t positive = 0, flipped = 0, degenerate = 0;
   for (std::int64_t f = 0; f < F; ++f) {  // bound: F
     const ExactPoint &a = uv(3 * f), &b = uv(3 * f + 1), &c = uv(3 * f + 2);
-    const int o = orient2d(a, b, c);
-    orient[f] = static_cast<signed char>(o);
+    const int o = orient[f];
     if (o > 0) {
       ++positive;
       continue;
@@ -188,10 +196,22 @@ Report certify_igm_data(IgmData& d, const Options& opt, const std::string& sourc
   // with the largest exact dot product (R^k e_a) . e_b, -1 on a tie), used only to report the index
   // of vertices on non-rigid edges (check 4, "nonrigid ring").
   std::vector<signed char> edge_near_k(static_cast<std::size_t>(t.E), -1);
-  std::int64_t checked = 0, not_interior = 0, fail_rot = 0, fail_trans = 0, zero_len = 0;
-  std::int64_t bnd_checked = 0, bnd_off = 0;
+  struct EdgeCounts {
+    std::int64_t checked = 0, not_interior = 0, fail_rot = 0, fail_trans = 0, zero_len = 0;
+    std::int64_t bnd_checked = 0, bnd_off = 0;
+  };
+  const int edge_ranges = detail::range_count(t.E, opt.threads);
+  std::vector<EdgeCounts> edge_counts(static_cast<std::size_t>(edge_ranges));
+  std::vector<CheckResult> edge_parts(static_cast<std::size_t>(edge_ranges));
+  detail::parallel_ranges(t.E, edge_ranges, [&](int r, std::int64_t e_begin, std::int64_t e_end) {
+  // This range's counts and witnesses (merged below in range order).
+  EdgeCounts& n = edge_counts[static_cast<std::size_t>(r)];
+  std::int64_t &checked = n.checked, &not_interior = n.not_interior, &fail_rot = n.fail_rot,
+               &fail_trans = n.fail_trans, &zero_len = n.zero_len, &bnd_checked = n.bnd_checked,
+               &bnd_off = n.bnd_off;
+  CheckResult& c3 = edge_parts[static_cast<std::size_t>(r)];
   mpq_class e1x, e1y, e2x, e2y, tx, ty;
-  for (std::int64_t e = 0; e < t.E; ++e) {  // bound: E edges
+  for (std::int64_t e = e_begin; e < e_end; ++e) {  // bound: E edges
     const std::int64_t h0 = t.edge_halfedges[t.edge_start[e]];
     if (t.twin[h0] < 0) {
       ++not_interior;
@@ -300,6 +320,22 @@ Report certify_igm_data(IgmData& d, const Options& opt, const std::string& sourc
                   {"uv_b_u", point_string(a2.x, a2.y)},
                   {"uv_b_v", point_string(b2.x, b2.y)}}});
   }
+  });
+  EdgeCounts sum;
+  for (int r = 0; r < edge_ranges; ++r) {
+    const EdgeCounts& n = edge_counts[static_cast<std::size_t>(r)];
+    sum.checked += n.checked;
+    sum.not_interior += n.not_interior;
+    sum.fail_rot += n.fail_rot;
+    sum.fail_trans += n.fail_trans;
+    sum.zero_len += n.zero_len;
+    sum.bnd_checked += n.bnd_checked;
+    sum.bnd_off += n.bnd_off;
+    detail::merge_witnesses(c3, W, std::move(edge_parts[static_cast<std::size_t>(r)]));
+  }
+  const std::int64_t checked = sum.checked, not_interior = sum.not_interior, fail_rot = sum.fail_rot,
+                     fail_trans = sum.fail_trans, zero_len = sum.zero_len, bnd_checked = sum.bnd_checked,
+                     bnd_off = sum.bnd_off;
   c3.counts = {{"interior_edges_checked", checked},   {"rigid", checked - fail_rot - fail_trans},
                {"non_rigid", fail_rot + fail_trans},  {"no_rotation_matches", fail_rot},
                {"translation_not_integer", fail_trans}, {"zero_length_both_sides", zero_len},
@@ -333,8 +369,8 @@ Report certify_igm_data(IgmData& d, const Options& opt, const std::string& sourc
     bool boundary = false;
     const char* why = "";                 // reason when undetermined
   };
-  mpq_class rx, ry, gx, gy, cr;
   auto walk = [&](std::int64_t v) {
+    mpq_class rx, ry, gx, gy, cr;  // scratch: each vertex's walk on its own
     Walk w;
     w.boundary = opt.allow_boundary && t.boundary_out[v] >= 0;
     if (!t.vertex_manifold[v]) {
@@ -469,9 +505,14 @@ Report certify_igm_data(IgmData& d, const Options& opt, const std::string& sourc
   std::int64_t inconsistent = 0, nonrigid_ring = 0, nonrigid_cones = 0, nonrigid_off_integer = 0;
   std::int64_t bnd_vertices = 0, bnd_determined = 0, bnd_corners = 0, bnd_off_integer = 0;
   std::int64_t bnd_nonpositive = 0;
-  for (std::int64_t v = 0; v < d.V; ++v) {  // bound: V vertices, each walk <= degree steps
+  std::vector<Walk> walks(static_cast<std::size_t>(d.V));
+  detail::parallel_ranges(d.V, detail::range_count(d.V, opt.threads), [&](int, std::int64_t b, std::int64_t e) {
+    for (std::int64_t v = b; v < e; ++v)  // bound: each walk <= degree steps
+      if (t.vertex_corner[v] >= 0) walks[v] = walk(v);
+  });
+  for (std::int64_t v = 0; v < d.V; ++v) {  // bound: V vertices
     if (t.vertex_corner[v] < 0) continue;
-    const Walk w = walk(v);
+    const Walk& w = walks[v];
     const std::int32_t comp = t.vertex_component[v];
     const std::int64_t k = w.k;
     const std::int64_t flat = w.boundary ? 2 : 4;  // index of a regular vertex

@@ -1,6 +1,8 @@
 #pragma once
 // Internal pieces of the certifier shared by its translation units (not installed).
+#include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -72,5 +74,22 @@ void fill_mesh(Report& report, const Topology& t, CheckResult& check);
 void add_witness(CheckResult& check, std::size_t max_witnesses, Witness w);
 
 std::string point_string(const mpq_class& x, const mpq_class& y);
+
+/// Threads (certify/README.md, "Threads"): Options::threads, or when 0 the environment's
+/// IGM_THREADS if a positive integer, else every core (at least 1).
+int thread_count(int threads);
+/// Elements per range at least (smaller inputs use fewer ranges).
+inline constexpr std::int64_t kMinRange = 4096;
+/// How many ranges [0, n) is cut into for `threads` (Options::threads): at most thread_count, at
+/// least kMinRange elements each (at least 1 range).
+int range_count(std::int64_t n, int threads);
+/// fn(r, begin, end) for the ranges r = 0 .. ranges-1 of the static partition of [0, n):
+/// [n r / ranges, n (r + 1) / ranges), each on its own std::thread (range 0 on the caller's). The
+/// ranges' results must be combined in range order by the caller. An exception from a range is
+/// rethrown after all have joined (the lowest range's).
+void parallel_ranges(std::int64_t n, int ranges, const std::function<void(int, std::int64_t, std::int64_t)>& fn);
+/// Appends a range's witnesses (up to max_witnesses in all), offending count and histograms to
+/// `into`: merging the ranges in order gives what one pass in element order gives.
+void merge_witnesses(CheckResult& into, std::size_t max_witnesses, CheckResult&& part);
 
 }  // namespace igm::certify::detail

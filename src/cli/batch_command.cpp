@@ -56,6 +56,7 @@
 #include <sstream>
 #include <string>
 
+#include "igm/core/threads.h"
 #include "json.h"
 
 namespace igm_cli {
@@ -75,7 +76,7 @@ int usage(const std::string& message) {
                "       igm batch --summary -o OUT\n"
                "  runs `igm run MESH -o OUT/runs/ID RUN OPTIONS` for each mesh in a process of its own and\n"
                "  appends one JSON line per mesh to OUT/results.jsonl (meshes with a line are skipped)\n"
-               "  -j N           meshes at once (1..256, default 1)\n"
+               "  -j N           meshes at once (1..256, default 1); each run gets 1/N of the cores (--threads)\n"
                "  --timeout S    wall-time limit per mesh in seconds (default 3600; 0: none)\n"
                "  --memory-mb M  address-space limit per mesh in MB (default none)\n"
                "  --summary      print the summary of OUT/results.jsonl and exit\n"
@@ -223,6 +224,11 @@ Child start(const std::string& key, const Settings& s) {
   const bool own_limit = std::find(s.run_options.begin(), s.run_options.end(), "--memory-limit-mb") !=
                          s.run_options.end();
   if (s.memory_mb > 0 && !own_limit) argv_s.insert(argv_s.end(), {"--memory-limit-mb", std::to_string(s.memory_mb)});
+  // The cores divided among the runs: each gets its share (at least 1) unless the run options
+  // set --threads (the outputs are the same for any count).
+  const bool own_threads = std::find(s.run_options.begin(), s.run_options.end(), "--threads") != s.run_options.end();
+  if (!own_threads)
+    argv_s.insert(argv_s.end(), {"--threads", std::to_string(std::max(1, igm::resolve_threads(0) / s.jobs))});
   std::vector<char*> argv;
   for (std::string& a : argv_s) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -280,8 +286,11 @@ Outcome classify(const Child& c, int status, const rusage& ru, const Settings& s
   close(c.exec_errno_fd);
   const fs::path dir = s.out / "runs" / c.id;
   const std::string err = slurp(dir / "igm.err");
+  // (under an address-space limit the loader may fail to map a shared library, a thread its stack)
   const bool memory_words = has(err, "bad_alloc") || has(err, "Cannot allocate memory") ||
-                            (has(err, "unsupported") && has(err, "memory limit"));
+                            (has(err, "unsupported") && has(err, "memory limit")) ||
+                            (s.memory_mb > 0 && (has(err, "failed to map segment") ||
+                                                 has(err, "Resource temporarily unavailable")));
   if (status != -1 && WIFSIGNALED(status)) o.signal = WTERMSIG(status);
   if (status != -1 && WIFEXITED(status)) o.exit_code = WEXITSTATUS(status);
   if (c.timed_out) {

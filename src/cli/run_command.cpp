@@ -2,6 +2,7 @@
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -15,6 +16,7 @@
 #include <string>
 
 #include "igm/core/error.h"
+#include "igm/core/memory.h"
 #include "igm/mesh/generate.h"
 #include "igm/io/read_mesh.h"
 #include "igm/mesh/validate.h"
@@ -41,6 +43,7 @@ int usage(const std::string& message, bool help = false) {
                "%s%susage: igm run MESH [-o DIR] [--quads Q | --edge-length H | --resolution N]\n"
                "               [--layout spread|kite|paper] [--map tutte|affine] [--no-smooth] [--root V]\n"
                "               [--normal-form [--restarts K|auto]] [--cones A,B,C,D] [--memory-limit-mb M]\n"
+               "               [--smooth-iterations N] [--smooth-min-decrease X] [--smooth-seconds S] [--threads N]\n"
                "  writes DIR/NAME.igm.obj, NAME.igm.exact, NAME.quad.obj, NAME.cert.json, NAME.schema.svg,\n"
                "  NAME.quad.svg (a shaded picture of the quads, cones marked by valence)\n"
                "  --quads Q       about Q quads (default %lld): each layout edge gets round(length / H) quads,\n"
@@ -56,10 +59,13 @@ int usage(const std::string& message, bool help = false) {
                "  --map M         each layout quad mapped onto its rectangle by a Tutte map from its own\n"
                "                  geometry (tutte, default) or through the disk's map (affine, the paper's)\n"
                "  --no-smooth     keep the layout's map (default: smoothed, every iterate a certified IGM)\n"
-               "  --smooth-iterations N, --smooth-seconds S  the smoothing's budgets (default 100 iterations,\n"
-               "                  10 s per 100k IGM triangles within 5..60 s, none past 600k IGM triangles; a\n"
-               "                  budget given in seconds smooths any size; 0 s: no time limit; it also\n"
-               "                  stops after two steps in a row below 1/200 of the Newton step)\n"
+               "  --smooth-iterations N  at most N Newton iterations (default 100); smoothing also stops after\n"
+               "                  an iteration that lowers the energy by less than --smooth-min-decrease X of\n"
+               "                  it (default 0.001) or two steps in a row below 1/200 of the Newton step\n"
+               "  --smooth-seconds S  also stop after S seconds of wall time (default 0: never; with S the\n"
+               "                  result depends on the machine's speed and load)\n"
+               "  --threads N     threads for the parallel stages (default 0: IGM_THREADS if set, else all\n"
+               "                  cores); the outputs are the same for any N\n"
                "  --split-nonmanifold  cut non-manifold vertices and edges apart (each cut named in a warning)\n"
                "                  and map the resulting open surfaces\n"
                "  --cones A,B,C,D genus 0: the four cone vertices (0-based input ids) in path order\n"
@@ -77,10 +83,24 @@ bool parse_double(std::string_view s, double& out) {
   return ec == std::errc() && p == s.data() + s.size();
 }
 
-double peak_rss_mb() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return static_cast<double>(u.ru_maxrss) / 1024.0;
+// The run's peak memory: the stages' peaks (each stage resets the process's peak) and the peak
+// since the last of them.
+double peak_rss_mb(const std::vector<const igm::PipelineStats*>& runs) {
+  double mb = igm::peak_resident_mb();
+  for (const igm::PipelineStats* st : runs)
+    for (const igm::StageEvent& e : st->stages) mb = std::max(mb, e.peak_mb);
+  return mb;
+}
+
+// "stages": [{"stage": ..., "seconds": ..., "peak_mb": ...}, ...] of one run.
+std::string stages_json(const igm::PipelineStats& st) {
+  std::ostringstream s;
+  s << "[";
+  for (std::size_t i = 0; i < st.stages.size(); ++i)
+    s << (i ? ", " : "") << "{\"stage\": \"" << st.stages[i].stage << "\", \"seconds\": " << st.stages[i].seconds
+      << ", \"cpu_seconds\": " << st.stages[i].cpu_seconds << ", \"peak_mb\": " << st.stages[i].peak_mb << "}";
+  s << "]";
+  return s.str();
 }
 
 template <class Writer>
@@ -125,8 +145,10 @@ std::string field_json(const igm::PipelineStats& st) {
 // The options with a line per stage, and per smoothing iteration once it has run 2 s (at most one a
 // second), on the terminal.
 igm::PipelineOptions with_progress(igm::PipelineOptions options) {
+  options.measure_stage_memory = true;
   options.progress = [](const igm::StageEvent& e) {
-    std::printf("[%-8s] %8.3f s  %s\n", e.stage.c_str(), e.seconds, e.detail.c_str());
+    std::printf("[%-8s] %8.3f s (cpu %7.2f s) %6.0f MB  %s\n", e.stage.c_str(), e.seconds, e.cpu_seconds, e.peak_mb,
+                e.detail.c_str());
     std::fflush(stdout);
   };
   auto last = std::make_shared<double>(0.0);
@@ -215,7 +237,7 @@ int run_surfaces(const igm::SurfaceSet& set, const std::string& name, const std:
         << ", \"certified\": " << (rc.certified() ? "true" : "false") << ", \"quads\": " << rc.stats.quads
         << ", \"layout_quads\": " << rc.stats.layout_quads << ", \"floor_quads\": " << rc.stats.floor_quads
         << ", \"raised_by_floor\": " << (rc.stats.raised_by_floor() ? "true" : "false") << ", \"layout\": \"" << rc.stats.layout
-        << "\", \"layout_fallback\": " << fallback_json(rc.stats) << "}";
+        << "\", \"layout_fallback\": " << fallback_json(rc.stats) << ", \"stages\": " << stages_json(rc.stats) << "}";
     }
     s << "],\n\"stats\": {\"quads\": " << r.quads.quads.size() << ", \"quads_asked\": " << r.quads_asked
       << ", \"seconds\": " << total << ", \"surfaces\": [";
@@ -230,7 +252,9 @@ int run_surfaces(const igm::SurfaceSet& set, const std::string& name, const std:
   });
   print_floor(r);
   if (base.quality) std::printf("[quality ] all surfaces: %s\n", igm::summary_line(r.igm_quality, r.quad_quality).c_str());
-  std::printf("[total]    %8.3f s  peak memory %.0f MB\n", total, peak_rss_mb());
+  std::vector<const igm::PipelineStats*> runs;
+  for (const igm::PipelineResult& rc : r.components) runs.push_back(&rc.stats);
+  std::printf("[total]    %8.3f s  peak memory %.0f MB\n", total, peak_rss_mb(runs));
   std::printf("wrote %s/%s.{igm.obj,igm.exact,quad.obj,cert.json,quad.svg}\n", dir.string().c_str(), name.c_str());
   return print_verdict(r.igm_report, r.quad_report);
 }
@@ -262,8 +286,9 @@ int run_pipeline(const igm::ValidMesh& mesh, const std::string& name, const std:
       << ", \"quads_asked\": " << st.quads_asked << ", \"raised_by_floor\": " << (st.raised_by_floor() ? "true" : "false")
       << ", \"max_uv_bits\": " << st.max_uv_bits << ", \"tutte_iterations\": " << st.tutte.iterations
       << ", \"tutte_flips_double\": " << st.tutte.flips_double << ", \"smooth_iterations\": " << st.smooth.iterations
-      << ", \"smooth_stop\": \"" << (options.smooth && !st.smooth_skipped ? igm::to_string(st.smooth.stop) : "off") << "\""
-      << ", \"smooth_skipped\": " << (st.smooth_skipped ? "true" : "false") << ", \"seconds\": " << total << "},\n"
+      << ", \"smooth_stop\": \"" << (options.smooth ? igm::to_string(st.smooth.stop) : "off") << "\""
+      << ", \"seconds\": " << total << ", \"peak_mb\": " << peak_rss_mb({&st})
+      << ", \"stages\": " << stages_json(st) << "},\n"
       << (st.layout == "orbifold" ? "\"genus0\": {\"cones\": [" + std::to_string(st.cones[0]) + ", " + std::to_string(st.cones[1]) +
                               ", " + std::to_string(st.cones[2]) + ", " + std::to_string(st.cones[3]) +
                               "], \"path_edges\": " + std::to_string(st.sphere_cut.path_edges) +
@@ -277,7 +302,7 @@ int run_pipeline(const igm::ValidMesh& mesh, const std::string& name, const std:
       << "\"igm\": " << igm::certify::to_json(r.igm_report) << ",\n"
       << "\"quad\": " << igm::certify::to_json(r.quad_report) << "}\n";
   });
-  std::printf("[total]    %8.3f s  peak memory %.0f MB\n", total, peak_rss_mb());
+  std::printf("[total]    %8.3f s  peak memory %.0f MB\n", total, peak_rss_mb({&r.stats}));
   std::printf("wrote %s/%s.{igm.obj,igm.exact,quad.obj,cert.json,schema.svg,quad.svg}\n", dir.string().c_str(),
               name.c_str());
   return print_verdict(r.igm_report, r.quad_report);
@@ -320,7 +345,8 @@ int run_command(const std::vector<std::string_view>& args) {
       options.field_attempts.clear();
       continue;
     }
-    if (a == "--layout" || a == "--map" || a == "--edge-length" || a == "--smooth-seconds") {
+    if (a == "--layout" || a == "--map" || a == "--edge-length" || a == "--smooth-seconds" ||
+        a == "--smooth-min-decrease") {
       if (i + 1 >= args.size()) return usage(std::string(a) + " needs a value");
       const std::string_view v = args[++i];
       if (a == "--layout") {
@@ -338,6 +364,11 @@ int run_command(const std::vector<std::string_view>& args) {
         if (!parse_double(v, t) || !(t >= 0) || !std::isfinite(t))
           return usage("--smooth-seconds needs a number >= 0 (0: no time limit), got '" + std::string(v) + "'");
         options.smooth_seconds = t;
+      } else if (a == "--smooth-min-decrease") {
+        double x = 0;
+        if (!parse_double(v, x) || !(x >= 0 && x < 1))
+          return usage("--smooth-min-decrease needs a number in [0, 1), got '" + std::string(v) + "'");
+        options.smooth_min_decrease = x;
       } else {
         double h = 0;
         if (!parse_double(v, h) || !(h > 0) || !std::isfinite(h))
@@ -347,7 +378,7 @@ int run_command(const std::vector<std::string_view>& args) {
       continue;
     }
     if (a == "-o" || a == "--resolution" || a == "--root" || a == "--memory-limit-mb" || a == "--restarts" ||
-        a == "--quads" || a == "--smooth-iterations") {
+        a == "--quads" || a == "--smooth-iterations" || a == "--threads") {
       if (i + 1 >= args.size()) return usage(std::string(a) + " needs a value");
       const std::string_view v = args[++i];
       if (a == "-o") {
@@ -366,6 +397,9 @@ int run_command(const std::vector<std::string_view>& args) {
       } else if (a == "--smooth-iterations") {
         if (n < 0 || n > 100000) return usage("--smooth-iterations must be in 0..100000");
         options.smooth_iterations = static_cast<int>(n);
+      } else if (a == "--threads") {
+        if (n < 0 || n > 4096) return usage("--threads must be in 0..4096 (0: all cores)");
+        options.threads = static_cast<int>(n);
       } else if (a == "--quads") {
         if (n < 1 || n > (1LL << 31)) return usage("--quads must be in 1..2^31");
         options.quads = n;

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <exception>
 #include <string>
 #include <utility>
 
+#include "../core/parallel.h"
 #include "igm/core/error.h"
 #include "isolines_internal.h"
 
@@ -27,6 +29,7 @@ using isolines::kDy;
 using Clock = std::chrono::steady_clock;
 
 constexpr long kMaxUv = 1L << 60;  // |UV coordinate| bound: every integer sum below fits in 64 bits
+constexpr std::int64_t kChunk = 4096;  // triangles or half-edges per parallel chunk (core/parallel.h)
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
@@ -45,12 +48,29 @@ void set_point(Point2q& p, const Grid2& g) {
 
 // The seams: per half-edge h (face f, corner i -> i+1) the k and t with uv_g = R^k uv_f + t on both
 // ends, g the twin's face, found as the certifier defines them (certify/README.md, check 3).
+void seams_of(Charts& c, int h0, int h1);
+
+// In parallel (core/parallel.h); of several broken seams the first half-edge's is reported.
 void build_seams(Charts& c) {
   const int H = c.mesh.num_halfedges();
   c.k.assign(H, 0);
   c.t.assign(H, Grid2{});
+  std::vector<std::exception_ptr> failure((H + kChunk - 1) / kChunk);
+  parallel::for_chunks(H, kChunk, [&](std::int64_t b, std::int64_t e) {
+    try {
+      seams_of(c, static_cast<int>(b), static_cast<int>(e));
+    } catch (...) {
+      failure[b / kChunk] = std::current_exception();
+    }
+  });
+  for (const std::exception_ptr& x : failure)
+    if (x) std::rethrow_exception(x);
+}
+
+// The seams of half-edges [h0, h1).
+void seams_of(Charts& c, int h0, int h1) {
   Rational ex, ey, gx, gy, rx, ry, tx, ty;
-  for (int h = 0; h < H; ++h) {  // bound: 3F half-edges
+  for (int h = h0; h < h1; ++h) {  // bound: 3F half-edges
     const int tw = c.mesh.twin(h);
     if (tw < 0) continue;  // a boundary half-edge: no seam
     // The ends a, b in h's triangle and the same ends a2, b2 in the twin's.
@@ -240,6 +260,37 @@ int arrival_slot(const Charts& c, const Slots& s, int p, const isolines::TraceEn
 
 }  // namespace
 
+namespace {
+
+// Step 2 for the slots [q0, q1): each slot's unit segment traced (trace), its arrival slot at the
+// grid point where it ends (arrival), its triangle steps and vertex crossings.
+void trace_slots(const Charts& c, const GridPoints& gp, const Slots& s, int q0, int q1, std::vector<int>& arrival,
+                 std::vector<std::int64_t>& steps, std::vector<std::int64_t>& crossings) {
+  Point2q scratch;
+  for (int q = q0; q < q1; ++q) {  // bound: slots; each trace bounded by trace_step_bound triangles
+    const int p = s.point[q];
+    Heading h{s.face[q], -1, s.m[q], Grid2{s.start[q].x + kDx[s.m[q]], s.start[q].y + kDy[s.m[q]]}};
+    const isolines::TraceEnd end = isolines::trace(c, h, gp.chords, p);
+    steps[q] = end.steps;
+    crossings[q] = end.vertex_crossings;
+    const int to = find_point(c, gp, end.at.face, end.at.corner, end.side, end.at.target);
+    if (to < 0)
+      broken("the isoline from grid point " + std::to_string(p) + " along its direction " +
+                 std::to_string(q - s.begin[p]) + " ends at (" + std::to_string(end.at.target.x) +
+                 ", " + std::to_string(end.at.target.y) + ") of triangle " +
+                 std::to_string(end.at.face) + ", which is no grid point found",
+             p);
+    arrival[q] = arrival_slot(c, s, to, end, scratch);
+    if (arrival[q] < 0 || arrival[q] == q)
+      broken("the isoline from grid point " + std::to_string(p) + " along its direction " +
+                 std::to_string(q - s.begin[p]) + " arrives at grid point " + std::to_string(to) +
+                 " along no direction of it",
+             p);
+  }
+}
+
+}  // namespace
+
 IsolineResult extract_isolines(const IsolineInput& input, const IsolineOptions& options) {
   const auto t_total = Clock::now();
   if (options.max_grid_work < 1 || options.max_grid_work > (std::int64_t{1} << 28))
@@ -261,6 +312,7 @@ IsolineResult extract_isolines(const IsolineInput& input, const IsolineOptions& 
     copt.max_witnesses = options.max_witnesses;
     copt.allow_boundary = options.allow_boundary;
     copt.allow_components = options.allow_components;
+    copt.threads = options.threads;
     result.report = certify::certify_igm(std::move(cin), copt);
     stats.seconds_certify = seconds_since(t0);
   }
@@ -279,21 +331,28 @@ IsolineResult extract_isolines(const IsolineInput& input, const IsolineOptions& 
   for (const auto& tri : input.triangles)
     for (int v : tri) ++c.degree[v];
   c.floors.resize(3 * static_cast<std::size_t>(F));
-  mpz_class fl;
-  for (int f = 0; f < F; ++f)  // bound: F
-    for (int i = 0; i < 3; ++i)
-      for (int axis = 0; axis < 2; ++axis) {
-        const Rational& q = axis == 0 ? input.corner_uv[f][i].x : input.corner_uv[f][i].y;
-        if (mpq_cmp_si(q.get_mpq_t(), kMaxUv, 1UL) > 0 ||
-            mpq_cmp_si(q.get_mpq_t(), -kMaxUv, 1UL) < 0)
-          throw Error(ErrorKind::TooLarge,
-                      "extract_isolines: triangle " + std::to_string(f) +
-                          " has a UV coordinate beyond 2^60",
-                      {f});
-        mpz_fdiv_q(fl.get_mpz_t(), q.get_num_mpz_t(), q.get_den_mpz_t());
-        c.floors[3 * f + i].floor[axis] = mpz_get_si(fl.get_mpz_t());
-        c.floors[3 * f + i].integer[axis] = is_integer(q);
-      }
+  // In parallel (core/parallel.h); the first triangle beyond the bound is named.
+  const int too_large = parallel::reduce_chunks<int>(
+      F, kChunk, -1,
+      [&](std::int64_t b, std::int64_t e) {
+        mpz_class fl;
+        for (std::int64_t f = b; f < e; ++f)  // bound: F
+          for (int i = 0; i < 3; ++i)
+            for (int axis = 0; axis < 2; ++axis) {
+              const Rational& q = axis == 0 ? input.corner_uv[f][i].x : input.corner_uv[f][i].y;
+              if (mpq_cmp_si(q.get_mpq_t(), kMaxUv, 1UL) > 0 || mpq_cmp_si(q.get_mpq_t(), -kMaxUv, 1UL) < 0)
+                return static_cast<int>(f);
+              mpz_fdiv_q(fl.get_mpz_t(), q.get_num_mpz_t(), q.get_den_mpz_t());
+              c.floors[3 * f + i].floor[axis] = mpz_get_si(fl.get_mpz_t());
+              c.floors[3 * f + i].integer[axis] = is_integer(q);
+            }
+        return -1;
+      },
+      [](int a, int b) { return a >= 0 ? a : b; });
+  if (too_large >= 0)
+    throw Error(ErrorKind::TooLarge,
+                "extract_isolines: triangle " + std::to_string(too_large) + " has a UV coordinate beyond 2^60",
+                {too_large});
   build_seams(c);
   const GridPoints gp = find_grid_points(c, options.max_grid_work);
   stats.rows_scanned = gp.rows;
@@ -307,28 +366,24 @@ IsolineResult extract_isolines(const IsolineInput& input, const IsolineOptions& 
   const int S = static_cast<int>(s.point.size());
   std::vector<int> arrival(S, -1);
   stats.trace_step_bound = gp.chords;
-  Point2q scratch;
-  for (int q = 0; q < S; ++q) {  // bound: slots; each trace bounded by trace_step_bound triangles
-    const int p = s.point[q];
-    Heading h{s.face[q], -1, s.m[q], Grid2{s.start[q].x + kDx[s.m[q]], s.start[q].y + kDy[s.m[q]]}};
-    const isolines::TraceEnd end = isolines::trace(c, h, gp.chords, p);
+  // The traces are independent: in parallel (core/parallel.h), each slot's counts kept and summed
+  // after in slot order; of several failures the first slot's is reported.
+  std::vector<std::int64_t> steps(S, 0), crossings(S, 0);
+  std::vector<std::exception_ptr> failure((S + 255) / 256);
+  parallel::for_chunks(S, 256, [&](std::int64_t b, std::int64_t e) {
+    try {
+      trace_slots(c, gp, s, static_cast<int>(b), static_cast<int>(e), arrival, steps, crossings);
+    } catch (...) {
+      failure[b / 256] = std::current_exception();
+    }
+  });
+  for (const std::exception_ptr& x : failure)
+    if (x) std::rethrow_exception(x);
+  for (int q = 0; q < S; ++q) {
     ++stats.traces;
-    stats.trace_steps += end.steps;
-    stats.max_trace_steps = std::max(stats.max_trace_steps, end.steps);
-    stats.vertex_crossings += end.vertex_crossings;
-    const int to = find_point(c, gp, end.at.face, end.at.corner, end.side, end.at.target);
-    if (to < 0)
-      broken("the isoline from grid point " + std::to_string(p) + " along its direction " +
-                 std::to_string(q - s.begin[p]) + " ends at (" + std::to_string(end.at.target.x) +
-                 ", " + std::to_string(end.at.target.y) + ") of triangle " +
-                 std::to_string(end.at.face) + ", which is no grid point found",
-             p);
-    arrival[q] = arrival_slot(c, s, to, end, scratch);
-    if (arrival[q] < 0 || arrival[q] == q)
-      broken("the isoline from grid point " + std::to_string(p) + " along its direction " +
-                 std::to_string(q - s.begin[p]) + " arrives at grid point " + std::to_string(to) +
-                 " along no direction of it",
-             p);
+    stats.trace_steps += steps[q];
+    stats.max_trace_steps = std::max(stats.max_trace_steps, steps[q]);
+    stats.vertex_crossings += crossings[q];
   }
   for (int q = 0; q < S; ++q)  // bound: slots
     if (arrival[arrival[q]] != q)
@@ -396,22 +451,28 @@ IsolineResult extract_isolines(const IsolineInput& input, const IsolineOptions& 
 
   // The output: exact barycentric coordinates, valences, 3D positions.
   out.vertices.resize(n);
-  isolines::FaceFrame frame;
+  parallel::for_chunks(n, 256, [&](std::int64_t b, std::int64_t e) {  // each point on its own
+    isolines::FaceFrame frame;
+    for (std::int64_t p = b; p < e; ++p) {
+      const GridPoint& q = gp.points[p];
+      IsolineQuadVertex& v = out.vertices[p];
+      v.triangle = q.face;
+      v.kind = q.kind;
+      v.local = q.local;
+      v.uv = {q.uv.x, q.uv.y};
+      v.valence = s.begin[p + 1] - s.begin[p];
+      v.boundary = s.boundary[p] != 0;
+      if (q.kind == GridPointKind::Vertex) {
+        for (int i = 0; i < 3; ++i) v.barycentric[i] = i == q.local ? 1 : 0;
+      } else {
+        if (frame.face != q.face) frame.set(q.face, input.corner_uv[q.face]);
+        frame.barycentric(q.uv, v.barycentric);
+      }
+    }
+  });
   for (int p = 0; p < n; ++p) {  // bound: grid points
     const GridPoint& q = gp.points[p];
-    IsolineQuadVertex& v = out.vertices[p];
-    v.triangle = q.face;
-    v.kind = q.kind;
-    v.local = q.local;
-    v.uv = {q.uv.x, q.uv.y};
-    v.valence = s.begin[p + 1] - s.begin[p];
-    v.boundary = s.boundary[p] != 0;
-    if (q.kind == GridPointKind::Vertex) {
-      for (int i = 0; i < 3; ++i) v.barycentric[i] = i == q.local ? 1 : 0;
-    } else {
-      if (frame.face != q.face) frame.set(q.face, input.corner_uv[q.face]);
-      frame.barycentric(q.uv, v.barycentric);
-    }
+    const IsolineQuadVertex& v = out.vertices[p];
     if (q.kind == GridPointKind::Vertex) ++stats.grid_points_on_vertices;
     if (q.kind == GridPointKind::Edge) ++stats.grid_points_on_edges;
     if (q.kind == GridPointKind::Face) ++stats.grid_points_in_faces;
@@ -453,6 +514,7 @@ certify::Report certify_isoline_quads(const IsolineResult& result, const Isoline
   in.quads = q.quads;
   in.num_vertices = static_cast<std::int64_t>(q.vertices.size());
   certify::Options o;
+  o.threads = options.threads;
   o.max_witnesses = options.max_witnesses;
   o.allow_boundary = options.allow_boundary;
   o.allow_components = options.allow_components;

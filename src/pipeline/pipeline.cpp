@@ -9,8 +9,11 @@
 
 #include <cmath>
 
+#include "../core/parallel.h"
 #include "igm/arrange/overlay.h"
 #include "igm/core/error.h"
+#include "igm/core/memory.h"
+#include "igm/core/threads.h"
 #include "igm/embed/polygon.h"
 #include "igm/extract/isolines.h"
 #include "igm/extract/patch_grid.h"
@@ -98,8 +101,17 @@ std::string floor_note(const PipelineStats& stats) {
          format(" raised to the floor (%.0f quads at least)", double(stats.floor_quads));
 }
 
+StageReporter::StageReporter(PipelineStats& s, const PipelineOptions& o)
+    : stats(s), options(o), cpu(process_cpu_seconds()) {
+  if (options.measure_stage_memory) peak_resident_mb(true);
+}
+
 void StageReporter::done(const char* name, Clock::time_point t0, std::string detail) {
   StageEvent e{name, seconds_since(t0), std::move(detail)};
+  if (options.measure_stage_memory) e.peak_mb = peak_resident_mb(true);
+  const double now = process_cpu_seconds();
+  e.cpu_seconds = now - cpu;
+  cpu = now;
   stats.stages.push_back(e);
   if (options.progress) options.progress(e);
 }
@@ -111,6 +123,7 @@ void certify_outputs(PipelineResult& result, const PipelineOptions& options, boo
   certify::Options copt;
   copt.max_witnesses = options.max_witnesses;
   copt.allow_boundary = result.stats.boundary_loops > 0;
+  copt.threads = resolve_threads(options.threads);
   if (!igm_report_done) result.igm_report = certify::certify_igm(certify_input(igm, igm.corner_uv), copt);
   certify::QuadInput qin;
   qin.quads = quads.quads;
@@ -135,8 +148,9 @@ void measure_quality(PipelineResult& result, const std::vector<Vec3d>& input_pos
   if (!options.quality) return;
   const auto t0 = Clock::now();
   std::vector<std::array<Vec2d, 3>> uv(result.igm.corner_uv.size());
-  for (std::size_t t = 0; t < uv.size(); ++t)
+  parallel::for_each_index(static_cast<std::int64_t>(uv.size()), 4096, [&](std::int64_t t) {
     for (int i = 0; i < 3; ++i) uv[t][i] = {approximate(result.igm.corner_uv[t][i].x), approximate(result.igm.corner_uv[t][i].y)};
+  });
   result.igm_quality = measure_igm(result.igm.positions, result.igm.triangles, uv);
   QuadQualityOptions qo;
   qo.distance = options.quality_distance;
@@ -150,23 +164,17 @@ void smooth_extract_certify(PipelineResult& result, const PipelineOptions& optio
   PipelineStats& stats = result.stats;
   auto t0 = Clock::now();
   std::string how;
-  stats.smooth_skipped = options.smooth && options.smooth_seconds < 0 &&
-                         igm.triangles.size() > options.smooth_auto_max_triangles;
-  const bool smoothing = options.smooth && !stats.smooth_skipped;
-  if (stats.smooth_skipped)
-    stage.done("smooth", t0,
-               format("skipped: %.0f triangles, more than %.0f for the automatic budget (give one in seconds to smooth)",
-                      double(igm.triangles.size()), double(options.smooth_auto_max_triangles)));
+  const bool smoothing = options.smooth;
   if (smoothing) {
     SmoothOptions so;
     so.max_iterations = options.smooth_iterations;
-    so.time_budget_seconds = options.smooth_seconds >= 0
-                                 ? options.smooth_seconds
-                                 : std::clamp(1e-4 * static_cast<double>(igm.triangles.size()), 5.0, 60.0);
+    so.min_relative_decrease = options.smooth_min_decrease;
+    so.time_budget_seconds = options.smooth_seconds;
     so.stall_step = options.smooth_stall_step;
     so.certify = false;  // the isolines' extraction runs the certifier on the result below
     so.progress = options.smooth_progress;
-    SmoothResult smoothed = smooth_igm(igm, so);
+    so.threads = resolve_threads(options.threads);
+    SmoothResult smoothed = smooth_igm_releasing(igm, so);
     igm.corner_uv = std::move(smoothed.corner_uv);
     stats.smooth = std::move(smoothed.stats);
     stats.uv_doubles = stats.smooth.returned != SmoothReturned::InputExact;
@@ -194,6 +202,7 @@ void smooth_extract_certify(PipelineResult& result, const PipelineOptions& optio
     IsolineOptions io;
     io.max_witnesses = options.max_witnesses;
     io.allow_boundary = stats.boundary_loops > 0;
+    io.threads = resolve_threads(options.threads);
     IsolineResult x = extract_isolines(in, io);
     igm.triangles = std::move(in.triangles);
     igm.corner_uv = std::move(in.corner_uv);
@@ -437,9 +446,11 @@ void map_disk(PipelineResult& result, CutDisk& cut, const PipelineOptions& optio
     for (int i = 0; i < 3; ++i)
       if (t[i] < t[(i + 1) % 3])
         d.mesh_edges.push_back({to_vec2d(overlay.mesh.positions[t[i]]), to_vec2d(overlay.mesh.positions[t[(i + 1) % 3]])});
-  // Release the stages' data before the certifier makes its own copy of the mesh.
+  // Release the stages' data before the certifier makes its own copy of the mesh (and before
+  // smoothing: the patch mesh serves only the rectangles' extraction).
   overlay = OverlayResult{};
   disk = PlanarTriangulation{};
+  if (options.smooth || !options.structured_extraction) patches = PatchMesh{};
 
   // --- smooth, extract (the a x b grid of every layout quad, or the smoothed map's isolines),
   // certify ---
@@ -459,6 +470,12 @@ void map_disk(PipelineResult& result, CutDisk& cut, const PipelineOptions& optio
 }
 
 PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& options) {
+  PipelineResult result;
+  with_threads(options.threads, [&] { result = compute_igm_closed(input, options); });
+  return result;
+}
+
+PipelineResult compute_igm_closed(const ValidMesh& input, const PipelineOptions& options) {
   check_sizes(options);
   if (options.layout == LayoutKind::Field && options.cones.empty()) {
     std::vector<std::array<int, 3>> triangles(input.mesh.num_faces());
@@ -468,7 +485,7 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
     if (std::optional<PipelineResult> r = compute_igm_field(surface, options, attempt)) return std::move(*r);
     PipelineOptions topological = options;
     topological.layout = LayoutKind::Spread;
-    return with_fallback(std::move(attempt), compute_igm(input, topological));
+    return with_fallback(std::move(attempt), compute_igm_closed(input, topological));
   }
   if (input.genus == 0) return compute_igm_sphere(input, options);  // sphere_pipeline.cpp
   if (!options.cones.empty())

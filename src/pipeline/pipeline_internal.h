@@ -22,7 +22,11 @@ struct StageReporter {
   using Clock = std::chrono::steady_clock;
   PipelineStats& stats;
   const PipelineOptions& options;
-  /// The stage `name` ran from t0 until now.
+  double cpu = 0;  // process CPU seconds at the end of the last stage
+  /// Starts the memory measurement of the first stage (options.measure_stage_memory).
+  StageReporter(PipelineStats& s, const PipelineOptions& o);
+  /// The stage `name` ran from t0 until now (with its peak memory when measured; the next stage's
+  /// measurement starts here).
   void done(const char* name, Clock::time_point t0, std::string detail);
 };
 
@@ -78,6 +82,12 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
 /// `result` (of a topological layout) after a failed field attempt: the attempt's stages first,
 /// its field statistics and its layout_fallback kept.
 PipelineResult with_fallback(PipelineStats attempt, PipelineResult result);
+
+/// compute_igm in the caller's thread arena (compute_igm sets it up from options.threads).
+PipelineResult compute_igm_closed(const ValidMesh& input, const PipelineOptions& options);
+
+/// compute_igms in the caller's thread arena.
+SurfacesResult compute_igms_here(const SurfaceSet& set, const PipelineOptions& options);
 
 /// compute_igm for input.genus == 0 (options already range-checked by compute_igm).
 PipelineResult compute_igm_sphere(const ValidMesh& input, const PipelineOptions& options);

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "igm/core/error.h"
+#include "igm/core/threads.h"
 #include "igm/mesh/scale.h"
 #include "igm/pipeline/pipeline.h"
 #include "pipeline_internal.h"
@@ -10,12 +11,25 @@
 namespace igm {
 
 PipelineResult compute_igm(const SurfaceComponent& surface, const PipelineOptions& options) {
-  if (surface.boundary_loops.empty()) return compute_igm(to_valid_mesh(surface), options);
-  check_sizes(options);
-  return compute_igm_open(surface, options);  // open_pipeline.cpp
+  PipelineResult result;
+  with_threads(options.threads, [&] {
+    if (surface.boundary_loops.empty()) {
+      result = compute_igm_closed(to_valid_mesh(surface), options);
+      return;
+    }
+    check_sizes(options);
+    result = compute_igm_open(surface, options);  // open_pipeline.cpp
+  });
+  return result;
 }
 
 SurfacesResult compute_igms(const SurfaceSet& set, const PipelineOptions& options) {
+  SurfacesResult result;
+  with_threads(options.threads, [&] { result = compute_igms_here(set, options); });
+  return result;
+}
+
+SurfacesResult compute_igms_here(const SurfaceSet& set, const PipelineOptions& options) {
   if (set.components.empty()) throw Error(ErrorKind::Empty, "compute_igms: no surface");
   SurfacesResult out;
   int loops = 0;
@@ -78,6 +92,7 @@ SurfacesResult compute_igms(const SurfaceSet& set, const PipelineOptions& option
   copt.max_witnesses = options.max_witnesses;
   copt.allow_boundary = loops > 0;
   copt.allow_components = true;
+  copt.threads = resolve_threads(options.threads);
   out.igm_report = certify::certify_igm(certify_input(out.igm, out.igm.corner_uv), copt);
   certify::QuadInput qin;
   qin.quads = out.quads.quads;

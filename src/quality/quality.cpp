@@ -1,5 +1,7 @@
 #include "igm/quality/quality.h"
 
+#include "../core/parallel.h"
+
 #include <algorithm>
 #include <map>
 #include <charconv>
@@ -345,24 +347,29 @@ IgmQuality measure_igm(const std::vector<Vec3d>& positions,
   const double s3 = unit_scale(max3), s_uv = unit_scale(max_uv);
   IgmQuality r;
   r.triangles = static_cast<int>(triangles.size());
-  std::vector<TriangleMap> maps;
-  maps.reserve(triangles.size());
-  for (std::size_t t = 0; t < triangles.size(); ++t) {
+  // Each triangle's map in parallel (core/parallel.h), then the valid ones in triangle order.
+  std::vector<TriangleMap> all(triangles.size());
+  std::vector<char> valid(triangles.size(), 0);
+  parallel::for_each_index(static_cast<std::int64_t>(triangles.size()), 4096, [&](std::int64_t t) {
     const std::array<Vec3d, 3> p = {positions[triangles[t][0]], positions[triangles[t][1]],
                                     positions[triangles[t][2]]};
     const std::array<Vec2d, 3>& u = corner_uv[t];
-    TriangleMap m;
-    if (zero_area_3d(p[0], p[1], p[2]) || orient2d(u[0], u[1], u[2]) != Sign::Positive ||
-        !map_triangle({mul(p[0], s3), mul(p[1], s3), mul(p[2], s3)},
-                      {{{u[0].x * s_uv, u[0].y * s_uv},
-                        {u[1].x * s_uv, u[1].y * s_uv},
-                        {u[2].x * s_uv, u[2].y * s_uv}}},
-                      m)) {
+    valid[t] = !zero_area_3d(p[0], p[1], p[2]) && orient2d(u[0], u[1], u[2]) == Sign::Positive &&
+               map_triangle({mul(p[0], s3), mul(p[1], s3), mul(p[2], s3)},
+                            {{{u[0].x * s_uv, u[0].y * s_uv},
+                              {u[1].x * s_uv, u[1].y * s_uv},
+                              {u[2].x * s_uv, u[2].y * s_uv}}},
+                            all[t]);
+  });
+  std::vector<TriangleMap> maps;
+  maps.reserve(triangles.size());
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    if (valid[t])
+      maps.push_back(all[t]);
+    else
       ++r.degenerate;
-      continue;
-    }
-    maps.push_back(m);
   }
+  std::vector<TriangleMap>().swap(all);
   if (maps.empty()) return r;
   double sum3 = 0, sum_uv = 0;
   for (const TriangleMap& m : maps) sum3 += m.area3, sum_uv += m.area_uv;

@@ -1,5 +1,7 @@
 #include "igm/quality/surface_distance.h"
 
+#include "../core/parallel.h"
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -262,9 +264,14 @@ std::vector<double> TriangleBvh::distances(const std::vector<Vec3d>& points) con
   }
   std::vector<double> out(points.size(), kInf);
   if (ids_.empty()) return out;
-  int slot = -1;
-  Vec3d point;
-  for (int i : morton_order(points)) out[i] = std::sqrt(query(points[i], slot, point));
+  // In parallel over chunks of the Morton order, each starting its own hint: the nearest distance
+  // does not depend on the hint (nor on the threads).
+  const std::vector<int> order = morton_order(points);
+  parallel::for_chunks(static_cast<std::int64_t>(order.size()), 1024, [&](std::int64_t b, std::int64_t e) {
+    int slot = -1;
+    Vec3d point;
+    for (std::int64_t k = b; k < e; ++k) out[order[k]] = std::sqrt(query(points[order[k]], slot, point));
+  });
   return out;
 }
 

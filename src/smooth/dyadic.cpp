@@ -2,12 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <utility>
+
+#include "../core/parallel.h"
 
 namespace igm {
 
 namespace {
 
 constexpr double kTwo51 = 2251799813685248.0;  // 2^51
+constexpr std::int64_t kChunk = 4096;           // faces per parallel chunk (core/parallel.h)
 
 // The integer as a double when |z| < 2^51, else nullopt.
 std::optional<double> small_integer(const Integer& z) {
@@ -80,21 +85,38 @@ std::optional<double> round_to_grid(double x, const DyadicGrid& grid) {
 
 void grid_corners(const SeamlessStructure& s, const GridMap& map,
                   std::vector<std::array<Vec2d, 3>>& corners) {
+  grid_corners(s, map, map.vertex_uv, corners);
+}
+
+void grid_corners(const SeamlessStructure& s, const GridMap& map, const std::vector<Vec2d>& vertex_uv,
+                  std::vector<std::array<Vec2d, 3>>& corners) {
   const int nf = s.mesh.num_faces();
   corners.resize(nf);
-  for (int f = 0; f < nf; ++f)
+  parallel::for_each_index(nf, kChunk, [&](std::int64_t f) {
     for (int i = 0; i < 3; ++i) {
-      const int c = 3 * f + i;
-      corners[f][i] = apply(map.corner_motion[c], map.vertex_uv[s.mesh.origin(c)]);
+      const int c = static_cast<int>(3 * f + i);
+      corners[f][i] = apply(map.corner_motion[c], vertex_uv[s.mesh.origin(c)]);
     }
+  });
 }
 
 MapCheck check_map(const SeamlessStructure& s, const std::vector<std::array<Vec2d, 3>>& corners) {
   MapCheck r;
-  for (std::size_t f = 0; f < corners.size(); ++f)
-    if (orient2d(corners[f][0], corners[f][1], corners[f][2]) != Sign::Positive) {
-      if (r.nonpositive++ == 0) r.first_nonpositive = static_cast<int>(f);
-    }
+  // (count, first) per chunk, combined in order: the first is the least face id
+  const auto bad = parallel::reduce_chunks<std::pair<int, int>>(
+      static_cast<std::int64_t>(corners.size()), kChunk, {0, -1},
+      [&](std::int64_t b, std::int64_t e) {
+        std::pair<int, int> c{0, -1};
+        for (std::int64_t f = b; f < e; ++f)
+          if (orient2d(corners[f][0], corners[f][1], corners[f][2]) != Sign::Positive && c.first++ == 0)
+            c.second = static_cast<int>(f);
+        return c;
+      },
+      [](std::pair<int, int> a, std::pair<int, int> b) {
+        return std::pair<int, int>{a.first + b.first, a.second >= 0 ? a.second : b.second};
+      });
+  r.nonpositive = bad.first;
+  r.first_nonpositive = bad.second;
   if (r.nonpositive > 0) return r;
   for (const BoundaryIsoline& e : s.boundary_edges) {  // exact comparisons of doubles
     const int f = e.halfedge / 3;
@@ -115,57 +137,66 @@ MapCheck check_map(const SeamlessStructure& s, const std::vector<std::array<Vec2
 
 std::vector<std::array<Point2q, 3>> to_exact(const std::vector<std::array<Vec2d, 3>>& corners) {
   std::vector<std::array<Point2q, 3>> out(corners.size());
-  for (std::size_t f = 0; f < corners.size(); ++f)
+  parallel::for_each_index(static_cast<std::int64_t>(corners.size()), kChunk, [&](std::int64_t f) {
     for (int i = 0; i < 3; ++i) out[f][i] = to_point2q(corners[f][i]);
+  });
   return out;
 }
 
 std::size_t max_uv_bits(const std::vector<std::array<Point2q, 3>>& corner_uv) {
-  std::size_t bits = 0;
-  for (const auto& t : corner_uv)
-    for (const Point2q& p : t) bits = std::max({bits, bit_size(p.x), bit_size(p.y)});
-  return bits;
+  return parallel::reduce_chunks<std::size_t>(
+      static_cast<std::int64_t>(corner_uv.size()), kChunk, 0,
+      [&](std::int64_t b, std::int64_t e) {
+        std::size_t bits = 0;
+        for (std::int64_t f = b; f < e; ++f)
+          for (const Point2q& p : corner_uv[f]) bits = std::max({bits, bit_size(p.x), bit_size(p.y)});
+        return bits;
+      },
+      [](std::size_t a, std::size_t b) { return std::max(a, b); });
 }
 
 DyadicResult round_to_dyadic(const IgmMesh& igm) {
   return round_to_dyadic(igm, seamless_structure(igm));
 }
 
+DyadicStats place_on_grid(const SeamlessStructure& s, std::optional<GridMap>& map,
+                          std::vector<std::array<Vec2d, 3>>& corners) {
+  DyadicStats st;
+  map = round_to_grid(s);
+  if (!map) {
+    st.reason = "no double grid holds the map: a translation of 2^51 or a vertex UV of 2^48 or more";
+    return st;
+  }
+  st.grid_exponent = map->grid.exponent;
+  grid_corners(s, *map, corners);
+  const MapCheck check = check_map(s, corners);
+  st.nonpositive = check.nonpositive;
+  st.first_nonpositive = check.first_nonpositive;
+  st.off_isoline = check.off_isoline;
+  st.angles_changed = check.angles_changed;
+  const std::string grid = "rounding to the grid of spacing 2^" + std::to_string(map->grid.exponent);
+  if (check.valid()) {
+    st.on_grid = true;
+  } else if (check.nonpositive > 0) {
+    st.reason = grid + " makes " + std::to_string(check.nonpositive) +
+                " triangles non-positive (the first: face " + std::to_string(check.first_nonpositive) + ")";
+  } else if (check.off_isoline > 0) {
+    st.reason = grid + " moves " + std::to_string(check.off_isoline) +
+                " boundary edges off their isolines (the first: half-edge " +
+                std::to_string(check.first_off_isoline) + ")";
+  } else {
+    st.reason = grid + " changes the angle of " + std::to_string(check.angles_changed) +
+                " vertices (the first: vertex " + std::to_string(check.first_angle_changed) + ")";
+  }
+  return st;
+}
+
 DyadicResult round_to_dyadic(const IgmMesh& igm, const SeamlessStructure& s) {
   DyadicResult r;
-  const std::optional<GridMap> map = round_to_grid(s);
-  if (map) {
-    r.stats.grid_exponent = map->grid.exponent;
-    std::vector<std::array<Vec2d, 3>> corners;
-    grid_corners(s, *map, corners);
-    const MapCheck check = check_map(s, corners);
-    r.stats.nonpositive = check.nonpositive;
-    r.stats.first_nonpositive = check.first_nonpositive;
-    r.stats.off_isoline = check.off_isoline;
-    r.stats.angles_changed = check.angles_changed;
-    const std::string grid =
-        "rounding to the grid of spacing 2^" + std::to_string(map->grid.exponent);
-    if (check.valid()) {
-      r.corner_uv = to_exact(corners);
-      r.stats.on_grid = true;
-    } else if (check.nonpositive > 0) {
-      r.stats.reason = grid + " makes " + std::to_string(check.nonpositive) +
-                       " triangles non-positive (the first: face " +
-                       std::to_string(check.first_nonpositive) + ")";
-    } else if (check.off_isoline > 0) {
-      r.stats.reason = grid + " moves " + std::to_string(check.off_isoline) +
-                       " boundary edges off their isolines (the first: half-edge " +
-                       std::to_string(check.first_off_isoline) + ")";
-    } else {
-      r.stats.reason = grid + " changes the angle of " + std::to_string(check.angles_changed) +
-                       " vertices (the first: vertex " + std::to_string(check.first_angle_changed) +
-                       ")";
-    }
-  } else {
-    r.stats.reason =
-        "no double grid holds the map: a translation of 2^51 or a vertex UV of 2^48 or more";
-  }
-  if (!r.stats.on_grid) r.corner_uv = igm.corner_uv;
+  std::optional<GridMap> map;
+  std::vector<std::array<Vec2d, 3>> corners;
+  r.stats = place_on_grid(s, map, corners);
+  r.corner_uv = r.stats.on_grid ? to_exact(corners) : igm.corner_uv;
   r.stats.max_uv_bits = max_uv_bits(r.corner_uv);
   return r;
 }

@@ -1,7 +1,10 @@
 #include "igm/smooth/seamless.h"
 
 #include <cmath>
+#include <cstdint>
 #include <string>
+
+#include "../core/parallel.h"
 
 #include "igm/core/error.h"
 #include "igm/core/union_find.h"
@@ -56,15 +59,19 @@ int quadrant(const P& a, const P& b) {
 
 // Both overloads of angle_indices: per corner of a positive triangle (v, a, b), its wedge from
 // v->a to v->b crosses (q_b - q_a) mod 4 quadrant boundaries (at most 2: its angle is below pi).
+// The corners' crossings are counted in parallel (exact comparisons, core/parallel.h), then added
+// up per vertex (integers: in any order the same).
 template <class P>
 std::vector<int> indices(const TriMesh& m, const std::vector<std::array<P, 3>>& uv) {
-  std::vector<int> index(m.num_vertices(), 0);
-  for (int c = 0; c < m.num_halfedges(); ++c) {
+  std::vector<signed char> crossings(m.num_halfedges());
+  parallel::for_each_index(m.num_halfedges(), 4096, [&](std::int64_t c) {
     const std::array<P, 3>& t = uv[c / 3];
     const P& v = t[c % 3];
-    index[m.origin(c)] +=
-        (quadrant(v, t[TriMesh::prev(c) % 3]) - quadrant(v, t[TriMesh::next(c) % 3]) + 4) & 3;
-  }
+    crossings[c] = static_cast<signed char>(
+        (quadrant(v, t[TriMesh::prev(static_cast<int>(c)) % 3]) - quadrant(v, t[TriMesh::next(static_cast<int>(c)) % 3]) + 4) & 3);
+  });
+  std::vector<int> index(m.num_vertices(), 0);
+  for (int c = 0; c < m.num_halfedges(); ++c) index[m.origin(c)] += crossings[c];
   return index;
 }
 

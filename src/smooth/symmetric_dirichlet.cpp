@@ -1,5 +1,6 @@
 #include "symmetric_dirichlet.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -9,26 +10,71 @@ namespace {
 
 // A = Rot(phi) diag(s1, s2) Rot(theta) for A = [[a, b], [c, d]], Rot(t) = [[cos t, -sin t],
 // [sin t, cos t]]: s1 >= |s2|, s2 of the sign of det A. Closed form (the sums and differences of
-// the entries, Blinn 1996); s2 = det / s1 avoids the cancellation in Q - R for thin A.
+// the entries, Blinn 1996): with e = (a+d)/2, f = (a-d)/2, g = (c+b)/2, h = (c-b)/2, a1 the angle
+// of (f, g) and a2 that of (e, h): s1 = |(e, h)| + |(f, g)|, phi = (a2 + a1) / 2, theta = (a2 -
+// a1) / 2; s2 = det / s1 avoids the cancellation in |(e, h)| - |(f, g)| for thin A.
+// Computed without a trigonometric function, by +, -, *, / and sqrt alone (IEEE, correctly
+// rounded): libm's atan2, sin and cos are picked at run time by the CPU's features (FMA or not) and
+// their last bits differ between those versions, which changed the smoothed maps from machine to
+// machine. The rotations are unit vectors: (cos a1, sin a1) = (f, g) / |(f, g)|, Rot(a1 + a2) their
+// product, Rot(phi) the half turn of that (bisector formula), Rot(theta) = Rot(a2) Rot(-phi) (so
+// that phi + theta = a2 and phi - theta = a1 up to whole turns, which leaves the product as it is).
 struct Svd2 {
-  double s1 = 0, s2 = 0, phi = 0, theta = 0;
+  double s1 = 0, s2 = 0;
+  double cp = 1, sp = 0, ct = 1, st = 0;  // cos and sin of phi and theta
 };
+
+// |(x, y)| without overflow or underflow in the squares.
+double norm2(double x, double y) {
+  const double m = std::max(std::abs(x), std::abs(y));
+  if (m == 0 || !std::isfinite(m)) return m;
+  const double a = x / m, b = y / m;
+  return m * std::sqrt(a * a + b * b);
+}
+
+// The unit vector of (x, y); (1, 0) for the zero vector (atan2(0, 0) = 0).
+void unit(double x, double y, double& c, double& s) {
+  const double n = norm2(x, y);
+  if (n > 0) {
+    c = x / n;
+    s = y / n;
+  } else {
+    c = 1;
+    s = 0;
+  }
+}
+
+// (cos x/2, sin x/2) with cos x/2 >= 0 from (cos x, sin x): proportional to (1 + cos x, sin x), or
+// to (sin x, 1 - cos x) turned to cos x/2 >= 0 where cos x < 0 (no cancellation either way).
+void half_turn(double c, double s, double& ch, double& sh) {
+  if (c >= 0) {
+    unit(1 + c, s, ch, sh);
+  } else if (s != 0) {
+    unit(s, 1 - c, ch, sh);
+    if (ch < 0) ch = -ch, sh = -sh;
+  } else {
+    ch = 0;
+    sh = 1;
+  }
+}
 
 Svd2 svd2(double a, double b, double c, double d, double det) {
   const double e = (a + d) / 2, f = (a - d) / 2, g = (c + b) / 2, h = (c - b) / 2;
   Svd2 r;
-  r.s1 = std::hypot(e, h) + std::hypot(f, g);
+  r.s1 = norm2(e, h) + norm2(f, g);
   r.s2 = r.s1 > 0 ? det / r.s1 : 0;
-  const double a1 = std::atan2(g, f), a2 = std::atan2(h, e);
-  r.theta = (a2 - a1) / 2;
-  r.phi = (a2 + a1) / 2;
+  double c1, s1, c2, s2;
+  unit(f, g, c1, s1);  // a1
+  unit(e, h, c2, s2);  // a2
+  half_turn(c1 * c2 - s1 * s2, s1 * c2 + c1 * s2, r.cp, r.sp);  // phi = (a1 + a2) / 2
+  r.ct = c2 * r.cp + s2 * r.sp;                                 // theta = a2 - phi
+  r.st = s2 * r.cp - c2 * r.sp;
   return r;
 }
 
 // inv = Rot(-theta) diag(1/s1, 1/s2) Rot(-phi): the inverse of Rot(phi) diag(s1, s2) Rot(theta).
 void svd_inverse(const Svd2& s, double inv[2][2]) {
-  const double ct = std::cos(s.theta), st = std::sin(s.theta), cp = std::cos(s.phi),
-               sp = std::sin(s.phi);
+  const double ct = s.ct, st = s.st, cp = s.cp, sp = s.sp;
   // Rot(-theta) = [[ct, st], [-st, ct]]; Rot(-phi) = [[cp, sp], [-sp, cp]]
   const double r00 = ct / s.s1, r01 = st / s.s2, r10 = -st / s.s1, r11 = ct / s.s2;
   inv[0][0] = r00 * cp - r01 * sp;
@@ -148,8 +194,7 @@ double sd_derivatives(const SdReference& r, const std::array<Vec2d, 3>& uv, doub
   const Jacobian J = jacobian(r, uv[0], uv[1], uv[2]);
   const Svd2 s = svd2(J.f[0][0], J.f[0][1], J.f[1][0], J.f[1][1], J.det);
   const double s1 = s.s1, s2 = s.s2;
-  const double cp = std::cos(s.phi), sp = std::sin(s.phi), ct = std::cos(s.theta),
-               st = std::sin(s.theta);
+  const double cp = s.cp, sp = s.sp, ct = s.ct, st = s.st;
   const double u1[2] = {cp, sp}, u2[2] = {-sp, cp}, v1[2] = {ct, -st}, v2[2] = {st, ct};
   const double w = r.weight;
   const double energy = w * (s1 * s1 + s2 * s2 + 1 / (s1 * s1) + 1 / (s2 * s2));

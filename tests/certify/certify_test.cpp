@@ -376,3 +376,29 @@ TEST_CASE("zero-length UV edge: degenerate triangles, its vertices undetermined"
   CHECK(chk(r, 4).status == Status::Incomplete);
   CHECK(r.verdict == Verdict::Invalid);
 }
+
+TEST_CASE("threads: the same report for 1, 2, 3 and 7 threads, witnesses across the ranges in element order") {
+  // 2 x 80^2 = 12,800 faces, 19,200 edges, 6,400 vertices: several ranges of every check.
+  const int n = 80;
+  IgmInput in = torus(n);
+  // flipped faces spread over the ranges, a broken seam block near the end, a cone off its point
+  for (int f : {3, 5000, 5001, 9000, 12700}) std::swap(in.corner_uv[3 * f + 1], in.corner_uv[3 * f + 2]);
+  map_faces(in, block_faces(n, 70, 72, 70, 72), 1, 0, 0, 1, mpq_class(1, 2), 0);
+  for (std::size_t max_witnesses : {std::size_t{3}, std::size_t{20}}) {
+    CAPTURE(max_witnesses);
+    Options o;
+    o.max_witnesses = max_witnesses;
+    o.threads = 1;
+    const Report one = certify_igm(in, o);
+    CHECK(one.verdict == Verdict::Invalid);
+    CHECK(chk(one, 2).count("flipped") == 5);
+    CHECK(chk(one, 2).witnesses.size() == std::min<std::size_t>(5, max_witnesses));
+    CHECK(chk(one, 2).witnesses.front().ids == std::vector<std::int64_t>{3});
+    CHECK(chk(one, 3).count("translation_not_integer") == 8);
+    for (int threads : {2, 3, 7}) {
+      CAPTURE(threads);
+      o.threads = threads;
+      CHECK(to_json(certify_igm(in, o)) == to_json(one));
+    }
+  }
+}

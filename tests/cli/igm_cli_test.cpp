@@ -438,3 +438,32 @@ TEST_CASE("igm run: layouts, sizes and maps from the command line, the quality r
     CHECK(in_folder(cwd, igm_cmd + " run g2.obj -o d" + a).code == 2);
   }
 }
+
+TEST_CASE("igm run writes the same bytes alone and under load, for any thread count, with the CPU's FMA masked") {
+  // ~10k IGM triangles: every parallel loop (chunks of 4,096 elements at most) has several chunks.
+  const auto cwd = folder_with_generated("same-bytes", "--genus 3 --faces 6000 --seed 7 g3.obj");
+  const std::string run = quote(IGM_CLI_PATH) + " run g3.obj --quads 2000 ";
+  // One thread, alone.
+  REQUIRE(in_folder(cwd, "(" + run + "-o a --threads 1 > a.log)").code == 0);
+  // Two runs at once (each slowed down by the other), with 2 and 3 threads; then one with all
+  // cores from IGM_THREADS; then one with glibc told that the CPU has no FMA, AVX or AVX2 (its
+  // libm then runs other kernels whose last bits differ: nothing of the output may depend on them).
+  REQUIRE(in_folder(cwd, "(" + run + "-o b --threads 2 > b.log & " + run + "-o c --threads 3 > c.log & wait)").code == 0);
+  REQUIRE(in_folder(cwd, "(IGM_THREADS=2 " + run + "-o d > d.log)").code == 0);
+  REQUIRE(in_folder(cwd, "(GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2_Usable,-FMA_Usable,-AVX_Usable,-AVX2,-FMA,-AVX " + run +
+                             "-o e --threads 2 > e.log)").code == 0);
+  for (const char* log : {"a.log", "b.log", "c.log", "d.log", "e.log"}) {
+    CAPTURE(log);
+    CHECK(has(slurp(cwd / log), "certified: VALID"));
+    CHECK(has(slurp(cwd / log), "[smooth  ]"));
+  }
+  for (const char* file : {"g3.igm.obj", "g3.igm.exact", "g3.quad.obj", "g3.quad.svg", "g3.schema.svg"}) {
+    CAPTURE(file);
+    const std::string a = slurp(cwd / "a" / file);
+    CHECK(!a.empty());
+    for (const char* other : {"b", "c", "d", "e"}) {
+      CAPTURE(other);
+      CHECK(slurp(cwd / other / file) == a);
+    }
+  }
+}

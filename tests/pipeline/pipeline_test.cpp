@@ -17,6 +17,7 @@
 #include "../certify/igm_builders.h"
 #include "../../src/pipeline/pipeline_internal.h"
 #include "generated_mesh.h"
+#include "same_bits.h"
 #include "refinement_check.h"
 #include "test_data.h"
 #include "uv_area.h"
@@ -235,26 +236,41 @@ TEST_CASE("smoothing (the default): the same cones and quad count, a certified d
   }
 }
 
-TEST_CASE("past smooth_auto_max_triangles the automatic budget skips smoothing and says so, a budget in seconds smooths") {
+TEST_CASE("smoothing stops by its rules, never by the clock unless asked, and gives the same IGM for any thread count") {
   const ValidMesh mesh = igm_test::generated_mesh(2, 2000, 5);
   PipelineOptions o;
   o.quads = 1000;
   o.smooth_iterations = 10;
-  o.smooth_auto_max_triangles = 100;  // fewer than the IGM has
-  const PipelineResult skipped = compute_igm(mesh, o);
-  CHECK(skipped.certified());
-  CHECK(skipped.stats.smooth_skipped);
-  CHECK(skipped.stats.smooth.iterations == 0);
-  const auto it = std::find_if(skipped.stats.stages.begin(), skipped.stats.stages.end(),
-                               [](const StageEvent& e) { return e.stage == "smooth"; });
-  REQUIRE(it != skipped.stats.stages.end());
-  CHECK(it->detail.find("skipped") != std::string::npos);
-  o.smooth_seconds = 0;  // a budget given (0: none): any size is smoothed
-  const PipelineResult smoothed = compute_igm(mesh, o);
-  CHECK(smoothed.certified());
-  CHECK_FALSE(smoothed.stats.smooth_skipped);
-  CHECK(smoothed.stats.smooth.iterations > 0);
-  CHECK(smoothed.quads.quads.size() == skipped.quads.quads.size());
+  o.threads = 1;
+  const PipelineResult one = compute_igm(mesh, o);
+  REQUIRE(one.certified());
+  CHECK(one.stats.smooth.iterations > 0);
+  CHECK(one.stats.smooth.stop != SmoothStop::TimeBudget);
+  // The measured stages: wall and CPU seconds, no memory unless asked.
+  for (const StageEvent& e : one.stats.stages) {
+    CHECK(e.cpu_seconds >= 0);
+    CHECK(e.peak_mb == -1);
+  }
+  for (int threads : {2, 3}) {
+    CAPTURE(threads);
+    o.threads = threads;
+    o.measure_stage_memory = threads == 3;
+    const PipelineResult r = compute_igm(mesh, o);
+    REQUIRE(r.certified());
+    CHECK(r.stats.smooth.energy == one.stats.smooth.energy);
+    CHECK(igm_test::same_uv(r.igm.corner_uv, one.igm.corner_uv));
+    CHECK(r.quads.quads == one.quads.quads);
+    CHECK(igm_test::same_bits(r.quads.positions, one.quads.positions));
+    for (const StageEvent& e : r.stats.stages) CHECK((e.peak_mb > 0) == o.measure_stage_memory);
+  }
+  // A relative decrease threshold above every iteration's decrease stops after the first one.
+  o.smooth_min_decrease = 0.999;
+  const PipelineResult first = compute_igm(mesh, o);
+  CHECK(first.stats.smooth.stop == SmoothStop::SmallDecrease);
+  CHECK(first.stats.smooth.iterations == 1);
+  CHECK(first.stats.smooth.energy[1] == one.stats.smooth.energy[1]);
+  o.threads = -1;
+  CHECK_THROWS_AS(compute_igm(mesh, o), Error);
 }
 
 TEST_CASE("the unsmoothed map is put on a double grid where that keeps it valid, and its doubles file certifies") {

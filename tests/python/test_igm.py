@@ -255,5 +255,11 @@ def test_smoothing_options():
     assert plain["stats"]["smooth_iterations"] == 0
     assert 0 < smoothed["stats"]["smooth_iterations"] <= 10
     assert smoothed["quality"]["igm"]["symmetric_dirichlet"] < plain["quality"]["igm"]["symmetric_dirichlet"]
-    skipped = igm.compute(V, F, quads=800, smooth_auto_max_triangles=10)
-    assert skipped["certified"] and skipped["stats"]["smooth_skipped"] is True
+    assert smoothed["stats"]["smooth_stop"] in ("iteration_budget", "small_decrease", "stalled", "converged")
+    # the same bytes for any thread count; stages with their CPU time
+    one = igm.compute(V, F, quads=800, smooth_iterations=10, threads=1)
+    two = igm.compute(V, F, quads=800, smooth_iterations=10, threads=2)
+    assert (one["igm"]["uv"] == two["igm"]["uv"]).all() and (one["quads"]["quads"] == two["quads"]["quads"]).all()
+    assert all(s["cpu_seconds"] >= 0 for s in one["stats"]["stages"])
+    with pytest.raises(igm.Error):
+        igm.compute(V, F, quads=800, threads=-1)

@@ -10,7 +10,9 @@
 
 #include "distortion.h"
 #include "igm/core/error.h"
+#include "igm/core/threads.h"
 #include "igm/smooth/smooth.h"
+#include "same_bits.h"
 #include "open_igm.h"
 #include "random_mesh.h"
 #include "smooth_fixture.h"
@@ -161,15 +163,37 @@ TEST_CASE(
   }
 }
 
-TEST_CASE("both factorizations: sparse Cholesky up to genus 8, SimplicialLDLT above") {
+TEST_CASE("any genus, both factorizations (simplicial for small systems, supernodal for large), the same iterates for any thread count") {
   for (const int genus : {2, 9}) {
     INFO("genus " << genus);
     const IgmMesh igm = igm_test::pipeline_igm(genus, 500 * genus, 3);
     Iterates seen;
     const SmoothResult r = smooth_igm(igm, watched(seen, 10));
-    CHECK(r.stats.supernodal == (genus <= 8));
     check_smoothed(igm, r, seen);
     CHECK(r.stats.energy.back() < 0.5 * r.stats.energy.front());
+    CHECK(r.stats.factor_entries > 0);
+    CHECK(r.stats.factorize_seconds > 0);
+    for (int threads : {1, 3}) {
+      CAPTURE(threads);
+      SmoothResult t;
+      Iterates again;
+      igm::with_threads(threads, [&] { t = smooth_igm(igm, watched(again, 10)); });
+      CHECK(t.stats.energy == r.stats.energy);
+      CHECK(igm_test::same_uv(t.corner_uv, r.corner_uv));
+    }
+  }
+  // An IGM whose Newton system is large enough for the supernodal factorization (CHOLMOD's rule).
+  if (!igm_test::kSanitized) {
+    const IgmMesh big = igm_test::pipeline_igm(3, 20000, 5);
+    SmoothOptions o;
+    o.max_iterations = 3;
+    SmoothResult one, two;
+    igm::with_threads(1, [&] { one = smooth_igm(big, o); });
+    igm::with_threads(2, [&] { two = smooth_igm(big, o); });
+    CHECK(one.stats.supernodal);
+    CHECK(one.stats.certified);
+    CHECK(two.stats.energy == one.stats.energy);
+    CHECK(igm_test::same_uv(two.corner_uv, one.corner_uv));
   }
 }
 
@@ -312,6 +336,29 @@ TEST_CASE("options, budgets and callbacks") {
     CHECK_THROWS_AS(smooth_igm(igm, o), Error);
     o.stall_step = 0.5;
     o.stall_iterations = 0;
+    CHECK_THROWS_AS(smooth_igm(igm, o), Error);
+  }
+  SUBCASE("a relative energy decrease below the threshold stops after that iteration, the same iterates up to it") {
+    SmoothOptions o;
+    o.max_iterations = 30;
+    const SmoothResult a = smooth_igm(igm, o);
+    const std::vector<double>& e = a.stats.energy;
+    REQUIRE(e.size() >= 4);
+    // a threshold between the decreases of iterations 2 and 3 (relative to the energy before)
+    std::vector<double> rel;
+    for (std::size_t k = 1; k < e.size(); ++k) rel.push_back((e[k - 1] - e[k]) / e[k - 1]);
+    const double threshold = rel[2] * 1.0000001;
+    std::size_t end = 0;
+    for (std::size_t k = 0; k < rel.size() && end == 0; ++k)
+      if (rel[k] < threshold) end = k + 1;
+    REQUIRE(end > 0);
+    o.min_relative_decrease = threshold;
+    const SmoothResult b = smooth_igm(igm, o);
+    CHECK(b.stats.stop == SmoothStop::SmallDecrease);
+    CHECK(b.stats.iterations == static_cast<int>(end));
+    for (std::size_t i = 0; i < b.stats.energy.size(); ++i) CHECK(b.stats.energy[i] == e[i]);
+    CHECK(b.stats.certified);
+    o.min_relative_decrease = 1;
     CHECK_THROWS_AS(smooth_igm(igm, o), Error);
   }
   SUBCASE("a time budget stops after the iteration that passes it; progress sees every iteration") {

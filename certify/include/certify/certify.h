@@ -122,6 +122,9 @@ struct Options {
   /// Quad mode, when not empty: the components' (genus, boundary loops), compared as multisets
   /// (order free: a producer may number its output's components differently).
   std::vector<ComponentTopology> expected_components;
+  /// Threads for the per-element checks (certify/README.md, "Threads"): 0 = the environment's
+  /// IGM_THREADS if set, else every core. The report is the same for any count.
+  int threads = 0;
 };
 
 /// In-memory IGM: triangles (0-based vertex ids) and one exact UV per face corner, three per face

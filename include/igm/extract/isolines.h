@@ -34,6 +34,9 @@ struct IsolineOptions {
   /// as the certifier's defaults judge them.
   bool allow_boundary = false;
   bool allow_components = false;
+  /// Threads for the certifier (certify::Options::threads; 0: all cores). The other steps run in
+  /// the caller's oneTBB arena (igm/core/threads.h). The result is the same for any count.
+  int threads = 0;
 };
 
 /// Where a grid point lies on its triangle.

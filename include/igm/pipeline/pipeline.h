@@ -38,6 +38,11 @@ struct StageEvent {
   std::string stage;   // "topology", "embed", "arrange", "igm", "extract", "certify"
   double seconds = 0;  // wall time of the stage
   std::string detail;  // one line of numbers for humans
+  /// With PipelineOptions::measure_stage_memory: the process's peak resident memory during the
+  /// stage in MB (igm/core/memory.h); -1 when not measured.
+  double peak_mb = -1;
+  /// CPU seconds of the whole process (every thread) during the stage (igm/core/memory.h).
+  double cpu_seconds = 0;
 };
 
 /// The quad count aimed at when no size is given (PipelineOptions): what a user who asks for no
@@ -121,19 +126,16 @@ struct PipelineOptions {
   /// the quads from its integer isolines (extract/isolines.h). Off: the layout's map, put on a
   /// double grid where that keeps it valid (smooth/dyadic.h), and its rectangles' grids.
   bool smooth = true;
-  /// The smoothing's budgets: Newton iterations, and wall seconds since it began (0: none; < 0:
-  /// automatic, 10 s per 100k IGM triangles, at least 5 s and at most 60 s).
+  /// When smoothing stops (SmoothOptions): after smooth_iterations Newton iterations, after an
+  /// iteration that lowers the energy by less than smooth_min_decrease of it, after two accepted
+  /// steps in a row below smooth_stall_step of the Newton step (the map pressed against its
+  /// barrier: cheese's steps are 3e-4..3e-3), or when converged. Never by the clock unless
+  /// smooth_seconds > 0 (a wall-time budget: the result then depends on the machine's speed).
+  /// Every size is smoothed. Defaults measured in bench/README.md ("Smoothing's stop").
   int smooth_iterations = 100;
-  double smooth_seconds = -1;
-  /// SmoothOptions::stall_step: stop after two accepted steps in a row below this fraction of the
-  /// Newton step (the map pressed against its barrier: cheese's steps are 3e-4..3e-3 and lower
-  /// the energy by 0.1 % an iteration at 5 s each; a generated genus 20's first is 0.03).
+  double smooth_min_decrease = 1e-3;
   double smooth_stall_step = 0.005;
-  /// With the automatic time budget (smooth_seconds < 0), an IGM of more triangles is not smoothed
-  /// (PipelineStats::smooth_skipped; the unsmoothed path instead): one Newton iteration alone costs
-  /// more than the budget there (1.27M triangles of genus 20: 86 s for the first, against 11 s for
-  /// all the stages before it). A budget given in seconds smooths any size.
-  std::size_t smooth_auto_max_triangles = 600000;
+  double smooth_seconds = 0;
   /// Without smoothing: take the quads from the map's own structure (the layout's rectangles,
   /// extract/patch_grid.h; genus 0: the pillowcase's cells, extract/orbifold_quads.h) instead of
   /// its integer isolines. The same quads (the tests compare them): kept as the isolines' oracle.
@@ -146,6 +148,13 @@ struct PipelineOptions {
   bool quality = true;
   bool quality_distance = true;
   std::function<void(const StageEvent&)> progress;  // optional
+  /// Measure each stage's peak resident memory (StageEvent::peak_mb; Linux: the process's peak is
+  /// reset at the start of every stage, see igm/core/memory.h). Off by default: it resets a
+  /// process-wide counter that the caller may be reading.
+  bool measure_stage_memory = false;
+  /// Threads for the parallel stages (igm/core/threads.h): 0 = IGM_THREADS if set, else all cores.
+  /// The outputs are the same for any count.
+  int threads = 0;
 };
 
 struct PipelineStats {
@@ -182,7 +191,6 @@ struct PipelineStats {
   std::size_t max_uv_bits = 0;  // largest bit_size of an exact UV coordinate
   PatchMapStats patch_maps;
   SmoothStats smooth;           // with PipelineOptions::smooth (iterations 0 otherwise)
-  bool smooth_skipped = false;  // smooth asked for, but past smooth_auto_max_triangles
   DyadicStats dyadic;           // without it: the map put on a double grid (or why not)
   bool uv_doubles = false;      // every written UV coordinate is exactly a double
   CutStats cut;

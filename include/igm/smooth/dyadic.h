@@ -62,6 +62,9 @@ std::optional<double> round_to_grid(double x, const DyadicGrid& grid);
 /// Every corner UV of `map` (three per face of s.mesh, in face order), exact doubles.
 void grid_corners(const SeamlessStructure& s, const GridMap& map,
                   std::vector<std::array<Vec2d, 3>>& corners);
+/// The same with the vertex UVs `vertex_uv` (one per vertex, on map.grid) in place of map's.
+void grid_corners(const SeamlessStructure& s, const GridMap& map, const std::vector<Vec2d>& vertex_uv,
+                  std::vector<std::array<Vec2d, 3>>& corners);
 
 /// The exact checks that make a map rebuilt from vertex UVs (grid_corners) a valid IGM, all else
 /// holding by construction (see the top of this file): every UV triangle strictly positive
@@ -107,6 +110,12 @@ struct DyadicResult {
   std::vector<std::array<Point2q, 3>> corner_uv;
   DyadicStats stats;
 };
+
+/// round_to_grid and check_map together: `map` the grid map of `s` (nullopt if none exists) and
+/// `corners` its corner UVs; stats.on_grid when the rounded map passes the checks, else the stats
+/// say why (max_uv_bits is left 0). Cost O(F).
+DyadicStats place_on_grid(const SeamlessStructure& s, std::optional<GridMap>& map,
+                          std::vector<std::array<Vec2d, 3>>& corners);
 
 /// Places the exact map `igm` on its dyadic grid (round_to_grid) and certifies it (check_map);
 /// where no grid exists or the rounded map fails a check the map stays exact and the stats say why.

@@ -36,8 +36,12 @@ struct SmoothIterate {
 
 struct SmoothOptions {
   int max_iterations = 100;  // Newton iterations (>= 0)
+  /// Stop (SmallDecrease) after an iteration that lowered the energy by less than this fraction
+  /// of it (0: never).
+  double min_relative_decrease = 0;
   /// Stop after the iteration that ends past this many seconds since smooth_igm began (wall
-  /// time, the set-up included); 0: no limit.
+  /// time, the set-up included); 0: no limit. The only rule that makes the result depend on the
+  /// machine's speed and load: off unless asked for.
   double time_budget_seconds = 0;
   /// Stop when the Newton decrement -g.d / 2 (the model's predicted decrease) is at most this
   /// times the energy.
@@ -54,8 +58,10 @@ struct SmoothOptions {
   /// a converging run short.
   double stall_step = 0;
   int stall_iterations = 2;
-  /// Run the independent certifier (certify_igm) on the returned map.
+  /// Run the independent certifier (certify_igm) on the returned map, with this many threads (0:
+  /// all cores; certify::Options::threads).
   bool certify = true;
+  int threads = 0;
   std::function<void(const SmoothProgress&)> progress;   // optional
   std::function<void(const SmoothIterate&)> on_iterate;  // optional, for tests
 };
@@ -63,6 +69,7 @@ struct SmoothOptions {
 enum class SmoothStop {
   Converged,        // the Newton decrement fell below the tolerance
   IterationBudget,  // max_iterations reached
+  SmallDecrease,    // the last iteration lowered the energy by less than min_relative_decrease
   TimeBudget,       // time_budget_seconds passed
   NoDescent,        // the (regularized) Newton system gave no descent direction
   LineSearch,       // no step along the direction lowered the energy and passed the exact checks
@@ -85,6 +92,8 @@ struct SmoothStats {
   std::vector<double> energy;  // energy[0] of the starting map, energy[i] after iteration i
   double seconds = 0;          // all of smooth_igm, of which:
   double setup_seconds = 0;    //   the structure, the grid, the references, the Hessian's pattern
+                               //   and its analysis (before the first iteration), of which:
+  double structure_seconds = 0;  //     the seamless structure and the map on its grid
   double certify_seconds = 0;  //   the independent certifier
   SmoothStop stop = SmoothStop::NotStarted;
   SmoothReturned returned = SmoothReturned::InputExact;
@@ -96,7 +105,10 @@ struct SmoothStats {
   int enlarged_references = 0;  // 3D triangles below the size floor (zero area included)
   int fattened_references = 0;  // 3D triangles thinner than the aspect floor
   int factorizations = 0;       // of the Newton systems (more than iterations where one failed)
-  bool supernodal = false;      // by SparseCholesky (genus <= 8), else by Eigen's SimplicialLDLT
+  bool supernodal = false;      // SparseCholesky's supernodal factorization (else simplicial)
+  std::size_t factor_entries = 0;  // entries of the Cholesky factor
+  double analyze_seconds = 0;      // the factorization's ordering and analysis (once)
+  double factorize_seconds = 0;    // all numeric factorizations
   int step_halvings = 0;        // trial steps halved in all line searches
   int exact_rejections = 0;     // trial steps whose map the exact checks rejected (check_map)
   DyadicStats dyadic;           // the grid, and the exact certification of the returned map
@@ -123,9 +135,8 @@ struct SmoothResult {
 /// so the scale is fixed. Projected Newton: per-triangle Hessians made positive semi-definite
 /// through the analytic eigensystem (the one eigenvalue that can be negative replaced by its
 /// absolute value), a sparse Cholesky solve of the system with its diagonal raised by 1e-9 of itself
-/// (more where the factorization fails; embed/sparse_cholesky.h up to genus 8, above it Eigen's
-/// SimplicialLDLT with AMD ordering, whose cost does not grow with the handles; genus: the sum
-/// over the components), a line search
+/// (more where the factorization fails; embed/sparse_cholesky.h, its analysis done once: the
+/// pattern does not change), a line search
 /// that starts at step_fraction of the first degeneracy (Smith & Schaefer 2015) and halves until
 /// the energy decreases enough (Armijo) and the new map, rounded onto the dyadic grid (dyadic.h),
 /// passes the exact checks (check_map). So every accepted iterate is a certified map in doubles,
@@ -137,7 +148,15 @@ struct SmoothResult {
 /// coordinate, dyadic.h) is halved like one that fails the checks.
 /// Bounds: max_iterations iterations, each at most 64 trial steps. Cost per iteration: O(F) for
 /// the energy, gradient and Hessian, one sparse factorization (about O(V^1.5) on a surface), O(F)
-/// per trial step.
+/// per trial step. The faces' terms, the trial steps' energies and exact checks run in parallel
+/// (igm/core/threads.h) and are summed in a fixed order: the result does not depend on the
+/// threads, nor, unless time_budget_seconds is set, on the machine's speed.
 SmoothResult smooth_igm(const IgmMesh& igm, const SmoothOptions& options = {});
+
+/// smooth_igm that takes the input's exact UVs: igm.corner_uv is freed (left empty) as soon as the
+/// map is on its double grid, or moved into the result when it stays exact, so that they do not
+/// occupy memory during the iterations (the pipeline's use: about half of it on large meshes).
+/// Post: igm.corner_uv is empty; the result as smooth_igm's.
+SmoothResult smooth_igm_releasing(IgmMesh& igm, const SmoothOptions& options = {});
 
 }  // namespace igm
