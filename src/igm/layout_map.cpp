@@ -4,10 +4,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <exception>
 #include <map>
 #include <string>
 #include <utility>
 
+#include "../core/parallel.h"
 #include "igm/core/error.h"
 #include "igm/embed/polygon.h"
 #include "igm/mesh/scale.h"
@@ -207,8 +209,19 @@ LayoutMap map_layout(SurfaceLayout L, const std::vector<int>& length, const Layo
   }
   const std::vector<Vec3d> input_positions(L.positions.begin(), L.positions.begin() + L.num_input_vertices);
   const Shared shared{L, A, length, param, input_positions, options};
+  // The patches are independent: mapped in parallel, each into its own slot; the first failing
+  // patch's error (in patch order) is thrown, so nothing depends on the thread count.
   std::vector<PatchResult> results(np);
-  for (int p = 0; p < np; ++p) results[p] = map_patch(p, shared);  // independent: a parallel loop as is
+  std::vector<std::exception_ptr> failure(np);
+  parallel::for_each_index(np, 1, [&](std::int64_t p) {
+    try {
+      results[p] = map_patch(static_cast<int>(p), shared);
+    } catch (...) {
+      failure[p] = std::current_exception();
+    }
+  });
+  for (int p = 0; p < np; ++p)
+    if (failure[p]) std::rethrow_exception(failure[p]);
 
   // --- assembly, patch by patch: split vertices and second halves appended ---
   PatchMapStats& st = out.stats;

@@ -3,10 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <string>
 
-#include "../core/parallel.h"
 #include "igm/arrange/planar_walk.h"
 #include "igm/core/error.h"
 
@@ -27,65 +25,6 @@ std::array<Rational, 3> barycentric(const Point2q& A, const Point2q& B, const Po
   const Rational area = cross(A, B, C);
   return {cross(x, B, C) / area, cross(A, x, C) / area, cross(A, B, x) / area};
 }
-
-// Maps the patch of layout quad q (its triangles `tris`) onto its rectangle by a certified Tutte map
-// (map_patches); writes its triangles' corner UVs and its statistics.
-void map_patch(const QuadLayout& L, const PatchMesh& m, const Sizing& sizing,
-               const std::vector<std::vector<Rational>>& params, const std::vector<int>& tris, int q,
-               const PatchMapOptions& options, std::vector<std::array<Point2q, 3>>& corner_uv, PatchMapStats& st) {
-  if (tris.empty()) throw Error(ErrorKind::Internal, "map_patches: layout quad " + str(q) + " has no triangle", {q});
-  const int a = sizing.quad_size[q][0], b = sizing.quad_size[q][1];
-  std::unordered_map<int, int> local;
-  std::vector<int> plane;  // local -> plane id
-  std::vector<std::array<int, 3>> lt;
-  lt.reserve(tris.size());
-  for (int t : tris) {
-    std::array<int, 3> T{};
-    for (int i = 0; i < 3; ++i) {
-      auto [it, fresh] = local.emplace(m.triangles[t][i], static_cast<int>(plane.size()));
-      if (fresh) plane.push_back(m.triangles[t][i]);
-      T[i] = it->second;
-    }
-    lt.push_back(T);
-  }
-  std::vector<int> boundary;
-  std::vector<Point2q> boundary_uv;
-  for (int k = 0; k < 4; ++k) {
-    const int e = L.quad_edge[q][k];
-    const bool fwd = L.quad_edge_forward[q][k];
-    const auto& c = m.edge_chain[e];
-    const auto& t = params[e];
-    const int len = (k % 2 == 0) ? a : b;
-    const Point2q R = rect_corner(k, a, b);
-    const std::size_t n = c.size() - 1;
-    for (std::size_t i = 0; i < n; ++i) {  // the side's last vertex is the next side's first
-      const int v = fwd ? c[i] : c[n - i];
-      const Rational tau = fwd ? t[i] : Rational(1 - t[n - i]);
-      auto it = local.find(v);
-      if (it == local.end())
-        throw Error(ErrorKind::Internal, "map_patches: a vertex of layout edge " + str(e) + " is in no triangle of quad " +
-                                             str(q),
-                    {q});
-      boundary.push_back(it->second);
-      const Rational step = tau * len;
-      boundary_uv.push_back({Rational(R.x + kDirX[k] * step), Rational(R.y + kDirY[k] * step)});
-    }
-  }
-  std::vector<Vec3d> pos(plane.size());
-  for (std::size_t i = 0; i < plane.size(); ++i) {
-    const Vec3d& p = m.positions[m.vertex_of[plane[i]]];
-    pos[i] = {options.length_scale * p.x, options.length_scale * p.y, options.length_scale * p.z};
-  }
-  const std::vector<int> w = edge_weights(pos, lt, options.weights);
-  TutteResult tr = tutte_embed(static_cast<int>(plane.size()), lt, boundary, boundary_uv, w, options.tutte);
-  st.max_patch_vertices = static_cast<int>(plane.size());
-  st.flips_double = tr.stats.flips_double;
-  st.patches_refined = tr.stats.iterations > 0 ? 1 : 0;
-  st.max_refinement_steps = tr.stats.iterations;
-  st.max_uv_bits = tr.stats.max_bits;
-  for (std::size_t k = 0; k < tris.size(); ++k)
-    for (int i = 0; i < 3; ++i) corner_uv[tris[k]][i] = tr.uv[lt[k][i]];
-  }
 
 }  // namespace
 
