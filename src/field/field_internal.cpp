@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "igm/core/error.h"
+#include "igm/core/det_math.h"
 #include "../quality/vec3.h"
 
 namespace igm::field_internal {
@@ -48,7 +49,8 @@ System build_system(const TriMesh& mesh, const std::vector<Vec3d>& p, const Face
     const double len = norm(sub(p[mesh.target(h)], p[mesh.origin(h)]));
     const double w = len / std::max(norm(sub(centroid[f], centroid[g])), min_dist);
     s.weight[h] = s.weight[t] = w;
-    const Complex r = std::polar(1.0, 4 * fr.transport[h]);
+    const SinCos sc = det_sincos(4 * fr.transport[h]);
+    const Complex r(sc.cos, sc.sin);
     diag[f] += w;
     diag[g] += w;
     trip.emplace_back(g, f, -w * r);
