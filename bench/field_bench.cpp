@@ -2,16 +2,22 @@
 // factorization), iterations, energy, the interior cones by valence (3/5/2/6/other), boundary
 // corners (k = 1 / 3 / 0 / other), close +-pairs, Poincare-Hopf.
 // usage: igm_bench_field [--alignment W] [--lanczos] [--iterations N] [--tolerance T] [--no-cleanup] [--split6]
-//                        [--pair-distance D] [--cones] [--generated FACES] [--no-shared] [MESH ...]
+//                        [--pair-distance D] [--cones] [--generated FACES] [--no-shared] [--hostile N] [MESH ...]
 // Default: every mesh of $IGM_DATA_DIR/meshes/clean and /open (or ../shared), then a generated
 // genus-20 mesh of about 1M faces (--generated 0 skips it). --cones prints every cone's vertex,
-// valence and position.
+// valence and position. --hostile N: instead, N random small meshes (tests/support/random_mesh.h:
+// genus 0..8, closed or with 1..6 boundary loops, every geometry in turn) and per geometry how many
+// fields were computed, threw (and why), had an interior valence <= 1 or a boundary k <= 0.
 #include <algorithm>
+#include <array>
+#include <random>
 #include <chrono>
 #include <cmath>
 #include <numbers>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <cstdint>
 #include <ctime>
 #include <filesystem>
 #include <string>
@@ -22,6 +28,7 @@
 #include "igm/io/read_mesh.h"
 #include "igm/mesh/generate.h"
 #include "igm/mesh/validate_surfaces.h"
+#include "../tests/support/random_mesh.h"
 
 namespace {
 
@@ -63,13 +70,21 @@ void run(const std::string& name, const igm::SurfaceComponent& c) {
     }
     aligned += ok;
   }
+  // A hash of the field's bytes (theta per face, FNV-1a): equal hashes across machines, loads
+  // and libm kernels (GLIBC_TUNABLES=glibc.cpu.hwcaps=-FMA...) are the determinism claim.
+  std::uint64_t hash = 1469598103934665603ull;
+  for (double t : f.theta) {
+    unsigned char b[sizeof t];
+    std::memcpy(b, &t, sizeof t);
+    for (unsigned char x : b) hash = (hash ^ x) * 1099511628211ull;
+  }
   std::printf(
       "%-24s g=%-3d F=%-8d cpu %7.3fs wall %7.3fs (factor %.3fs) %s it=%-3d%s E=%-9.4g cones %3zu: v3 %-3d v5 %-3d v2 %-2d v6 %-2d "
-      "other %-2d | sharp %d aligned %.0f%% | corners k1 %-2d k3 %-2d k0 %-2d | pairs %d -> %zu | PH %s%s%s\n",
+      "other %-2d | sharp %d aligned %.0f%% | corners k1 %-2d k3 %-2d k0 %-2d | pairs %d -> %zu | PH %s%s%s | hash %016llx\n",
       name.c_str(), c.genus, mesh.num_faces(), cpu, s.seconds, s.factor_seconds, s.linear ? "lin" : igm::to_string(s.solver),
       s.iterations, s.converged ? "" : "!", s.energy, f.cones.size(), v[3], v[5], v[2], v[6], other, sharp, sharp ? 100.0 * aligned / sharp : 0.0, b[1], b[3], b[0],
       s.pairs_before_cleanup, f.close_pairs.size(), ph.empty() ? "ok" : ph.c_str(), obstruction.empty() ? "" : " | ",
-      obstruction.c_str());
+      obstruction.c_str(), static_cast<unsigned long long>(hash));
   if (g_print_cones)
     for (const igm::Cone& k : f.cones) {
       const igm::Vec3d& p = c.positions[k.vertex];
@@ -93,6 +108,50 @@ void run_file(const std::filesystem::path& path) {
   }
 }
 
+// --hostile N: per geometry, the fields computed, the errors, and the fields with a vertex no
+// quad mesh allows (interior valence <= 1, boundary k <= 0). Deterministic (fixed seed).
+void run_hostile(int n) {
+  using igm_test::Geometry;
+  std::mt19937_64 rng(46);
+  const int ng = static_cast<int>(Geometry::Count);
+  std::vector<std::array<int, 4>> count(ng, std::array<int, 4>{});  // runs, errors, valence <= 1, k <= 0
+  for (int i = 0; i < n; ++i) {
+    igm_test::RandomMeshSpec s;
+    s.genus = static_cast<int>(rng() % 9);
+    s.boundaries = rng() % 2 == 0 ? 0 : 1 + static_cast<int>(rng() % 6);
+    s.faces = static_cast<std::int64_t>((200.0 + 250.0 * s.genus + 40.0 * s.boundaries) *
+                                        std::pow(4.0, std::uniform_real_distribution<double>(0, 1)(rng)));
+    s.seed = rng();
+    s.jitter = std::uniform_real_distribution<double>(0, 0.45)(rng);
+    s.edge_splits = static_cast<int>(rng() % 21);
+    s.face_splits = static_cast<int>(rng() % 21);
+    s.geometry = static_cast<Geometry>(i % ng);
+    auto& c = count[static_cast<std::size_t>(i % ng)];
+    ++c[0];
+    try {
+      const igm::SurfaceSet set = igm::validate_surfaces(igm_test::random_mesh(s));
+      const igm::SurfaceComponent& comp = set.components.at(0);
+      const igm::TriMesh mesh = igm::TriMesh::from_triangles(static_cast<int>(comp.positions.size()), comp.triangles,
+                                                             !comp.boundary_loops.empty());
+      const igm::CrossField f = igm::compute_cross_field(mesh, comp.positions, g_options);
+      bool v1 = false, k0 = false;
+      for (const igm::Cone& k : f.cones) v1 = v1 || k.valence <= 1;
+      for (const igm::Cone& k : f.corners) k0 = k0 || k.valence <= 0;
+      c[2] += v1;
+      c[3] += k0;
+      if (g_print_cones && (v1 || k0))
+        std::printf("  %s: %s\n", igm_test::describe(s).c_str(), igm::seamless_obstruction(mesh, f).c_str());
+    } catch (const igm::Error& e) {
+      ++c[1];
+      std::printf("  %s: %s\n", igm_test::describe(s).c_str(), e.what());
+    }
+  }
+  for (int g = 0; g < ng; ++g)
+    std::printf("%-10s runs %3d errors %3d valence<=1 %3d k<=0 %3d\n", igm_test::to_string(static_cast<Geometry>(g)),
+                count[static_cast<std::size_t>(g)][0], count[static_cast<std::size_t>(g)][1],
+                count[static_cast<std::size_t>(g)][2], count[static_cast<std::size_t>(g)][3]);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -100,6 +159,7 @@ int main(int argc, char** argv) {
     std::vector<std::string> meshes;
     long long generated = 1000000;
     bool shared = true;
+    int hostile = 0;
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
       if (a == "--alignment" && i + 1 < argc)
@@ -124,8 +184,14 @@ int main(int argc, char** argv) {
         generated = std::atoll(argv[++i]);
       else if (a == "--no-shared")
         shared = false;
+      else if (a == "--hostile" && i + 1 < argc)
+        hostile = std::atoi(argv[++i]);
       else
         meshes.push_back(a);
+    }
+    if (hostile > 0) {
+      run_hostile(hostile);
+      return 0;
     }
     if (meshes.empty() && shared) {
       const char* env = std::getenv("IGM_DATA_DIR");

@@ -159,7 +159,7 @@ bool solve_angles(const TriMesh& mesh, const System& sys, const FaceFrames& fram
       else
         b[i] += w * theta[g];
     }
-    trip.emplace_back(i, i, diag);
+    trip.emplace_back(i, i, diag * (1 + kRegularization));  // strictly dominant: field_internal.h
   }
   Eigen::SparseMatrix<double> m(n, n);
   m.setFromTriplets(trip.begin(), trip.end());

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "igm/core/error.h"
+#include "igm/core/det_math.h"
 #include "field_internal.h"
 #include "igm/field/curvature.h"
 
@@ -132,7 +133,10 @@ double rayleigh(const SpMat& A, const Vec& x, const std::vector<double>& mass) {
 // The energy u* A u / u* M u of the unit field u_f = exp(4 i theta_f).
 double unit_energy(const System& sys, const std::vector<double>& theta) {
   Vec u(static_cast<Eigen::Index>(theta.size()));
-  for (std::size_t f = 0; f < theta.size(); ++f) u[static_cast<Eigen::Index>(f)] = std::polar(1.0, 4 * theta[f]);
+  for (std::size_t f = 0; f < theta.size(); ++f) {
+    const SinCos r = det_sincos(4 * theta[f]);
+    u[static_cast<Eigen::Index>(f)] = Complex(r.cos, r.sin);
+  }
   return rayleigh(sys.A, u, sys.mass);
 }
 
@@ -249,7 +253,7 @@ Vec linear_field(const System& s, const std::vector<Complex>& q, double c, const
 
 // theta in [0, pi/2) from u = |u| exp(4 i theta) (0 for u = 0).
 double angle_of(const Complex& u) {
-  double t = std::atan2(u.imag(), u.real()) / 4;  // in [-pi/4, pi/4]
+  double t = det_atan2(u.imag(), u.real()) / 4;  // in [-pi/4, pi/4]
   if (t < 0) t += kQuarter;
   if (!(t < kQuarter)) t = 0;  // t == pi/2 after rounding: the same cross
   return t;

@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 
+#include "igm/core/det_math.h"
 #include "../quality/vec3.h"
 
 namespace igm {
@@ -49,7 +50,7 @@ std::vector<std::complex<double>> curvature_cross_guide(const TriMesh& mesh, con
     if (!(len > 0)) continue;
     const Vec3d& n1 = frames.normal[TriMesh::face(h)];
     const Vec3d& n2 = frames.normal[TriMesh::face(t)];
-    const double beta = std::atan2(dot(cross(n1, n2), e) / len, dot(n1, n2));
+    const double beta = det_atan2(dot(cross(n1, n2), e) / len, dot(n1, n2));
     beta_over_len[h] = beta / len;
     add_edge(vertex_tensor[mesh.origin(h)], e, beta_over_len[h]);
     add_edge(vertex_tensor[mesh.target(h)], e, beta_over_len[h]);
@@ -78,7 +79,7 @@ std::vector<std::complex<double>> curvature_cross_guide(const TriMesh& mesh, con
     const Vec3d& y = frames.axis_y[f];
     const double a = area > 0 ? 0.5 / area : 0.0;
     const std::complex<double> z(a * (form(t, x, x) - form(t, y, y)), a * 2 * form(t, x, y));
-    const double m = std::abs(z);
+    const double m = det_hypot(z.real(), z.imag());
     guide[f] = m > 0 && std::isfinite(m) ? z * z / m : std::complex<double>(0, 0);
   }
   return guide;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "igm/core/det_math.h"
 #include "../quality/vec3.h"
 
 namespace igm {
@@ -19,7 +20,7 @@ using quality_internal::sub;
 constexpr double kPi = std::numbers::pi;
 
 // The angle between two vectors in [0, pi]; 0 if either is zero.
-double angle_between(const Vec3d& a, const Vec3d& b) { return std::atan2(norm(cross(a, b)), dot(a, b)); }
+double angle_between(const Vec3d& a, const Vec3d& b) { return det_atan2(norm(cross(a, b)), dot(a, b)); }
 
 // A fixed unit vector orthogonal to the unit vector x: x crossed with the axis of its smallest
 // component.
@@ -121,7 +122,8 @@ FaceFrames face_frames(const TriMesh& mesh, const std::vector<Vec3d>& positions)
 }
 
 Vec3d frame_direction(const FaceFrames& frames, int f, double phi) {
-  return add(mul(frames.axis_x[f], std::cos(phi)), mul(frames.axis_y[f], std::sin(phi)));
+  const SinCos r = det_sincos(phi);
+  return add(mul(frames.axis_x[f], r.cos), mul(frames.axis_y[f], r.sin));
 }
 
 }  // namespace igm

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "igm/core/error.h"
+#include "igm/core/det_math.h"
 #include "../quality/vec3.h"
 
 namespace igm::field_internal {
@@ -46,9 +47,10 @@ System build_system(const TriMesh& mesh, const std::vector<Vec3d>& p, const Face
     if (t < h) continue;  // boundary, or the edge was done from its twin
     const int f = TriMesh::face(h), g = TriMesh::face(t);
     const double len = norm(sub(p[mesh.target(h)], p[mesh.origin(h)]));
-    const double w = len / std::max(norm(sub(centroid[f], centroid[g])), min_dist);
+    const double w = std::max(len, min_dist) / std::max(norm(sub(centroid[f], centroid[g])), min_dist);
     s.weight[h] = s.weight[t] = w;
-    const Complex r = std::polar(1.0, 4 * fr.transport[h]);
+    const SinCos sc = det_sincos(4 * fr.transport[h]);
+    const Complex r(sc.cos, sc.sin);
     diag[f] += w;
     diag[g] += w;
     trip.emplace_back(g, f, -w * r);
@@ -69,7 +71,10 @@ SpMat restricted(const System& s, const std::vector<int>& free_faces, const std:
       const int j = slot[it.row()];
       if (j < 0) continue;
       Complex v = it.value();
-      if (j == i) v += shift * s.mass[f];
+      if (j == i) {
+        const double d = v.real() * (1 + kRegularization) + shift * s.mass[f];
+        v = d > 0 ? d : s.mass[f];
+      }
       trip.emplace_back(j, i, v);
     }
   }

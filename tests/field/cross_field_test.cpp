@@ -536,6 +536,43 @@ TEST_CASE("cross field: degenerate faces take a fallback frame and keep exact in
   CHECK(check_poincare_hopf(z.mesh, g) == "");
 }
 
+TEST_CASE("cross field: zero-length edges and flat geometry still factorize (regression)") {
+  // Regression: with w_e = |e| / d_e a zero-length edge had weight 0, so on coincident or
+  // collinear geometry the dual graph fell apart and CHOLMOD met a zero or negative pivot
+  // ("sparse factorization failed", 13 of the random suite's 40 hostile meshes). Weights are now
+  // at least 1e-3 mean edge / d_e and every factorized matrix strictly diagonally dominant.
+  auto check = [](const Surface& s, const char* what) {
+    INFO(std::string(what));
+    for (double alignment : {0.0, 100.0}) {
+      CrossFieldOptions o;
+      o.alignment = alignment;
+      CrossField f;
+      CHECK_NOTHROW(f = compute_cross_field(s.mesh, s.positions, o));
+      if (f.theta.size() != static_cast<std::size_t>(s.mesh.num_faces())) continue;
+      for (double t : f.theta) CHECK((t >= 0 && t < std::numbers::pi / 2));
+      CHECK(check_poincare_hopf(s.mesh, f) == "");
+    }
+  };
+  // The smallest: a tetrahedron with its four vertices at one point (closed: A = 0, the shift
+  // was 0 too).
+  const std::vector<std::array<int, 3>> tet = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+  check(from(std::vector<Vec3d>(4, Vec3d{1, 2, 3}), tet), "coincident tetrahedron");
+  // An open octahedron (one face removed) at one point: the free face has only zero-length edges.
+  const std::vector<std::array<int, 3>> oct = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                                               {2, 0, 5}, {1, 2, 5}, {3, 1, 5}};
+  check(from(std::vector<Vec3d>(6, Vec3d{1, 2, 3}), oct, true), "coincident open octahedron");
+  // Every vertex on one line at two parameters (random suite's "collinear") and every vertex on a
+  // cube corner (its "extreme"): weights 10^3 times the mean next to weight-floor edges.
+  Surface line = subdivided_cube(3), corners = subdivided_cube(3);
+  for (std::size_t i = 0; i < line.positions.size(); ++i) {
+    const double t = static_cast<double>(i % 2);
+    line.positions[i] = {t, 2 * t, -3 * t};
+    corners.positions[i] = {i % 2 ? 1e308 : -1e308, i % 3 ? 1e308 : -1e308, i % 5 ? 1e308 : -1e308};
+  }
+  check(line, "collinear cube");
+  check(corners, "cube on the corners of a huge cube");
+}
+
 TEST_CASE("cross field: bad input gets a typed error naming the element") {
   // The error's kind and elements, or Internal with no element if nothing is thrown (no case
   // below expects that).
