@@ -41,7 +41,8 @@ bool parse_int(std::string_view s, long long& out) {
 int usage(const std::string& message, bool help = false) {
   std::fprintf(help ? stdout : stderr,
                "%s%susage: igm run MESH [-o DIR] [--quads Q | --edge-length H | --resolution N]\n"
-               "               [--layout spread|kite|paper] [--map tutte|affine] [--no-smooth] [--root V]\n"
+               "               [--layout field|spread|kite|paper] [--field-alignment W] [--map tutte|affine]\n"
+               "               [--no-smooth] [--root V]\n"
                "               [--normal-form [--restarts K|auto]] [--cones A,B,C,D] [--memory-limit-mb M]\n"
                "               [--smooth-iterations N] [--smooth-min-decrease X] [--smooth-seconds S] [--threads N]\n"
                "  writes DIR/NAME.igm.obj, NAME.igm.exact, NAME.quad.obj, NAME.cert.json, NAME.schema.svg,\n"
@@ -55,7 +56,12 @@ int usage(const std::string& message, bool help = false) {
                "                  per unit on a sphere unless 1 x 1); the run says where it raised them\n"
                "  --layout L      the quad layout of the polygonal schema (genus >= 1): spread (default: root\n"
                "                  of valence 4g, 4g-4 vertices of valence 5), kite (4g at the root and the\n"
-               "                  centre) or paper (Livesu's template: 8g at the root, 3g at the centre)\n"
+               "                  centre) or paper (Livesu's template: 8g at the root, 3g at the centre);\n"
+               "                  field: cones and patches from a cross field on any surface (docs/field.md),\n"
+               "                  falling back to the default layout where a step cannot finish (said in\n"
+               "                  cert.json's stats.layout_fallback and on the terminal)\n"
+               "  --field-alignment W  with --layout field: the curvature alignment's weight (default 100,\n"
+               "                  then other attempts; 0: the smoothest field), this one alone\n"
                "  --map M         each layout quad mapped onto its rectangle by a Tutte map from its own\n"
                "                  geometry (tutte, default) or through the disk's map (affine, the paper's)\n"
                "  --no-smooth     keep the layout's map (default: smoothed, every iterate a certified IGM)\n"
