@@ -216,7 +216,7 @@ RefinementResult refine_until_certified(const SpdSystem& S, const RefinementCert
   SparseCholesky chol;
   {
     std::vector<double> val(S.val.begin(), S.val.end()), diag(S.diag.begin(), S.diag.end());
-    // one factorization: AMD's cheap analysis pays (bench/README.md, "Sparse Cholesky")
+    // one factorization of a disk's Laplacian: the BFS level sets (sparse_cholesky.h, Ordering)
     chol.factorize(S.xadj, S.adj, val, diag, SparseCholesky::Ordering::LevelSets);  // throws Internal if not PD
   }
   st.factor_entries = chol.factor_entries();
