@@ -72,6 +72,7 @@ const std::map<std::string, Setter>& option_setters() {
       {"max_witnesses", field(&igm::PipelineOptions::max_witnesses)},
       {"smooth", field(&igm::PipelineOptions::smooth)},
       {"smooth_iterations", field(&igm::PipelineOptions::smooth_iterations)},
+      {"smooth_work", field(&igm::PipelineOptions::smooth_work)},
       {"smooth_seconds", field(&igm::PipelineOptions::smooth_seconds)},
       {"smooth_min_decrease", field(&igm::PipelineOptions::smooth_min_decrease)},
       {"smooth_stall_step", field(&igm::PipelineOptions::smooth_stall_step)},

@@ -65,7 +65,8 @@ int usage(const std::string& message, bool help = false) {
                "  --map M         each layout quad mapped onto its rectangle by a Tutte map from its own\n"
                "                  geometry (tutte, default) or through the disk's map (affine, the paper's)\n"
                "  --no-smooth     keep the layout's map (default: smoothed, every iterate a certified IGM)\n"
-               "  --smooth-iterations N  at most N Newton iterations (default 100); smoothing also stops after\n"
+               "  --smooth-iterations N  at most N Newton iterations (default 100, and past 100k IGM triangles\n"
+               "                  at most max(5, 10^7 / triangles)); smoothing also stops after\n"
                "                  an iteration that lowers the energy by less than --smooth-min-decrease X of\n"
                "                  it (default 0.001) or two steps in a row below 1/200 of the Newton step\n"
                "  --smooth-seconds S  also stop after S seconds of wall time (default 0: never; with S the\n"
@@ -403,6 +404,7 @@ int run_command(const std::vector<std::string_view>& args) {
       } else if (a == "--smooth-iterations") {
         if (n < 0 || n > 100000) return usage("--smooth-iterations must be in 0..100000");
         options.smooth_iterations = static_cast<int>(n);
+        options.smooth_work = 0;  // the count asked for, whatever the size
       } else if (a == "--threads") {
         if (n < 0 || n > 4096) return usage("--threads must be in 0..4096 (0: all cores)");
         options.threads = static_cast<int>(n);

@@ -168,6 +168,10 @@ void smooth_extract_certify(PipelineResult& result, const PipelineOptions& optio
   if (smoothing) {
     SmoothOptions so;
     so.max_iterations = options.smooth_iterations;
+    const std::int64_t triangles = static_cast<std::int64_t>(igm.triangles.size());
+    if (options.smooth_work > 0 && triangles > 0)
+      so.max_iterations = static_cast<int>(std::min<std::int64_t>(
+          so.max_iterations, std::max<std::int64_t>(5, options.smooth_work / triangles)));
     so.min_relative_decrease = options.smooth_min_decrease;
     so.time_budget_seconds = options.smooth_seconds;
     so.stall_step = options.smooth_stall_step;

@@ -273,6 +273,28 @@ TEST_CASE("smoothing stops by its rules, never by the clock unless asked, and gi
   CHECK_THROWS_AS(compute_igm(mesh, o), Error);
 }
 
+TEST_CASE("smoothing's work cap: at most max(5, smooth_work / triangles) iterations, by size alone") {
+  const ValidMesh mesh = igm_test::generated_mesh(2, 2000, 5);
+  PipelineOptions o;
+  o.quads = 1000;
+  o.smooth_iterations = 12;
+  o.smooth_min_decrease = 0;
+  o.smooth_work = 0;
+  const PipelineResult free_run = compute_igm(mesh, o);
+  REQUIRE(free_run.certified());
+  const std::int64_t triangles = static_cast<std::int64_t>(free_run.igm.triangles.size());
+  REQUIRE(free_run.stats.smooth.iterations > 6);  // enough to see the cap bite
+  // 6 iterations' worth of work: the cap stops at 6, the same first iterates.
+  o.smooth_work = 6 * triangles;
+  const PipelineResult capped = compute_igm(mesh, o);
+  REQUIRE(capped.certified());
+  CHECK(capped.stats.smooth.iterations == 6);
+  CHECK(capped.stats.smooth.energy[6] == free_run.stats.smooth.energy[6]);
+  // Below five iterations' worth: still five.
+  o.smooth_work = 1;
+  CHECK(compute_igm(mesh, o).stats.smooth.iterations == 5);
+}
+
 TEST_CASE("the unsmoothed map is put on a double grid where that keeps it valid, and its doubles file certifies") {
   for (int g : {0, 2}) {
     const ValidMesh mesh = igm_test::generated_mesh(g, 1200, 4);

@@ -133,6 +133,12 @@ struct PipelineOptions {
   /// smooth_seconds > 0 (a wall-time budget: the result then depends on the machine's speed).
   /// Every size is smoothed. Defaults measured in bench/README.md ("Smoothing's stop").
   int smooth_iterations = 100;
+  /// Also at most max(5, smooth_work / T) iterations for an IGM of T triangles (0: no such cap):
+  /// a Newton iteration costs about T, so the whole smoothing stays near smooth_work triangle
+  /// iterations whatever the size (100k triangles get the full 100; generated genus 20 with 1M
+  /// faces, 1.27M triangles, 7 iterations instead of 85 and 20 minutes). Deterministic: sizes,
+  /// not the clock. `igm run --smooth-iterations N` sets it to 0 (N iterations asked for).
+  std::int64_t smooth_work = 10'000'000;
   double smooth_min_decrease = 1e-3;
   double smooth_stall_step = 0.005;
   double smooth_seconds = 0;
