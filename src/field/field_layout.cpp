@@ -36,32 +36,7 @@ Point2q corner_q(int c) {
 }
 
 // A trace point in the barycentric plane (w1, w2) of face f (it must lie in f's closure).
-Point2q plane_point(const TriMesh& mesh, const TracePoint& q, int f) {
-  const auto fv = mesh.face_vertices(f);
-  switch (q.kind) {
-    case TracePoint::Kind::Vertex:
-      for (int c = 0; c < 3; ++c)
-        if (fv[c] == q.element) return corner_q(c);
-      break;
-    case TracePoint::Kind::Edge: {
-      int h = q.element;
-      Rational t = q.t;
-      if (TriMesh::face(h) != f) {
-        h = mesh.twin(h);
-        t = 1 - t;
-      }
-      if (h < 0 || TriMesh::face(h) != f) break;
-      std::array<Rational, 3> w{Rational(0), Rational(0), Rational(0)};
-      w[h % 3] = 1 - t;
-      w[(h % 3 + 1) % 3] = t;
-      return {w[1], w[2]};
-    }
-    case TracePoint::Kind::Face:
-      if (q.element == f) return {q.w[1], q.w[2]};
-      break;
-  }
-  throw Error(ErrorKind::Internal, "field layout: a point is not in its face", {f});
-}
+Point2q plane_point(const TriMesh& mesh, const TracePoint& q, int f) { return field_detail::point_in_face(mesh, q, f); }
 
 struct ArcEnd {
   int node = -1;  // refined vertex

@@ -211,6 +211,37 @@ int FieldFrames::nearest_direction(int f, const Vec2d& v) const {
   return best;
 }
 
+Point2q point_in_face(const TriMesh& mesh, const TracePoint& q, int f) {
+  const auto fv = mesh.face_vertices(f);
+  switch (q.kind) {
+    case TracePoint::Kind::Vertex:
+      for (int c = 0; c < 3; ++c)
+        if (fv[c] == q.element) {
+          std::array<Rational, 3> w{Rational(0), Rational(0), Rational(0)};
+          w[c] = 1;
+          return {w[1], w[2]};
+        }
+      throw Error(ErrorKind::Internal, "trace: a vertex point is not a corner of its face", {f});
+    case TracePoint::Kind::Edge: {
+      int h = q.element;
+      Rational t = q.t;
+      if (TriMesh::face(h) != f) {
+        h = mesh.twin(h);
+        t = 1 - t;
+        if (h < 0 || TriMesh::face(h) != f) throw Error(ErrorKind::Internal, "trace: an edge point is not on its face", {f});
+      }
+      std::array<Rational, 3> w{Rational(0), Rational(0), Rational(0)};
+      w[h % 3] = 1 - t;
+      w[(h % 3 + 1) % 3] = t;
+      return {w[1], w[2]};
+    }
+    case TracePoint::Kind::Face:
+      if (q.element != f) throw Error(ErrorKind::Internal, "trace: a face point is used in another face", {f});
+      return {q.w[1], q.w[2]};
+  }
+  throw Error(ErrorKind::Internal, "trace: a point of unknown kind", {f});
+}
+
 }  // namespace field_detail
 
 namespace {
@@ -823,30 +854,7 @@ class Tracer {
     edge_points_[ce].push_back(id);
     return id;
   }
-  Point2q bary(int p, int f) const {
-    const TracePoint& q = graph_.points[p];
-    switch (q.kind) {
-      case TracePoint::Kind::Vertex: {
-        const int c = corner_of(f, q.element);
-        if (c >= 0) return corner_point(c);
-        throw Error(ErrorKind::Internal, "trace: a vertex point is not a corner of its face", {f});
-      }
-      case TracePoint::Kind::Edge: {
-        int h = q.element;
-        Rational t = q.t;
-        if (TriMesh::face(h) != f) {
-          h = mesh_.twin(h);
-          t = 1 - t;
-          if (h < 0 || TriMesh::face(h) != f) throw Error(ErrorKind::Internal, "trace: an edge point is not on its face", {f});
-        }
-        return edge_bary(h, t);
-      }
-      case TracePoint::Kind::Face:
-        if (q.element != f) throw Error(ErrorKind::Internal, "trace: a face point is used in another face", {f});
-        return {q.w[1], q.w[2]};
-    }
-    return {};
-  }
+  Point2q bary(int p, int f) const { return field_detail::point_in_face(mesh_, graph_.points[p], f); }
   // The point at local parameter t along half-edge h, in the barycentric plane of face(h).
   static Point2q edge_bary(int h, const Rational& t) {
     std::array<Rational, 3> w{Rational(0), Rational(0), Rational(0)};

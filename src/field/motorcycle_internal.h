@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "igm/exact/predicates.h"
+#include "igm/field/motorcycle.h"
 #include "igm/mesh/trimesh.h"
 
 namespace igm::field_detail {
@@ -51,5 +52,10 @@ struct FieldFrames {
   /// The separatrix rays of vertex v (VertexRays). Cost O(valence).
   VertexRays vertex_rays(int v) const;
 };
+
+/// Trace point q (field/motorcycle.h) in the barycentric plane (w1, w2) of face f, exactly.
+/// Pre: q lies in f's closure (a corner, a point of one of its edges, or a point of f); else
+/// igm::Error(Internal).
+Point2q point_in_face(const TriMesh& mesh, const TracePoint& q, int f);
 
 }  // namespace igm::field_detail

@@ -34,12 +34,9 @@ constexpr double kQuarter = kPi / 2;
 using igm_test::from;
 using igm_test::subdivided_cube;
 using igm_test::Surface;
+using igm_test::generated;
+using igm_test::surface_of;
 using igm_test::torus;
-
-Surface surface_of(const SurfaceComponent& c) {
-  return {TriMesh::from_triangles(static_cast<int>(c.positions.size()), c.triangles, !c.boundary_loops.empty()),
-          c.positions};
-}
 
 Surface load(const std::filesystem::path& path) {
   const SurfaceSet set = validate_surfaces(read_soup(path));
@@ -52,17 +49,6 @@ std::vector<std::filesystem::path> sorted_files(const std::filesystem::path& dir
   for (const auto& e : std::filesystem::directory_iterator(dir)) files.push_back(e.path());
   std::sort(files.begin(), files.end());
   return files;
-}
-
-Surface generated(int genus, std::int64_t faces, int boundaries, std::uint64_t seed) {
-  GenerateOptions o;
-  o.genus = genus;
-  o.faces = faces;
-  o.boundaries = boundaries;
-  o.seed = seed;
-  const SurfaceSet set = validate_surfaces(generate_mesh(o));
-  REQUIRE(set.components.size() == 1);
-  return surface_of(set.components[0]);
 }
 
 Vec3d sub(const Vec3d& a, const Vec3d& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }

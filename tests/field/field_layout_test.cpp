@@ -23,6 +23,7 @@
 
 using namespace igm;
 using igm_test::Surface;
+using igm_test::generated;
 
 namespace {
 
@@ -31,18 +32,6 @@ std::vector<Vec3d> directions(const Surface& s, const CrossFieldOptions& o = {})
   std::vector<Vec3d> d(s.mesh.num_faces());
   for (int f_ = 0; f_ < s.mesh.num_faces(); ++f_) d[f_] = field_direction(f, f_, 0);
   return d;
-}
-
-Surface generated(int genus, std::int64_t faces, int boundaries, std::uint64_t seed) {
-  GenerateOptions o;
-  o.genus = genus;
-  o.faces = faces;
-  o.boundaries = boundaries;
-  o.seed = seed;
-  const SurfaceSet set = validate_surfaces(generate_mesh(o));
-  REQUIRE(set.components.size() == 1);
-  const SurfaceComponent& c = set.components[0];
-  return {TriMesh::from_triangles(static_cast<int>(c.positions.size()), c.triangles, boundaries > 0), c.positions};
 }
 
 // The layout with the trace options the pipeline uses for `quads` quads: curves ending near a node

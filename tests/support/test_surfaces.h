@@ -7,8 +7,11 @@
 #include <numbers>
 #include <vector>
 
+#include "igm/core/error.h"
 #include "igm/exact/predicates.h"
+#include "igm/mesh/generate.h"
 #include "igm/mesh/trimesh.h"
+#include "igm/mesh/validate_surfaces.h"
 
 namespace igm_test {
 
@@ -19,6 +22,25 @@ struct Surface {
 
 inline Surface from(const std::vector<igm::Vec3d>& positions, const std::vector<std::array<int, 3>>& tris, bool open = false) {
   return {igm::TriMesh::from_triangles(static_cast<int>(positions.size()), tris, open), positions};
+}
+
+// A surface component (mesh/validate_surfaces.h) as a Surface: its mesh open where it has loops.
+inline Surface surface_of(const igm::SurfaceComponent& c) {
+  return {igm::TriMesh::from_triangles(static_cast<int>(c.positions.size()), c.triangles, !c.boundary_loops.empty()),
+          c.positions};
+}
+
+// A generated surface (mesh/generate.h) of one component: genus, about `faces` faces, boundary
+// loops, seed. Throws if the generator gave several components (it never does).
+inline Surface generated(int genus, std::int64_t faces, int boundaries, std::uint64_t seed) {
+  igm::GenerateOptions o;
+  o.genus = genus;
+  o.faces = faces;
+  o.boundaries = boundaries;
+  o.seed = seed;
+  const igm::SurfaceSet set = igm::validate_surfaces(igm::generate_mesh(o));
+  if (set.components.size() != 1) throw igm::Error(igm::ErrorKind::Internal, "generated: not one component");
+  return surface_of(set.components[0]);
 }
 
 // A cube [-1, 1]^3 with every face cut into n x n squares, each split along a diagonal whose
