@@ -208,7 +208,9 @@ class Builder {
         for (std::size_t k = 1; k + 1 < pending[a].size(); ++k) through.insert(pending[a][k]);
       }
       bool joined = false;
-      for (const auto& [x, list] : ends) {
+      for (const auto& entry : ends) {
+        const int x = entry.first;  // a plain local: lambdas below capture it (clang 14)
+        const auto& list = entry.second;
         if (x < n_boundary_local || list.size() < 2 || through.count(x)) continue;
         // The straightest pair: the most negative dot product of the two directions leaving x.
         auto away = [&](const std::pair<std::size_t, int>& e) {
