@@ -19,6 +19,7 @@
 
 #include "check_pipeline.h"
 #include "random_mesh.h"
+#include "test_data.h"
 
 using namespace igm;
 using igm_test::Geometry;
