@@ -131,7 +131,7 @@ struct PipelineOptions {
   /// steps in a row below smooth_stall_step of the Newton step (the map pressed against its
   /// barrier: cheese's steps are 3e-4..3e-3), or when converged. Never by the clock unless
   /// smooth_seconds > 0 (a wall-time budget: the result then depends on the machine's speed).
-  /// Every size is smoothed. Defaults measured in bench/README.md ("Smoothing's stop").
+  /// Every size is smoothed. Measured in bench/README.md ("Issue 44").
   int smooth_iterations = 100;
   /// Also at most max(5, smooth_work / T) iterations for an IGM of T triangles (0: no such cap):
   /// a Newton iteration costs about T, so the whole smoothing stays near smooth_work triangle
