@@ -446,8 +446,10 @@ class Tracer {
                              graph_.points[cd.points.back()].element == r.target;
         const int pt = vertex_point(r.target);
         if (!reached && !used_ray(pt, r.target_ray, -1)) {
-          const int e = start_curve(r.target, r.target_ray);
-          queue.push({cd.length, e});
+          const double length = cd.length;  // start_curve reallocates the curves (and runners)
+          const int target = r.target, target_ray = r.target_ray;
+          const int e = start_curve(target, target_ray);
+          queue.push({length, e});
         }
         runners_[d].target = -1;  // handled once
       }
