@@ -2,12 +2,11 @@
 # Set-up command 2 (and CI): installs the packages, builds, and runs the whole test suite twice:
 #   1. Release build in ${IGM_BUILD_DIR:-build};
 #   2. AddressSanitizer + UndefinedBehaviorSanitizer build (-DIGM_SANITIZE=ON, RelWithDebInfo,
-#      no benchmarks) in ${IGM_ASAN_BUILD_DIR:-build-asan}: every test again (the 1M-face torus
-#      and the cheese included: ~260 s together under the sanitizers; the two normal forms of
-#      ~150k vertices, cheese and a generated genus 200, only in the Release run; the 1M-face
-#      sphere on 250k faces), with a quarter
-#      of the random meshes of tests/random (IGM_RANDOM_SCALE=0.25: ~10x slower under the
-#      sanitizers; the plain run does them all).
+#      no benchmarks) in ${IGM_ASAN_BUILD_DIR:-build-asan}: every test again (the 1M-face torus,
+#      cheese, the two normal forms of ~150k vertices and a generated genus 200 only in the
+#      Release run; the 1M-face sphere on 100k faces), with a tenth of the random meshes of
+#      tests/random (IGM_RANDOM_SCALE=0.1: ~10x slower under the sanitizers; the plain run does
+#      them all).
 #      IGM_TEST_ASAN=0 skips this part (for quick local runs; CI always runs it).
 #   Between them, the fuzz targets built with clang and run briefly (scripts/fuzz.sh smoke;
 #   IGM_TEST_FUZZ=0 skips it).
@@ -28,9 +27,12 @@ fi
 if [ "${IGM_TEST_ASAN:-1}" != 0 ]; then
   ASAN_DIR="${IGM_ASAN_BUILD_DIR:-build-asan}"
   echo "[test] the whole suite again under AddressSanitizer + UndefinedBehaviorSanitizer ($ASAN_DIR)"
-  IGM_BUILD_DIR="$ASAN_DIR" IGM_BUILD_TYPE=RelWithDebInfo bash scripts/build.sh -DIGM_SANITIZE=ON -DIGM_BUILD_BENCH=OFF -DIGM_BUILD_PYTHON=OFF
+  # -g1: line tables for the sanitizers' stack traces, without the full debug info (a shorter
+  # build).
+  IGM_BUILD_DIR="$ASAN_DIR" IGM_BUILD_TYPE=RelWithDebInfo bash scripts/build.sh -DIGM_SANITIZE=ON -DIGM_BUILD_BENCH=OFF -DIGM_BUILD_PYTHON=OFF \
+    "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -g1 -DNDEBUG"
   # Any report fails the test: UBSan is built with -fno-sanitize-recover, ASan aborts on error.
-  ASAN_OPTIONS="abort_on_error=1:detect_leaks=1" IGM_RANDOM_SCALE=0.25 \
+  ASAN_OPTIONS="abort_on_error=1:detect_leaks=1" IGM_RANDOM_SCALE=0.1 \
   UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
     ctest --test-dir "$ASAN_DIR" --output-on-failure -j "$(nproc)"
 fi
