@@ -211,35 +211,40 @@ int FieldFrames::nearest_direction(int f, const Vec2d& v) const {
   return best;
 }
 
-Point2q point_in_face(const TriMesh& mesh, const TracePoint& q, int f) {
-  const auto fv = mesh.face_vertices(f);
+std::optional<Point2q> point_in_face_if(const TriMesh& mesh, const TracePoint& q, int f) {
+  std::array<Rational, 3> w{Rational(0), Rational(0), Rational(0)};
   switch (q.kind) {
-    case TracePoint::Kind::Vertex:
+    case TracePoint::Kind::Vertex: {
+      const auto fv = mesh.face_vertices(f);
       for (int c = 0; c < 3; ++c)
         if (fv[c] == q.element) {
-          std::array<Rational, 3> w{Rational(0), Rational(0), Rational(0)};
           w[c] = 1;
-          return {w[1], w[2]};
+          return Point2q{w[1], w[2]};
         }
-      throw Error(ErrorKind::Internal, "trace: a vertex point is not a corner of its face", {f});
+      return std::nullopt;
+    }
     case TracePoint::Kind::Edge: {
       int h = q.element;
       Rational t = q.t;
       if (TriMesh::face(h) != f) {
         h = mesh.twin(h);
         t = 1 - t;
-        if (h < 0 || TriMesh::face(h) != f) throw Error(ErrorKind::Internal, "trace: an edge point is not on its face", {f});
+        if (h < 0 || TriMesh::face(h) != f) return std::nullopt;
       }
-      std::array<Rational, 3> w{Rational(0), Rational(0), Rational(0)};
       w[h % 3] = 1 - t;
       w[(h % 3 + 1) % 3] = t;
-      return {w[1], w[2]};
+      return Point2q{w[1], w[2]};
     }
     case TracePoint::Kind::Face:
-      if (q.element != f) throw Error(ErrorKind::Internal, "trace: a face point is used in another face", {f});
-      return {q.w[1], q.w[2]};
+      if (q.element != f) return std::nullopt;
+      return Point2q{q.w[1], q.w[2]};
   }
-  throw Error(ErrorKind::Internal, "trace: a point of unknown kind", {f});
+  return std::nullopt;
+}
+
+Point2q point_in_face(const TriMesh& mesh, const TracePoint& q, int f) {
+  if (std::optional<Point2q> p = point_in_face_if(mesh, q, f)) return std::move(*p);
+  throw Error(ErrorKind::Internal, "trace: a point used in a face whose closure does not hold it", {f});
 }
 
 }  // namespace field_detail
@@ -255,11 +260,6 @@ double dot2(const Vec2d& a, const Vec2d& b) { return a.x * b.x + a.y * b.y; }
 Vec2d sub2(const Vec2d& a, const Vec2d& b) { return {a.x - b.x, a.y - b.y}; }
 Vec2d lerp2(const Vec2d& a, const Vec2d& b, double t) { return {a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)}; }
 
-Point2q corner_point(int c) {
-  if (c == 1) return {Rational(1), Rational(0)};
-  if (c == 2) return {Rational(0), Rational(1)};
-  return {Rational(0), Rational(0)};
-}
 
 bool same(const Point2q& a, const Point2q& b) { return a.x == b.x && a.y == b.y; }
 
@@ -1756,34 +1756,6 @@ namespace igm {
 
 namespace {
 
-// Point p of the graph in the barycentric plane of face f, or nullopt if it is not in f's closure.
-std::optional<Point2q> bary_in(const TriMesh& mesh, const TracePoint& q, int f) {
-  const auto fv = mesh.face_vertices(f);
-  switch (q.kind) {
-    case TracePoint::Kind::Vertex:
-      for (int c = 0; c < 3; ++c)
-        if (fv[c] == q.element) return corner_point(c);
-      return std::nullopt;
-    case TracePoint::Kind::Edge: {
-      int h = q.element;
-      Rational t = q.t;
-      if (TriMesh::face(h) != f) {
-        h = mesh.twin(h);
-        t = 1 - t;
-        if (h < 0 || TriMesh::face(h) != f) return std::nullopt;
-      }
-      std::array<Rational, 3> w{Rational(0), Rational(0), Rational(0)};
-      w[h % 3] = 1 - t;
-      w[(h % 3 + 1) % 3] = t;
-      return Point2q{w[1], w[2]};
-    }
-    case TracePoint::Kind::Face:
-      if (q.element != f) return std::nullopt;
-      return Point2q{q.w[1], q.w[2]};
-  }
-  return std::nullopt;
-}
-
 // The canonical half-edges a point lies on (its edge, or every edge at a vertex is not listed:
 // vertices are handled by the caller).
 bool on_edge(const TriMesh& mesh, const TracePoint& q, int ce) {
@@ -1844,7 +1816,7 @@ std::string check_trace_graph(const TriMesh& mesh, const TraceGraph& g) {
       const int f = cur.segment_face[i];
       if (f >= 0) {
         if (f >= mesh.num_faces()) return id + ": segment face out of range";
-        const auto a = bary_in(mesh, g.points[pa], f), b = bary_in(mesh, g.points[pb], f);
+        const auto a = field_detail::point_in_face_if(mesh, g.points[pa], f), b = field_detail::point_in_face_if(mesh, g.points[pb], f);
         if (!a || !b) return id + ": segment " + std::to_string(i) + " has an end outside its face " + std::to_string(f);
         by_face[f].push_back({c, static_cast<int>(i), *a, *b, pa, pb});
       } else {

@@ -2,6 +2,7 @@
 // Internal to the field layout (motorcycle.cpp, field_layout.cpp): the per-face frames of a cross
 // field given by one direction per face, its nearest matchings, and the separatrix rays of a vertex.
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "igm/exact/predicates.h"
@@ -53,9 +54,10 @@ struct FieldFrames {
   VertexRays vertex_rays(int v) const;
 };
 
-/// Trace point q (field/motorcycle.h) in the barycentric plane (w1, w2) of face f, exactly.
-/// Pre: q lies in f's closure (a corner, a point of one of its edges, or a point of f); else
-/// igm::Error(Internal).
+/// Trace point q (field/motorcycle.h) in the barycentric plane (w1, w2) of face f, exactly, or
+/// nothing when q is not in f's closure (a corner, a point of one of its edges, or a point of f).
+std::optional<Point2q> point_in_face_if(const TriMesh& mesh, const TracePoint& q, int f);
+/// The same where q must lie in f's closure: else igm::Error(Internal).
 Point2q point_in_face(const TriMesh& mesh, const TracePoint& q, int f);
 
 }  // namespace igm::field_detail
