@@ -45,6 +45,17 @@ void check_input(const TriMesh& mesh, const std::vector<Vec3d>& positions, const
                 "cross field: max_iterations >= 1, tolerance >= 0, close_pair_distance >= 0, cleanup_rounds >= 0, "
                 "split_distance in [0, 8]");
   const int nv = mesh.num_vertices(), nf = mesh.num_faces(), nh = mesh.num_halfedges();
+  if (!o.constrained_edges.empty()) {
+    if (static_cast<int>(o.constrained_edges.size()) != nh)
+      throw Error(ErrorKind::InvalidArgument, "cross field: " + std::to_string(o.constrained_edges.size()) +
+                                                  " constrained-edge flags for " + std::to_string(nh) + " half-edges");
+    for (int h = 0; h < nh; ++h) {
+      const int t = mesh.twin(h);
+      if (o.constrained_edges[h] && t >= 0 && t < nh && !o.constrained_edges[t])
+        throw Error(ErrorKind::InvalidArgument,
+                    "cross field: half-edge " + std::to_string(h) + " is constrained but its twin is not", {h});
+    }
+  }
   if (static_cast<int>(positions.size()) != nv)
     throw Error(ErrorKind::InvalidArgument, "cross field: " + std::to_string(positions.size()) +
                                                 " positions for " + std::to_string(nv) + " vertices");
@@ -402,15 +413,16 @@ CrossField compute_cross_field(const TriMesh& mesh, const std::vector<Vec3d>& in
   CrossField field;
   CrossFieldStats& st = field.stats;
   st.solver = options.solver;
-  field.frames = face_frames(mesh, p);
+  field.frames = face_frames(mesh, p, options.constrained_edges);
   const FaceFrames& fr = field.frames;
   st.degenerate_faces = fr.degenerate_faces;
   const System sys = build_system(mesh, p, fr);
-  // Boundary constraints: the reference half-edge is the boundary edge, u = exp(0) = 1.
+  // Boundary and feature constraints: the reference half-edge is the constrained edge, u = exp(0) = 1.
   std::vector<char> fixed(nf, 0);
   Vec fixed_value = Vec::Zero(nf);
   for (int f = 0; f < nf; ++f)
-    if (mesh.twin(fr.reference[f]) < 0) {
+    if (mesh.twin(fr.reference[f]) < 0 ||
+        (!options.constrained_edges.empty() && options.constrained_edges[fr.reference[f]])) {
       fixed[f] = 1;
       fixed_value[f] = 1;
       ++st.constrained_faces;

@@ -43,7 +43,8 @@ bool normalize(Vec3d& v) {
 
 }  // namespace
 
-FaceFrames face_frames(const TriMesh& mesh, const std::vector<Vec3d>& positions) {
+FaceFrames face_frames(const TriMesh& mesh, const std::vector<Vec3d>& positions,
+                       const std::vector<char>& constrained) {
   const int nf = mesh.num_faces(), nh = mesh.num_halfedges();
   FaceFrames fr;
   fr.reference.resize(nf);
@@ -63,8 +64,11 @@ FaceFrames face_frames(const TriMesh& mesh, const std::vector<Vec3d>& positions)
     double len[3];
     for (int i = 0; i < 3; ++i) len[i] = norm(vec(h0 + i));
     int r = -1;
-    for (int i = 0; i < 3; ++i)  // longest boundary half-edge of non-zero length
-      if (mesh.twin(h0 + i) < 0 && len[i] > 0 && (r < 0 || len[i] > len[r - h0])) r = h0 + i;
+    auto is_constrained = [&](int h) {
+      return mesh.twin(h) < 0 || (!constrained.empty() && constrained[h]);
+    };
+    for (int i = 0; i < 3; ++i)  // longest constrained half-edge of non-zero length
+      if (is_constrained(h0 + i) && len[i] > 0 && (r < 0 || len[i] > len[r - h0])) r = h0 + i;
     if (r < 0 && len[0] > 0) r = h0;
     if (r < 0) {
       r = h0;

@@ -519,6 +519,12 @@ class Builder {
         for (int t : tris[p])
           for (int v : refined_.face_vertices(t))
             if (v < mesh_.num_vertices() && !is_node_[v] && !vertex_on_arc(v) && (best < 0 || v < best)) best = v;
+        // None (a band one triangle wide between two curves, as between two creases): the
+        // smallest input vertex of the patch that is not a node; its free rays cross the band.
+        if (best < 0)
+          for (int t : tris[p])
+            for (int v : refined_.face_vertices(t))
+              if (v < mesh_.num_vertices() && !is_node_[v] && (best < 0 || v < best)) best = v;
         if (best >= 0) seeds.push_back(best);
       } else {
         ++bad_corners;

@@ -360,6 +360,8 @@ class Tracer {
       if (s < 0 || s >= nv) throw Error(ErrorKind::InvalidArgument, "trace seed out of range", {s});
       seed[s] = 1;
     }
+    for (int i = 0; i < static_cast<int>(options_.walls.size()); ++i) draw_wall(i, options_.walls[i], seed);
+    auto wall_ray = [&](int v, int k) { return vertex_point_[v] >= 0 && used_ray(vertex_point_[v], k, -1); };
     // The starting rays: every ray of a cone or seed, the interior rays of a boundary corner.
     std::vector<std::pair<int, int>> starts;
     for (int v = 0; v < nv; ++v) {
@@ -372,7 +374,7 @@ class Tracer {
       else if (corner) ++g.stats.cones;
       const int first = r.boundary ? 1 : 0, last = r.valence - 1;
       for (int k = first; k <= last; ++k)
-        if (!banned_.count({v, k})) starts.push_back({v, k});
+        if (!banned_.count({v, k}) && !wall_ray(v, k)) starts.push_back({v, k});
     }
     // Vertices with traced rays, hashed by position for the steering.
     steer_length_ = options_.snap_length > 0 ? options_.snap_length : options_.snap_distance * mean_edge_;
@@ -398,7 +400,7 @@ class Tracer {
     std::vector<Claim> claims;
     for (const auto& [a, bx] : reach) {
       const auto& b = bx.first;
-      if (a == b) continue;
+      if (a == b || wall_ray(b.first, b.second)) continue;
       auto it = reach.find(b);
       const bool mutual = it != reach.end() && it->second.first == a;
       if (mutual && b < a) continue;  // listed once, from its lower ray
@@ -1006,6 +1008,73 @@ class Tracer {
     w.face = face;
     w.dir = dir;
     edge_walks_[ce].push_back(std::move(w));
+  }
+
+  // Wall `index` (TraceOptions::walls): a curve along its edges, drawn whole before any other.
+  // Its ends and turns become seeds (`seed`).
+  void draw_wall(int index, const std::vector<int>& w, std::vector<char>& seed) {
+    const int n = static_cast<int>(w.size()), nv = mesh_.num_vertices();
+    const std::string name = "trace wall " + std::to_string(index);
+    if (n < 2) throw Error(ErrorKind::InvalidArgument, name + " has fewer than two vertices");
+    std::vector<int> hs(n - 1);
+    for (int i = 0; i + 1 < n; ++i) {
+      if (w[i] < 0 || w[i] >= nv || w[i + 1] < 0 || w[i + 1] >= nv)
+        throw Error(ErrorKind::InvalidArgument, name + ": a vertex out of range");
+      hs[i] = mesh_.find_halfedge(w[i], w[i + 1]);
+      if (hs[i] < 0 || mesh_.twin(hs[i]) < 0)
+        throw Error(ErrorKind::InvalidArgument,
+                    name + ": vertices " + std::to_string(w[i]) + " and " + std::to_string(w[i + 1]) +
+                        " are not joined by an interior edge",
+                    {w[i], w[i + 1]});
+      if (!walled_edges_.insert(canonical(mesh_, hs[i])).second)
+        throw Error(ErrorKind::InvalidArgument,
+                    name + ": the edge " + std::to_string(w[i]) + "-" + std::to_string(w[i + 1]) + " is in two walls",
+                    {w[i], w[i + 1]});
+    }
+    ++graph_.stats.walls;
+    const bool closed = n > 2 && w.front() == w.back();
+    // Ray of w[i] along the edge to w[i + 1] (out) and along the edge back to w[i - 1] (in).
+    auto out_ray = [&](int i) { return nearest_ray(w[i], TriMesh::face(hs[i]), frames_.edge_vector(hs[i])); };
+    auto in_ray = [&](int i) {
+      const int t = mesh_.twin(hs[i - 1]);
+      return nearest_ray(w[i], TriMesh::face(t), frames_.edge_vector(t));
+    };
+    auto regular = [&](int v) { return !rays(v).boundary && rays(v).valence == 4; };
+    const int out0 = out_ray(0);
+    const int c = start_curve(w[0], out0);
+    runners_[c].state = State::Done;
+    auto stuck = [&]() {
+      finish(c, CurveEnd::Stuck);
+      ++graph_.stats.stuck_walls;
+      graph_.stuck_walls.push_back(index);
+    };
+    if (out0 < 0 || used_ray(vertex_point(w[0]), out0, c)) return stuck();
+    use_ray(vertex_point(w[0]), out0, c);
+    for (int i = 0; i + 1 < n; ++i) {
+      const int h = hs[i], x = w[i + 1], px = vertex_point(x), f = TriMesh::face(h);
+      const int dir = frames_.nearest_direction(f, frames_.edge_vector(h));
+      const int ra = in_ray(i + 1);
+      if (ra < 0 || used_ray(px, ra, c) || (i + 2 == n && closed && ra == out0)) return stuck();
+      add_segment(c, px, -1, ra);
+      add_walk(c, canonical(mesh_, h), Rational(0), Rational(1), f, dir);
+      use_ray(px, ra, c);
+      on_curve_vertex_[x] = 1;
+      if (i + 2 < n) {
+        const int out = out_ray(i + 1);
+        if (out < 0 || out == ra || used_ray(px, out, c)) return stuck();
+        graph_.curves[c].ray_forward.back() = out;
+        use_ray(px, out, c);
+        if (regular(x) && out != (ra + 2) % 4) seed[x] = 1;
+      } else if (closed) {
+        if (regular(x) && out0 != (ra + 2) % 4) seed[x] = 1;
+      }
+    }
+    if (!closed) {
+      if (regular(w.front())) seed[w.front()] = 1;
+      if (regular(w.back())) seed[w.back()] = 1;
+    }
+    const int last = w.back();
+    finish(c, !regular(last) || seed[last] ? CurveEnd::Cone : CurveEnd::Curve);
   }
 
   // Ends curve c at meeting m, its segment in face f with direction dir.
@@ -1722,6 +1791,7 @@ class Tracer {
   std::unordered_map<int, std::vector<int>> edge_points_;
   std::unordered_map<int, std::vector<FaceSegment>> face_segments_;
   std::unordered_map<int, std::vector<EdgeWalk>> edge_walks_;
+  std::set<int> walled_edges_;  // canonical half-edges of the walls
   std::unordered_map<int, std::vector<std::pair<int, int>>> vertex_rays_used_;
   std::vector<Hit> hits_;
   std::vector<int> point_uses_;  // per point: occurrences in curves

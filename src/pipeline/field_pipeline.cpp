@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <optional>
 #include <string>
 
@@ -31,6 +32,83 @@ std::string cones_summary(const CrossFieldStats& s) {
 
 }  // namespace
 
+FieldFeatures field_features(const TriMesh& mesh, const std::vector<char>& feature) {
+  const int nh = mesh.num_halfedges(), nv = mesh.num_vertices();
+  FieldFeatures out;
+  if (feature.empty()) return out;
+  out.constrained.assign(nh, 0);
+  std::vector<int> degree(nv, 0);
+  for (int h = 0; h < nh; ++h) {
+    const int t = mesh.twin(h);
+    if (!feature[h] || t < 0 || (t >= 0 && !feature[t])) continue;
+    out.constrained[h] = 1;
+    if (h < t) ++degree[mesh.origin(h)], ++degree[mesh.target(h)];
+  }
+  // Chains: from every end or junction (degree != 2) along each feature edge until the next one,
+  // then the closed loops left (from their least vertex). Bound: every edge is taken once.
+  std::vector<char> taken(nh, 0);
+  auto walk = [&](int h) {
+    std::vector<int> chain{mesh.origin(h)};
+    for (int guard = 0; guard < nh; ++guard) {
+      taken[h] = taken[mesh.twin(h)] = 1;
+      const int x = mesh.target(h);
+      chain.push_back(x);
+      if (degree[x] != 2 || x == chain.front()) break;
+      int next = -1;
+      const int first = mesh.vertex_halfedge(x);
+      for (int o = first, g = 0; o >= 0 && g < nh; ++g) {
+        if (out.constrained[o] && !taken[o]) next = o;
+        o = mesh.next_around_origin(o);
+        if (o == first) break;
+      }
+      if (next < 0) break;
+      h = next;
+    }
+    out.walls.push_back(std::move(chain));
+  };
+  for (int pass = 0; pass < 2; ++pass)
+    for (int v = 0; v < nv; ++v) {
+      if (degree[v] == 0 || (pass == 0 && degree[v] == 2)) continue;
+      const int first = mesh.vertex_halfedge(v);
+      for (int o = first, g = 0; o >= 0 && g < nh; ++g) {
+        if (out.constrained[o] && !taken[o]) walk(o);
+        o = mesh.next_around_origin(o);
+        if (o == first) break;
+      }
+    }
+  return out;
+}
+
+std::vector<std::pair<int, int>> igm_edges_on(const TriMesh& input, const std::vector<char>& constrained, const IgmMesh& igm) {
+  std::vector<std::pair<int, int>> out;
+  if (constrained.empty()) return out;
+  // The input edge (i < j) a location lies on, as the pair of its used vertices (-1 for a point
+  // inside a face); a vertex gives (v, -1).
+  auto support = [&](int x) {
+    const SurfacePoint& p = igm.locations[x];
+    return std::array<int, 3>{p.v[0], p.v[1], p.v[2]};
+  };
+  for (std::size_t t = 0; t < igm.triangles.size(); ++t)
+    for (int i = 0; i < 3; ++i) {
+      const int a = igm.triangles[t][i], b = igm.triangles[t][(i + 1) % 3];
+      if (a > b) continue;  // each interior edge once (from the triangle where it runs up)
+      const std::array<int, 3> sa = support(a), sb = support(b);
+      if (sa[2] >= 0 || sb[2] >= 0) continue;  // inside a face
+      int u = -1, w = -1;  // the union of the two supports, at most two vertices
+      bool fits = true;
+      for (const int v : {sa[0], sa[1], sb[0], sb[1]}) {
+        if (v < 0 || v == u || v == w) continue;
+        if (u < 0) u = v;
+        else if (w < 0) w = v;
+        else fits = false;
+      }
+      if (!fits || u < 0 || w < 0) continue;
+      const int h = input.find_halfedge(u, w);
+      if (h >= 0 && constrained[h]) out.push_back({a, b});
+    }
+  return out;
+}
+
 std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const PipelineOptions& options,
                                                 PipelineStats& attempt) {
   PipelineResult result;
@@ -52,6 +130,28 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
     return std::nullopt;
   };
   const std::vector<Vec3d>& positions = *input.positions;
+  std::vector<char> feature_flags;
+  if (const char* env = std::getenv("IGM_EXPERIMENT_FEATURE_ANGLE")) {  // EXPERIMENT: replaced by features/
+    const double cos_limit = std::cos(std::atof(env) * 3.14159265358979 / 180);
+    const TriMesh& m = *input.mesh;
+    feature_flags.assign(m.num_halfedges(), 0);
+    auto normal = [&](int f) {
+      const auto fv = m.face_vertices(f);
+      const Vec3d &p0 = positions[fv[0]], &p1 = positions[fv[1]], &p2 = positions[fv[2]];
+      const Vec3d u{p1.x - p0.x, p1.y - p0.y, p1.z - p0.z}, v{p2.x - p0.x, p2.y - p0.y, p2.z - p0.z};
+      Vec3d n{u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x};
+      const double l = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+      return l > 0 ? Vec3d{n.x / l, n.y / l, n.z / l} : Vec3d{0, 0, 0};
+    };
+    for (int h = 0; h < m.num_halfedges(); ++h) {
+      const int t = m.twin(h);
+      if (t < 0) continue;
+      const Vec3d a = normal(TriMesh::face(h)), b = normal(TriMesh::face(t));
+      const double d = a.x * b.x + a.y * b.y + a.z * b.z;
+      if ((a.x != 0 || a.y != 0 || a.z != 0) && (b.x != 0 || b.y != 0 || b.z != 0) && d <= cos_limit) feature_flags[h] = 1;
+    }
+  }
+  FieldFeatures features = field_features(*input.mesh, feature_flags);
 
   // The quad size the sizing aims at (for the tracing's snapping): from the area and the quad
   // count, or the edge length; 0 with a resolution (then the tracing's own default).
@@ -78,8 +178,10 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
     double snap;  // in quad sizes; <= 0: the trace options' own snap length
   };
   std::vector<Attempt> attempts{{options.field, options.field_layout.trace.snap_length > 0 ? 0.0 : 0.5}};
+  attempts.front().field.constrained_edges = features.constrained;
   for (const PipelineOptions::FieldAttempt& a : options.field_attempts) {
     CrossFieldOptions fo = options.field;
+    fo.constrained_edges = features.constrained;
     fo.alignment = a.alignment;
     fo.remove_close_pairs = a.cleanup;
     attempts.push_back({fo, a.snap});
@@ -87,6 +189,12 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
   std::vector<std::pair<CrossFieldOptions, CrossField>> fields;  // computed so far
   FieldLayoutResult traced;
   std::string first_failure;
+  // Feature walls that cannot be drawn (their field rays taken: a sharp turn of a crease) are
+  // left out with their constraints and the field computed again, at most kFeatureRounds times
+  // (each removes at least one wall); the rest of the walls then still hold.
+  constexpr int kFeatureRounds = 4;
+  for (int feature_round = 0; feature_round <= kFeatureRounds; ++feature_round) {
+  bool walls_stuck = false;
   for (std::size_t k = 0; k < attempts.size(); ++k) {
     const std::string attempt_name = attempts.size() > 1 ? " (attempt " + std::to_string(k + 1) + ")" : "";
     auto t0 = Clock::now();
@@ -124,6 +232,7 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
     std::vector<Vec3d> direction(input.mesh->num_faces());
     for (int f = 0; f < input.mesh->num_faces(); ++f) direction[f] = field_direction(field, f, 0);
     FieldLayoutOptions lo = options.field_layout;
+    lo.trace.walls = features.walls;
     if (attempts[k].snap > 0 && quad_size > 0) lo.trace.snap_length = attempts[k].snap * quad_size;
     try {
       traced = build_field_layout(*input.mesh, positions, direction, lo);
@@ -139,9 +248,35 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
                                std::to_string(traced.stats.rounds) + " rounds"
                          : "no layout: " + traced.failure);
     if (traced.ok) break;
+    if (!traced.graph.stuck_walls.empty() && feature_round < kFeatureRounds) {
+      walls_stuck = true;
+      break;
+    }
     if (first_failure.empty()) first_failure = "trace: " + traced.failure;
   }
+  if (!walls_stuck) break;
+  // Leave out the stuck walls and their constraints; every field is computed again.
+  std::vector<char> drop(features.walls.size(), 0);
+  for (int w : traced.graph.stuck_walls) drop[w] = 1;
+  std::vector<std::vector<int>> kept;
+  for (std::size_t w = 0; w < features.walls.size(); ++w) {
+    if (!drop[w]) {
+      kept.push_back(std::move(features.walls[w]));
+      continue;
+    }
+    const std::vector<int>& chain = features.walls[w];
+    for (std::size_t i = 0; i + 1 < chain.size(); ++i) {
+      const int h = input.mesh->find_halfedge(chain[i], chain[i + 1]);
+      features.constrained[h] = features.constrained[input.mesh->twin(h)] = 0;
+    }
+    ++stats.features_dropped;
+  }
+  features.walls = std::move(kept);
+  for (Attempt& a : attempts) a.field.constrained_edges = features.constrained;
+  fields.clear();
+  }
   if (!traced.ok) return fail(first_failure);
+  stats.feature_walls = static_cast<int>(features.walls.size());
   stats.refined_vertices = traced.stats.refined_vertices;
   stats.refined_faces = traced.stats.refined_triangles;
   stats.layout_quads = traced.stats.patches;
@@ -196,7 +331,13 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
   }
 
   // --- smooth, extract, certify: as for every layout ---
-  smooth_extract_certify(result, opts, stage, positions, [] { return std::string("the integer isolines"); });
+  const std::vector<std::pair<int, int>> held = igm_edges_on(*input.mesh, features.constrained, result.igm);
+  try {
+    smooth_extract_certify(result, opts, stage, positions, [] { return std::string("the integer isolines"); }, held);
+  } catch (const Error& e) {
+    if (e.kind() != ErrorKind::InvalidArgument) throw;
+    return fail(std::string("smooth: internal error: ") + e.what());
+  }
   if (!result.certified())
     return fail("certify: IGM " + certify::summary(result.igm_report) + "; quads " + certify::summary(result.quad_report));
   measure_quality(result, positions, *input.triangles, options, stage);

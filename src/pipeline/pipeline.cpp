@@ -159,7 +159,8 @@ void measure_quality(PipelineResult& result, const std::vector<Vec3d>& input_pos
 }
 
 void smooth_extract_certify(PipelineResult& result, const PipelineOptions& options, StageReporter& stage,
-                            const std::vector<Vec3d>& input_positions, const std::function<std::string()>& structured) {
+                            const std::vector<Vec3d>& input_positions, const std::function<std::string()>& structured,
+                            const std::vector<std::pair<int, int>>& isoline_edges) {
   IgmMesh& igm = result.igm;
   PipelineStats& stats = result.stats;
   auto t0 = Clock::now();
@@ -178,6 +179,7 @@ void smooth_extract_certify(PipelineResult& result, const PipelineOptions& optio
     so.certify = false;  // the isolines' extraction runs the certifier on the result below
     so.progress = options.smooth_progress;
     so.threads = resolve_threads(options.threads);
+    so.isoline_edges = isoline_edges;
     SmoothResult smoothed = smooth_igm_releasing(igm, so);
     igm.corner_uv = std::move(smoothed.corner_uv);
     stats.smooth = std::move(smoothed.stats);

@@ -72,6 +72,22 @@ struct FieldSurface {
   int genus = 0, boundary_loops = 0;
 };
 
+/// The edges of `igm` that lie on the input edges flagged in `constrained` (one flag per half-edge
+/// of the input mesh, the IGM's input vertices first): both ends' exact locations on one flagged
+/// input edge. The field layout's walls map them onto integer isolines; smoothing holds them
+/// there. O(F) plus O(1) per edge.
+std::vector<std::pair<int, int>> igm_edges_on(const TriMesh& input, const std::vector<char>& constrained, const IgmMesh& igm);
+
+/// Feature edges for the field layout (issue 45): the cross field's constraint flags (per
+/// half-edge, both halves of each flagged interior edge; empty when none) and the walls to trace
+/// (chains between ends and junctions, then closed loops; field/motorcycle.h). `feature`: empty
+/// or one flag per half-edge (an edge counts when both halves are flagged). O(H).
+struct FieldFeatures {
+  std::vector<char> constrained;
+  std::vector<std::vector<int>> walls;
+};
+FieldFeatures field_features(const TriMesh& mesh, const std::vector<char>& feature);
+
 /// The field layout's IGM of a surface (field_pipeline.cpp): field, trace, quantize, igm, then
 /// smooth_extract_certify and the quality. Nothing where a stage cannot finish or the certifier
 /// rejects the output: then `attempt` holds the attempt's statistics (its stages, the field's, the
@@ -111,7 +127,8 @@ PipelineResult compute_igm_open(const SurfaceComponent& input, const PipelineOpt
 /// which fills result.quads from the map's own structure (the layout's rectangles, the
 /// pillowcase's cells; an empty function: by the isolines), and the certifier on the IGM. Then the certifier on the quads ("certify").
 void smooth_extract_certify(PipelineResult& result, const PipelineOptions& options, StageReporter& stage,
-                            const std::vector<Vec3d>& input_positions, const std::function<std::string()>& structured);
+                            const std::vector<Vec3d>& input_positions, const std::function<std::string()>& structured,
+                            const std::vector<std::pair<int, int>>& isoline_edges = {});
 
 /// Runs the independent certifier on result.igm (checks 1-4; not when `igm_report_done`: the
 /// extraction by isolines ran it) and result.quads (check 5, expected genus result.stats.genus and,

@@ -292,4 +292,36 @@ SeamlessStructure seamless_structure(const IgmMesh& igm) {
   return s;
 }
 
+void hold_isoline_edges(SeamlessStructure& s, const std::vector<std::pair<int, int>>& edges) {
+  const TriMesh& m = s.mesh;
+  const int nv = m.num_vertices();
+  s.fixed_axes.assign(nv, 0);
+  s.isoline_edges.clear();
+  for (const auto& [a, b] : edges) {
+    const std::string name = "the edge " + std::to_string(a) + "-" + std::to_string(b);
+    if (a < 0 || a >= nv || b < 0 || b >= nv)
+      throw Error(ErrorKind::InvalidArgument, "hold_isoline_edges: " + name + " has a vertex out of range", {a, b});
+    int h = m.find_halfedge(a, b);
+    if (h < 0) h = m.find_halfedge(b, a);
+    if (h < 0) throw Error(ErrorKind::InvalidArgument, "hold_isoline_edges: " + name + " is not an edge of the map", {a, b});
+    const int n = TriMesh::next(h);
+    const Point2q pa = apply(s.corner_motion[h], s.vertex_uv[m.origin(h)]);
+    const Point2q pb = apply(s.corner_motion[n], s.vertex_uv[m.origin(n)]);
+    int axis = -1;
+    if (pa.x == pb.x && pa.x.get_den() == 1) axis = 0;
+    else if (pa.y == pb.y && pa.y.get_den() == 1) axis = 1;
+    if (axis < 0)
+      throw Error(ErrorKind::InvalidArgument, "hold_isoline_edges: " + name + " is not on an integer isoline", {a, b});
+    BoundaryIsoline e;
+    e.halfedge = h;
+    e.axis = axis;
+    e.value = axis == 0 ? pa.x.get_num() : pa.y.get_num();
+    s.isoline_edges.push_back(std::move(e));
+    for (const int c : {h, n}) {  // the fixed coordinate in the end's reference chart
+      const int own = s.corner_motion[c].k % 2 == 0 ? axis : 1 - axis;
+      s.fixed_axes[m.origin(c)] |= static_cast<std::uint8_t>(1u << own);
+    }
+  }
+}
+
 }  // namespace igm

@@ -70,9 +70,10 @@ class Smoother {
         ++(s_.boundary[v] ? stats_.boundary_corners : stats_.cones);
         continue;
       }
+      const unsigned held = s_.fixed_axes.empty() ? 0u : s_.fixed_axes[v];
       for (int j = 0; j < 2; ++j)
-        if (j != s_.isoline_axis[v]) unknown_[v][j] = n_++;
-      ++(s_.slides(v) ? stats_.sliding_vertices : stats_.free_vertices);
+        if (j != s_.isoline_axis[v] && !((held >> j) & 1u)) unknown_[v][j] = n_++;
+      ++(s_.slides(v) || held != 0 ? stats_.sliding_vertices : stats_.free_vertices);
     }
     grid_corners(s_, map_, map_.vertex_uv, corners_);
     double uv_area = 0;
@@ -420,6 +421,7 @@ SmoothResult smooth(const IgmMesh& igm, const SmoothOptions& options, std::vecto
                   {static_cast<std::int64_t>(v)});
   }
   SeamlessStructure s = seamless_structure(igm);
+  if (!options.isoline_edges.empty()) hold_isoline_edges(s, options.isoline_edges);
   SmoothResult result;
   SmoothStats& stats = result.stats;
   std::optional<GridMap> map;

@@ -39,7 +39,8 @@
 // check_poincare_hopf.
 //
 // Boundary constraints. A face with a boundary edge (of non-zero length) has that edge as its
-// reference half-edge and theta_f = 0: one field direction along the boundary edge, exactly. A
+// reference half-edge and theta_f = 0: one field direction along the boundary edge, exactly.
+// Feature edges given in CrossFieldOptions::constrained_edges are treated the same way. A
 // face with two or three boundary edges is aligned with the longest of them (ties: the first of
 // 3f, 3f+1, 3f+2); its other boundary edges are then off the field by their delta (rounded to a
 // quarter turn in k).
@@ -102,6 +103,11 @@ struct CrossFieldOptions {
   bool split_valence6 = false;
   double split_distance = 2.0;
   int cleanup_rounds = 3;
+  /// Feature edges as hard constraints (issue 45): empty, or one flag per half-edge, set on both
+  /// half-edges of each constrained interior edge. A face with a flagged edge is aligned with it
+  /// exactly as with a boundary edge (the longest of its constrained edges; face_frames.h), on
+  /// both sides of the edge, so one field direction runs along every constrained edge.
+  std::vector<char> constrained_edges;
 };
 
 /// An interior vertex of valence != 4, or a boundary vertex with k != 2.
@@ -127,7 +133,7 @@ struct CrossFieldStats {
   double factor_seconds = 0;   // of which the factorizations
   double mean_edge_length = 0;
   int degenerate_faces = 0;    // faces whose frame took a fallback (face_frames.h)
-  int constrained_faces = 0;   // faces aligned with a boundary edge
+  int constrained_faces = 0;   // faces aligned with a boundary or feature edge
   /// Interior vertices by valence 0..8 (index 8: valence >= 8; valence <= 0 counts as 0),
   /// and boundary vertices by k 0..8 (the same capping).
   std::array<int, 9> valence_count{};

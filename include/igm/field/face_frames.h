@@ -18,8 +18,9 @@
 // w_twin = -w_h - 1. The integers w_h are what makes the field's singularity indices exact
 // integers (cross_field.h): nothing about them is decided by a tolerance.
 //
-// Reference half-edge (deterministic): a face with a boundary edge of non-zero length takes its
-// longest boundary half-edge (ties: the first of 3f, 3f+1, 3f+2); any other face takes 3f
+// Reference half-edge (deterministic): a face with a constrained edge of non-zero length (a
+// boundary edge, or a half-edge flagged in `constrained`: the feature edges of issue 45) takes
+// its longest constrained half-edge (ties: the first of 3f, 3f+1, 3f+2); any other face takes 3f
 // (x = unit(p1 - p0)) unless p1 == p0, in which case its longest half-edge (ties as above).
 // Degenerate faces (fallbacks, documented at face_frames): a zero normal (collinear or
 // coincident corners) is replaced by the sum of the edge-neighbours' area vectors, and if that is
@@ -46,8 +47,10 @@ struct FaceFrames {
 
 /// Frames and transport of every face of a connected surface (closed, or with boundary: twin -1
 /// on boundary half-edges). Pre: positions.size() == mesh.num_vertices() and finite (the caller,
-/// compute_cross_field, checks). Deterministic; cost O(F).
-FaceFrames face_frames(const TriMesh& mesh, const std::vector<Vec3d>& positions);
+/// compute_cross_field, checks); `constrained` empty or one flag per half-edge. Deterministic;
+/// cost O(F).
+FaceFrames face_frames(const TriMesh& mesh, const std::vector<Vec3d>& positions,
+                       const std::vector<char>& constrained = {});
 
 /// The 3D unit direction of angle phi in face f's frame.
 Vec3d frame_direction(const FaceFrames& frames, int f, double phi);

@@ -83,6 +83,14 @@ struct TraceOptions {
   /// Rays (vertex, ray index) that are not traced (build_field_layout leaves out the rays of curves
   /// that could not end well, when the vertex keeps no angle above two quarter turns).
   std::vector<std::pair<int, int>> banned_rays;
+  /// Walls (issue 45: feature curves): chains of vertices joined by interior mesh edges (closed
+  /// when the first vertex is repeated last), each edge in at most one wall. They are drawn
+  /// first, whole, as curves along their edges (each vertex left and entered by its ray nearest
+  /// to the edge), and every other curve ends on them. A wall's ends and the vertices where it
+  /// turns in the field (not leaving by the ray opposite to the one it came in by) are traced like
+  /// seeds (their free rays). A wall whose ray at a vertex is missing or already taken ends there
+  /// (CurveEnd::Stuck: the layout is then unusable and says so).
+  std::vector<std::vector<int>> walls;
 };
 
 struct TraceStats {
@@ -102,6 +110,8 @@ struct TraceStats {
   int node_snaps = 0;         // curves ended at a node close by instead of a new T-junction
   int vertex_joins = 0;       // parallel meetings resolved by going on to the vertex ahead
   int dropped = 0;            // of those, curves removed whole (nothing rested on them)
+  int walls = 0;              // walls drawn (TraceOptions::walls)
+  int stuck_walls = 0;        // of those, walls that could not be drawn whole
   double seconds = 0;
 };
 
@@ -114,6 +124,8 @@ struct TraceGraph {
   /// from the boundary ahead (0) to the boundary behind).
   std::vector<int> ray_count;
   std::vector<char> ray_cyclic;
+  /// The walls (TraceOptions::walls, by index) that could not be drawn whole, ascending.
+  std::vector<int> stuck_walls;
   /// Per vertex: its field valence (interior: 4 - 4 x index, 4 regular; boundary: its angle in
   /// quarter turns), from the matchings used here.
   std::vector<int> valence;
@@ -130,7 +142,8 @@ struct TraceGraph {
 /// every vertex of valence != 4 (interior) or != 2 (boundary: its interior rays) and from
 /// options.seeds.
 /// Pre: `mesh` is a connected orientable manifold (boundary allowed), positions finite. Throws
-/// igm::Error(InvalidArgument) for sizes that do not match or a seed out of range. Every loop is bounded: curves
+/// igm::Error(InvalidArgument) for sizes that do not match, a seed out of range, or a wall that is
+/// not a chain of interior mesh edges (naming the wall and its vertices). Every loop is bounded: curves
 /// <= sum of ray counts of the starting vertices, each <= max_segments segments, each segment
 /// checked against the segments already in its face (exact). Cost: O(total segments x segments
 /// per face) exact tests.

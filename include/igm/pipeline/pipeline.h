@@ -171,6 +171,9 @@ struct PipelineStats {
   std::string layout_fallback;
   CrossFieldStats cross_field;     // the field layout's stages (when tried)
   FieldLayoutStats field_layout;
+  /// The field layout's feature walls (issue 45): chains of feature edges traced as layout
+  /// curves (kept), and those left out because the field gave no ray for them (a sharp turn).
+  int feature_walls = 0, features_dropped = 0;
   QuantizeStats quantize;
   int genus = 0;
   int boundary_loops = 0;  // of an open surface (0: closed)

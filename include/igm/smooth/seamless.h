@@ -12,6 +12,7 @@
 // (k = 2) slides along its isoline: one coordinate of x_v is that isoline's integer value and
 // stays, the other moves. Such moves keep every boundary edge on its isoline.
 #include <array>
+#include <utility>
 #include <vector>
 
 #include "igm/exact/predicates.h"
@@ -74,6 +75,12 @@ struct SeamlessStructure {
   std::vector<signed char> isoline_axis;
   /// Every boundary edge, by increasing half-edge, with its isoline.
   std::vector<BoundaryIsoline> boundary_edges;
+  /// Interior edges held on integer isolines (issue 45: feature edges; hold_isoline_edges), each
+  /// as its half-edge with the isoline in that face's chart, and per vertex the coordinates of
+  /// x_v they fix (bit 0: u, bit 1: v; both: the vertex stays at its integer point). Empty unless
+  /// hold_isoline_edges was called.
+  std::vector<BoundaryIsoline> isoline_edges;
+  std::vector<std::uint8_t> fixed_axes;
   int components = 0;      // connected components
   int boundary_loops = 0;  // in all components
   int genus = 0;           // the sum of the components' genera: (2 - chi - loops) / 2 each
@@ -117,5 +124,15 @@ std::vector<int> angle_indices(const TriMesh& mesh,
 /// NonManifoldEdge / NonManifoldVertex from the half-edge construction or the fan walk.
 /// Cost: O(F log F) plus O(F) exact operations on the UVs' rationals.
 SeamlessStructure seamless_structure(const IgmMesh& igm);
+
+/// Holds the edges (a, b) (vertex pairs of s.mesh, either order) on their integer isolines: each
+/// must be an edge whose two corner UVs in the chart of a face beside it share an integer u or an
+/// integer v (checked exactly: igm::Error(InvalidArgument) naming the pair otherwise). Fills
+/// s.isoline_edges and s.fixed_axes: at each end the coordinate of x_v that the isoline fixes,
+/// carried into the vertex's reference chart by its corner motion (a quarter turn swaps u and v).
+/// Smoothing then moves such a vertex along its isoline only (both coordinates fixed where two
+/// isolines cross), and check_map checks these edges as it checks boundary edges. Cost
+/// O(edges x valence) plus O(1) exact operations per edge.
+void hold_isoline_edges(SeamlessStructure& s, const std::vector<std::pair<int, int>>& edges);
 
 }  // namespace igm

@@ -62,6 +62,10 @@ struct SmoothOptions {
   /// all cores; certify::Options::threads).
   bool certify = true;
   int threads = 0;
+  /// Interior edges (vertex pairs of the IGM) held on their integer isolines (issue 45: feature
+  /// edges), each already on one: their vertices slide along them (seamless.h,
+  /// hold_isoline_edges); InvalidArgument if an edge is missing or off every integer isoline.
+  std::vector<std::pair<int, int>> isoline_edges;
   std::function<void(const SmoothProgress&)> progress;   // optional
   std::function<void(const SmoothIterate&)> on_iterate;  // optional, for tests
 };
