@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <numbers>
 #include <string>
@@ -596,4 +597,78 @@ TEST_CASE("cross field: bad input gets a typed error naming the element") {
   CHECK(error_of(two.mesh, two.positions) == std::pair{ErrorKind::SeveralComponents, Elements{1}});
   const Surface extra = from({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {5, 0, 0}}, {{0, 1, 2}}, true);
   CHECK(error_of(extra.mesh, extra.positions) == std::pair{ErrorKind::SeveralComponents, Elements{3}});
+}
+
+namespace {
+
+// Both half-edges of every edge of `s` whose two ends satisfy `on` (the test's chain of edges).
+std::vector<char> flag_edges(const Surface& s, const std::function<bool(const Vec3d&)>& on) {
+  std::vector<char> flags(s.mesh.num_halfedges(), 0);
+  for (int h = 0; h < s.mesh.num_halfedges(); ++h)
+    if (on(s.positions[s.mesh.origin(h)]) && on(s.positions[s.mesh.target(h)])) flags[h] = 1;
+  return flags;
+}
+
+// How many faces with a flagged edge have no field direction along one of their flagged edges
+// (the sine of the angle above 1e-9).
+int misaligned_faces(const Surface& s, const CrossField& f, const std::vector<char>& flags) {
+  int bad = 0;
+  for (int face = 0; face < s.mesh.num_faces(); ++face) {
+    bool any = false, aligned = false;
+    for (int i = 0; i < 3; ++i) {
+      const int h = 3 * face + i;
+      if (!flags[h]) continue;
+      any = true;
+      const Vec3d a = s.positions[s.mesh.origin(h)], b = s.positions[s.mesh.target(h)];
+      Vec3d e{b.x - a.x, b.y - a.y, b.z - a.z};
+      const double l = std::sqrt(e.x * e.x + e.y * e.y + e.z * e.z);
+      e = {e.x / l, e.y / l, e.z / l};
+      const Vec3d d = field_direction(f, face, 0), c = cross(d, e);
+      if (std::sqrt(c.x * c.x + c.y * c.y + c.z * c.z) <= 1e-9) aligned = true;
+    }
+    if (any && !aligned) ++bad;
+  }
+  return bad;
+}
+
+}  // namespace
+
+TEST_CASE("cross field: feature edges are hard constraints (issue 45)") {
+  const Surface s = subdivided_cube(4);
+  // A chain across the top face (x = 0 on z = 1, not a crease) and the diagonal of the face
+  // y = -1 where its triangles have one: neither is where the free field runs, so without the
+  // constraint the faces beside them are not aligned (checked), with it they are.
+  const std::vector<char> middle = flag_edges(s, [](const Vec3d& p) { return p.z == 1 && p.x == 0; });
+  const std::vector<char> diagonal = flag_edges(s, [](const Vec3d& p) { return p.y == -1 && p.x == p.z; });
+  std::vector<char> flags(middle.size());
+  for (std::size_t h = 0; h < flags.size(); ++h) flags[h] = middle[h] || diagonal[h];
+  REQUIRE(std::count(middle.begin(), middle.end(), 1) == 8);
+  REQUIRE(std::count(diagonal.begin(), diagonal.end(), 1) > 0);
+  for (double w : {0.0, 100.0}) {
+    CrossFieldOptions o;
+    o.alignment = w;
+    const CrossField free = compute_cross_field(s.mesh, s.positions, o);
+    o.constrained_edges = flags;
+    const CrossField held = compute_cross_field(s.mesh, s.positions, o);
+    check_field(s, held, "constrained, alignment " + std::to_string(w));
+    CHECK(held.stats.constrained_faces >= 8);
+    CHECK(misaligned_faces(s, held, flags) == 0);
+    CHECK(misaligned_faces(s, free, diagonal) > 0);
+  }
+  // The cube's creases as constraints: the eight corners stay its only cones, every crease face aligned.
+  const std::vector<char> creases = flag_edges(s, [](const Vec3d& p) {
+    return (std::fabs(p.x) == 1) + (std::fabs(p.y) == 1) + (std::fabs(p.z) == 1) >= 2;
+  });
+  CrossFieldOptions o;
+  o.constrained_edges = creases;
+  const CrossField f = compute_cross_field(s.mesh, s.positions, o);
+  CHECK(misaligned_faces(s, f, creases) == 0);
+  REQUIRE(f.cones.size() == 8);
+  for (const Cone& c : f.cones) CHECK(c.valence == 3);
+  // Flags of the wrong size, or on one half of an edge only: typed errors.
+  o.constrained_edges.pop_back();
+  CHECK_THROWS_AS(compute_cross_field(s.mesh, s.positions, o), Error);
+  o.constrained_edges = std::vector<char>(s.mesh.num_halfedges(), 0);
+  o.constrained_edges[0] = 1;
+  CHECK_THROWS_AS(compute_cross_field(s.mesh, s.positions, o), Error);
 }

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "igm/core/error.h"
 #include "igm/field/cross_field.h"
 #include "igm/field/field_layout.h"
 #include "igm/field/motorcycle.h"
@@ -202,4 +203,55 @@ TEST_CASE("field layout: sizes that do not match are typed errors") {
   TraceOptions seed;
   seed.seeds = {s.mesh.num_vertices()};
   CHECK_THROWS_AS(trace_motorcycles(s.mesh, s.positions, directions(s), seed), Error);
+}
+
+TEST_CASE("field layout: walls (issue 45 feature curves) are drawn whole and bound the patches") {
+  const Surface s = igm_test::subdivided_cube(4);
+  // The wall: x = 0 across the top face z = 1, from one crease to the other (no separatrix runs
+  // there: without it no arc does).
+  std::vector<int> wall;
+  for (int j = 0; j <= 4; ++j) {
+    const double y = -1 + 0.5 * j;
+    for (int v = 0; v < s.mesh.num_vertices(); ++v)
+      if (s.positions[v].x == 0 && s.positions[v].y == y && s.positions[v].z == 1) wall.push_back(v);
+  }
+  REQUIRE(wall.size() == 5);
+  CrossFieldOptions fo;
+  fo.constrained_edges.assign(s.mesh.num_halfedges(), 0);
+  for (std::size_t i = 0; i + 1 < wall.size(); ++i) {
+    const int h = s.mesh.find_halfedge(wall[i], wall[i + 1]);
+    fo.constrained_edges[h] = fo.constrained_edges[s.mesh.twin(h)] = 1;
+  }
+  const std::vector<Vec3d> d = directions(s, fo);
+  // Every wall edge a pair of consecutive vertices of one arc.
+  auto wall_on_arcs = [&](const FieldLayoutResult& r) {
+    std::set<std::pair<int, int>> arc_edges;
+    for (const LayoutArc& a : r.layout.arcs)
+      for (std::size_t i = 0; i + 1 < a.vertices.size(); ++i)
+        arc_edges.insert({std::min(a.vertices[i], a.vertices[i + 1]), std::max(a.vertices[i], a.vertices[i + 1])});
+    int on = 0;
+    for (std::size_t i = 0; i + 1 < wall.size(); ++i)
+      on += arc_edges.count({std::min(wall[i], wall[i + 1]), std::max(wall[i], wall[i + 1])}) > 0;
+    return on;
+  };
+  const FieldLayoutResult without = build_field_layout(s.mesh, s.positions, d);
+  check_layout(without, "cube without the wall");
+  CHECK(wall_on_arcs(without) == 0);
+  TraceOptions t;
+  t.walls = {wall};
+  const TraceGraph g = trace_motorcycles(s.mesh, s.positions, d, t);
+  CHECK(check_trace_graph(s.mesh, g) == "");
+  CHECK(g.stats.walls == 1);
+  CHECK(g.stuck_walls.empty());
+  FieldLayoutOptions o;
+  o.trace.walls = {wall};
+  const FieldLayoutResult with = build_field_layout(s.mesh, s.positions, d, o);
+  check_layout(with, "cube with the wall");
+  CHECK(wall_on_arcs(with) == 4);
+  CHECK(with.layout.patches.size() > without.layout.patches.size());
+  // A wall whose vertices are not joined by an edge, or an edge in two walls: typed errors.
+  t.walls = {{wall[0], wall[2]}};
+  CHECK_THROWS_AS(trace_motorcycles(s.mesh, s.positions, d, t), Error);
+  t.walls = {wall, {wall[1], wall[0]}};
+  CHECK_THROWS_AS(trace_motorcycles(s.mesh, s.positions, d, t), Error);
 }

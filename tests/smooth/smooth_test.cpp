@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -450,4 +451,66 @@ TEST_CASE("an open surface with nothing to move: the square disk of one cell, fo
   CHECK(r.stats.free_vertices + r.stats.sliding_vertices + r.stats.cones == 0);
   CHECK(igm_test::changed_corners(r.corner_uv, igm.corner_uv) == 0);
   CHECK(r.stats.certified);
+}
+
+namespace {
+
+// The edges (a < b) of `igm` whose two corner UVs in a face share an integer u or v, neither end
+// a cone or on the boundary: the edges of the layout's arcs.
+std::vector<std::pair<int, int>> isoline_edges_of(const igm::IgmMesh& igm) {
+  const igm::SeamlessStructure s = igm::seamless_structure(igm);
+  std::set<std::pair<int, int>> out;
+  for (std::size_t t = 0; t < igm.triangles.size(); ++t)
+    for (int i = 0; i < 3; ++i) {
+      const int a = igm.triangles[t][i], b = igm.triangles[t][(i + 1) % 3];
+      const igm::Point2q &p = igm.corner_uv[t][i], &q = igm.corner_uv[t][(i + 1) % 3];
+      const bool on = (p.x == q.x && p.x.get_den() == 1) || (p.y == q.y && p.y.get_den() == 1);
+      if (on && !s.is_cone(a) && !s.is_cone(b)) out.insert({std::min(a, b), std::max(a, b)});
+    }
+  return {out.begin(), out.end()};
+}
+
+// How many of `edges` are off every integer isoline in some face beside them.
+int off_isolines(const igm::IgmMesh& igm, const std::vector<std::array<igm::Point2q, 3>>& uv,
+                 const std::vector<std::pair<int, int>>& edges) {
+  const std::set<std::pair<int, int>> wanted(edges.begin(), edges.end());
+  std::set<std::pair<int, int>> off;
+  for (std::size_t t = 0; t < igm.triangles.size(); ++t)
+    for (int i = 0; i < 3; ++i) {
+      const int a = igm.triangles[t][i], b = igm.triangles[t][(i + 1) % 3];
+      if (!wanted.count({std::min(a, b), std::max(a, b)})) continue;
+      const igm::Point2q &p = uv[t][i], &q = uv[t][(i + 1) % 3];
+      if (!((p.x == q.x && p.x.get_den() == 1) || (p.y == q.y && p.y.get_den() == 1)))
+        off.insert({std::min(a, b), std::max(a, b)});
+    }
+  return static_cast<int>(off.size());
+}
+
+}  // namespace
+
+TEST_CASE("held edges stay on their integer isolines while smoothing (issue 45: feature edges)") {
+  const igm::IgmMesh igm = igm_test::pipeline_igm(2, 1500, 3);
+  const std::vector<std::pair<int, int>> edges = isoline_edges_of(igm);
+  REQUIRE(edges.size() >= 20);
+  igm::SmoothOptions o;
+  o.max_iterations = 4;
+  // Without holding them, smoothing moves some of them off (the test can fail).
+  const igm::SmoothResult free = igm::smooth_igm(igm, o);
+  REQUIRE(free.stats.iterations >= 1);
+  CHECK(off_isolines(igm, free.corner_uv, edges) > 0);
+  o.isoline_edges = edges;
+  const igm::SmoothResult held = igm::smooth_igm(igm, o);
+  REQUIRE(held.stats.iterations >= 1);
+  CHECK(held.stats.energy.back() < held.stats.energy.front());
+  CHECK(off_isolines(igm, held.corner_uv, edges) == 0);
+  CHECK(igm_test::certify_uv(igm, held.corner_uv).valid());
+  // An edge that is not one, or one off every integer isoline: typed errors naming it.
+  o.isoline_edges = {{0, 0}};
+  CHECK_THROWS_AS(igm::smooth_igm(igm, o), igm::Error);
+  const int a = igm.triangles[0][0], b = igm.triangles[0][1];
+  const igm::Point2q &p = igm.corner_uv[0][0], &q = igm.corner_uv[0][1];
+  if (!((p.x == q.x && p.x.get_den() == 1) || (p.y == q.y && p.y.get_den() == 1))) {
+    o.isoline_edges = {{a, b}};
+    CHECK_THROWS_AS(igm::smooth_igm(igm, o), igm::Error);
+  }
 }
