@@ -467,3 +467,33 @@ TEST_CASE("igm run writes the same bytes alone and under load, for any thread co
     }
   }
 }
+
+TEST_CASE("igm run: features in cert.json and the quality line, --features FILE, bad feature options exit 2") {
+  IGM_REQUIRE_DATA(data);
+  const auto cwd = tmp_dir() / "features";
+  std::filesystem::create_directories(cwd);
+  const std::string run = quote(IGM_CLI_PATH) + " run " + quote((data / "meshes/clean/cube.off").string()) + " --quads 300";
+  const Run ok = in_folder(cwd, run + " -o res");
+  CHECK(ok.code == 0);
+  CHECK(has(ok.out, "[features] features 12 curves, 12 edges: "));
+  const std::string cert = slurp(cwd / "res/cube.cert.json");
+  CHECK(has(cert, "\"features\": {\"edges\": 12, \"curves\": 12, \"corners\": 8, \"length\": 24, \"covered_fraction\": "));
+  CHECK(in_folder(cwd, quote(IGM_CERTIFY_CLI_PATH) + " --quad --genus 0 res/cube.quad.obj").code == 0);
+  // Only the user's edges: 0 1 is an edge of cube.off (its face 0 is 0 1 3), 0 6 opposite corners.
+  std::ofstream(cwd / "f.txt") << "# one crease\n0 1\n";
+  const Run user = in_folder(cwd, run + " -o user --no-features --features f.txt");
+  CHECK(user.code == 0);
+  CHECK(has(user.out, "features 1 curves, 1 edges"));
+  std::ofstream(cwd / "bad.txt") << "0 1\n0 x\n";
+  const Run parse = in_folder(cwd, run + " --features bad.txt");
+  CHECK(parse.code == 2);
+  CHECK(has(parse.err, "line 2"));
+  std::ofstream(cwd / "far.txt") << "0 6\n";
+  const Run far = in_folder(cwd, run + " --features far.txt");
+  CHECK(far.code == 2);
+  CHECK(has(far.err, "(0, 6)"));
+  for (const char* a : {" --feature-angle -1", " --feature-angle 181", " --feature-angle x", " --features"}) {
+    CAPTURE(a);
+    CHECK(in_folder(cwd, run + a).code == 2);
+  }
+}
