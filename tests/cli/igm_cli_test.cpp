@@ -479,6 +479,9 @@ TEST_CASE("igm run: features in cert.json and the quality line, --features FILE,
   const std::string cert = slurp(cwd / "res/cube.cert.json");
   CHECK(has(cert, "\"features\": {\"edges\": 12, \"curves\": 12, \"corners\": 8, \"length\": 24, \"covered_fraction\": "));
   CHECK(in_folder(cwd, quote(IGM_CERTIFY_CLI_PATH) + " --quad --genus 0 res/cube.quad.obj").code == 0);
+  const Run info = in_folder(cwd, quote(IGM_CLI_PATH) + " info " + quote((data / "meshes/clean/cube.off").string()));
+  CHECK(info.code == 0);
+  CHECK(has(info.out, "features: 12 edges, 12 curves, 8 corners"));
   // Only the user's edges: 0 1 is an edge of cube.off (its face 0 is 0 1 3), 0 6 opposite corners.
   std::ofstream(cwd / "f.txt") << "# one crease\n0 1\n";
   const Run user = in_folder(cwd, run + " -o user --no-features --features f.txt");

@@ -221,8 +221,33 @@ TEST_CASE("features: the noise rule drops a bump's short chains and keeps the cr
   CHECK(kept.stats.dropped_chains >= 1);
   CHECK(kept.stats.dropped_edges == all.stats.edges - 96);
   check_curves(s, kept);
-  // The default rule (fewer than 3 edges and below 1 % of the diagonal) keeps this large bump.
+  // The default rule (fewer than 5 edges and below 2 % of the diagonal) keeps this large bump.
   CHECK(igm::detect_features(s.mesh, s.positions).stats.edges == all.stats.edges);
+}
+
+TEST_CASE("features: the default noise rule drops a small bump on a long prism") {
+  // [-1, 1]^2 x [-30, 30] (diagonal 60.1: 2 % is 1.2), cap z = 30 in 16 x 16 squares; a valence-4
+  // vertex of the cap raised by 0.3: the 4 edges around it (length 4 x 0.18) turn sharp.
+  Surface s = igm_test::subdivided_cube(16);
+  for (igm::Vec3d& p : s.positions) p.z *= 30;
+  int bump = -1;
+  for (int v = 0; v < s.mesh.num_vertices() && bump < 0; ++v) {
+    const igm::Vec3d& p = s.positions[v];
+    if (p.z == 30 && std::fabs(p.x) < 0.5 && std::fabs(p.y) < 0.5 && s.mesh.valence(v) == 4) bump = v;
+  }
+  REQUIRE(bump >= 0);
+  s.positions[bump].z += 0.3;
+  FeatureOptions off;
+  off.noise_min_edges = 0;
+  const FeatureEdges all = igm::detect_features(s.mesh, s.positions, {}, off);
+  CHECK(all.stats.edges >= 12 * 16 + 4);
+  const FeatureEdges f = igm::detect_features(s.mesh, s.positions);
+  CHECK(f.stats.edges == 12 * 16);
+  CHECK(f.stats.curves == 12);
+  CHECK(f.stats.corners == 8);
+  CHECK(f.stats.dropped_chains >= 1);
+  CHECK(f.stats.dropped_edges == all.stats.edges - 12 * 16);
+  check_curves(s, f);
 }
 
 TEST_CASE("features: the same result on every call") {
