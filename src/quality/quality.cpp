@@ -591,13 +591,19 @@ FeatureQuality measure_features(const std::vector<Vec3d>& input_positions,
     const Vec3d& p = samples[i];
     const std::array<std::int64_t, 3> c{cell_of(p.x, 0), cell_of(p.y, 1), cell_of(p.z, 2)};
     double best = kInf;
+    // The shell's cells inside the grid only: over all shells, each cell of the grid once.
+    auto lo_of = [&](std::int64_t rr, int a) { return std::max(-rr, -c[a]); };
+    auto hi_of = [&](std::int64_t rr, int a) { return std::min(rr, dims[a] - 1 - c[a]); };
     for (std::int64_t rr = 0; rr <= max_r; ++rr) {
-      for (std::int64_t di = -rr; di <= rr; ++di)
-        for (std::int64_t dj = -rr; dj <= rr; ++dj) {
+      for (std::int64_t di = lo_of(rr, 0); di <= hi_of(rr, 0); ++di)
+        for (std::int64_t dj = lo_of(rr, 1); dj <= hi_of(rr, 1); ++dj) {
           const bool side = di == -rr || di == rr || dj == -rr || dj == rr;
-          for (std::int64_t dk = -rr; dk <= rr; dk += side || rr == 0 ? 1 : 2 * rr) {
+          for (std::int64_t dk = lo_of(rr, 2); dk <= hi_of(rr, 2); ++dk) {
+            if (!side && dk != -rr && dk != rr) {
+              if (dk < rr) dk = rr - 1;  // jump to the far face (the loop's ++ lands on rr)
+              continue;
+            }
             const std::int64_t x = c[0] + di, y = c[1] + dj, z = c[2] + dk;
-            if (x < 0 || y < 0 || z < 0 || x >= dims[0] || y >= dims[1] || z >= dims[2]) continue;
             const std::int64_t cell = (x * dims[1] + y) * dims[2] + z;
             for (std::int64_t m = first[cell]; m < first[cell + 1]; ++m)
               best = std::min(best, segment_distance2(p, members[static_cast<std::size_t>(m)]));

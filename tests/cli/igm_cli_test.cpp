@@ -487,14 +487,12 @@ TEST_CASE("igm run: features in cert.json and the quality line, --features FILE,
   const Run user = in_folder(cwd, run + " -o user --no-features --features f.txt");
   CHECK(user.code == 0);
   CHECK(has(user.out, "features 1 curves, 1 edges"));
-  std::ofstream(cwd / "bad.txt") << "0 1\n0 x\n";
-  const Run parse = in_folder(cwd, run + " --features bad.txt");
-  CHECK(parse.code == 2);
-  CHECK(has(parse.err, "line 2"));
-  std::ofstream(cwd / "far.txt") << "0 6\n";
-  const Run far = in_folder(cwd, run + " --features far.txt");
-  CHECK(far.code == 2);
-  CHECK(has(far.err, "(0, 6)"));
+  for (const auto& [text, said] : {std::pair{"0 1\n0 x\n", "line 2"}, std::pair{"0 6\n", "(0, 6)"}}) {
+    std::ofstream(cwd / "bad.txt") << text;
+    const Run bad = in_folder(cwd, run + " --features bad.txt");
+    CHECK(bad.code == 2);
+    CHECK(has(bad.err, said));
+  }
   for (const char* a : {" --feature-angle -1", " --feature-angle 181", " --feature-angle x", " --features"}) {
     CAPTURE(a);
     CHECK(in_folder(cwd, run + a).code == 2);

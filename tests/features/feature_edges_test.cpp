@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "igm/core/error.h"
+#include "../quality/error_kind.h"
 #include "test_surfaces.h"
 
 namespace {
@@ -15,15 +16,7 @@ using igm::FeatureEdges;
 using igm::FeatureOptions;
 using igm_test::Surface;
 
-igm::ErrorKind kind_of(auto&& f) {
-  try {
-    f();
-  } catch (const igm::Error& e) {
-    return e.kind();
-  }
-  FAIL("no igm::Error thrown");
-  return igm::ErrorKind::Internal;
-}
+using igm_test::kind_of;
 
 // Every curve's half-edges are feature half-edges joining its consecutive vertices; its ends are
 // corners (or it is a corner-free closed loop); every feature edge is on exactly one curve.

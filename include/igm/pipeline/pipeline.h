@@ -233,7 +233,9 @@ struct PipelineResult {
   IgmQuality igm_quality;            // with PipelineOptions::quality (else zero)
   QuadQuality quad_quality;
   /// The input's features (PipelineOptions::features; vertex ids of the input mesh or surface),
-  /// and, with PipelineOptions::quality, how the quads cover them (quality/quality.h).
+  /// and, with PipelineOptions::quality, how the quads cover them (quality/quality.h). Filled by
+  /// compute_igm on a ValidMesh; under compute_igms each surface gets `features` and the measure
+  /// is SurfacesResult::feature_quality; compute_igm on a SurfaceComponent fills neither.
   FeatureEdges features;
   FeatureQuality feature_quality;
   PipelineStats stats;
