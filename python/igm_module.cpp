@@ -78,6 +78,16 @@ const std::map<std::string, Setter>& option_setters() {
       {"smooth_stall_step", field(&igm::PipelineOptions::smooth_stall_step)},
       {"quality_distance", field(&igm::PipelineOptions::quality_distance)},
       {"threads", field(&igm::PipelineOptions::threads)},
+      {"feature_angle", [](igm::PipelineOptions& o, py::handle v) { o.features.angle_degrees = v.cast<double>(); }},
+      {"no_features", [](igm::PipelineOptions& o, py::handle v) { o.features.enabled = !v.cast<bool>(); }},
+      {"features", [](igm::PipelineOptions& o, py::handle v) {
+         const IndexArray a = IndexArray::ensure(v);
+         if (!a || a.ndim() != 2 || a.shape(1) != 2)
+           throw igm::Error(igm::ErrorKind::InvalidArgument, "features must be an integer array of shape (k, 2)");
+         const auto e = a.unchecked<2>();
+         o.feature_edges.clear();
+         for (py::ssize_t i = 0; i < e.shape(0); ++i) o.feature_edges.push_back({e(i, 0), e(i, 1)});
+       }},
   };
   return setters;
 }
@@ -150,7 +160,8 @@ py::dict stats_dict(const igm::PipelineStats& st) {
 // The outputs as NumPy arrays and dicts (one surface, or several merged).
 py::dict result_dict(const igm::IgmMesh& igm, const igm::QuadMesh& quads, const igm::certify::Report& igm_report,
                      const igm::certify::Report& quad_report, const igm::IgmQuality& igm_quality,
-                     const igm::QuadQuality& quad_quality, bool quality, bool exact, py::dict stats,
+                     const igm::QuadQuality& quad_quality, const igm::FeatureQuality& feature_quality, bool quality,
+                     bool exact, py::dict stats,
                      const std::vector<std::string>& warnings) {
   const std::size_t nt = igm.triangles.size();
   py::array_t<double> uv({static_cast<py::ssize_t>(nt), py::ssize_t{3}, py::ssize_t{2}});
@@ -181,7 +192,8 @@ py::dict result_dict(const igm::IgmMesh& igm, const igm::QuadMesh& quads, const 
                   "certificate"_a = py::dict("igm"_a = json_dict(igm::certify::to_json(igm_report)),
                                              "quad"_a = json_dict(igm::certify::to_json(quad_report))),
                   "quality"_a = quality ? py::object(py::dict("igm"_a = json_dict(igm::to_json(igm_quality)),
-                                                              "quads"_a = json_dict(igm::to_json(quad_quality))))
+                                                              "quads"_a = json_dict(igm::to_json(quad_quality)),
+                                                              "features"_a = json_dict(igm::to_json(feature_quality))))
                                         : py::object(py::none()),
                   "certified"_a = certified, "stats"_a = stats, "warnings"_a = warnings);
 }
@@ -235,7 +247,7 @@ py::dict compute(const DoubleArray& v, const IndexArray& f, const py::kwargs& kw
   }
   warn_all(set.warnings);
   if (!several)
-    return result_dict(r.igm, r.quads, r.igm_report, r.quad_report, r.igm_quality, r.quad_quality, options.quality,
+    return result_dict(r.igm, r.quads, r.igm_report, r.quad_report, r.igm_quality, r.quad_quality, r.feature_quality, options.quality,
                        exact, stats_dict(r.stats), set.warnings);
   py::list per_surface;
   bool raised = false;
@@ -244,7 +256,7 @@ py::dict compute(const DoubleArray& v, const IndexArray& f, const py::kwargs& kw
     raised = raised || c.stats.raised_by_floor();
   }
   return result_dict(surfaces.igm, surfaces.quads, surfaces.igm_report, surfaces.quad_report, surfaces.igm_quality,
-                     surfaces.quad_quality, options.quality, exact,
+                     surfaces.quad_quality, surfaces.feature_quality, options.quality, exact,
                      py::dict("surfaces"_a = per_surface, "quads"_a = surfaces.quads_total,
                               "quads_asked"_a = surfaces.quads_asked, "raised_by_floor"_a = raised),
                      set.warnings);
@@ -396,7 +408,9 @@ PYBIND11_MODULE(_igm, m) {
         "components (one IGM each, merged; stats['surfaces'] per surface). Options: quads, edge_length,\n"
         "resolution, layout ('spread', 'kite', 'paper'), map ('tutte', 'affine'), smooth, smooth_iterations,\n"
         "smooth_min_decrease, smooth_stall_step, smooth_seconds, quality, quality_distance, root, normal_form,\n"
-        "restarts, cones, memory_limit_bytes, max_witnesses, threads (0: all cores; the outputs are the same\n"
+        "restarts, cones, memory_limit_bytes, max_witnesses, feature_angle (degrees, default 35), no_features,\n"
+        "features (a (k, 2) int array of vertex-id pairs, more feature edges; features are only measured,\n"
+        "in result['quality']['features'], the layout does not follow them yet), threads (0: all cores; the outputs are the same\n"
         "for any count) (igm::PipelineOptions), split_nonmanifold (cut\n"
         "non-manifold elements apart first), exact (also the UVs as 'p/q' strings).\n"
         "Returns {'igm': {'vertices', 'faces', 'uv' (t, 3, 2) [, 'uv_exact']}, 'quads': {'vertices', 'quads'},\n"

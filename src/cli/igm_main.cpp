@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "igm/core/error.h"
+#include "igm/features/feature_edges.h"
 #include "igm/io/read_mesh.h"
 #include "igm/io/write_mesh.h"
 #include "igm/mesh/generate.h"
@@ -208,6 +209,19 @@ int print_report(const std::string& name, const igm::PolygonSoup& soup, const ig
     for (const std::string& w : set->warnings)
       if (std::find(r.warnings.begin(), r.warnings.end(), w) == r.warnings.end())
         std::printf("surfaces warning: %s\n", w.c_str());
+  if (set) {  // the sharp features `igm run` measures (default options)
+    igm::FeatureStats total;
+    for (const igm::SurfaceComponent& c : set->components) {
+      const igm::TriMesh mesh = igm::TriMesh::from_triangles(static_cast<int>(c.positions.size()), c.triangles, true);
+      const igm::FeatureStats f = igm::detect_features(mesh, c.positions).stats;
+      total.edges += f.edges;
+      total.curves += f.curves;
+      total.corners += f.corners;
+      total.dropped_chains += f.dropped_chains;
+    }
+    std::printf("features: %d edges, %d curves, %d corners (dihedral >= %g deg; %d short chains dropped)\n",
+                total.edges, total.curves, total.corners, igm::FeatureOptions{}.angle_degrees, total.dropped_chains);
+  }
   if (set) {
     if (one_closed)
       std::printf("status: valid\n");

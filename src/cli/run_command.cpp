@@ -45,6 +45,7 @@ int usage(const std::string& message, bool help = false) {
                "               [--no-smooth] [--root V]\n"
                "               [--normal-form [--restarts K|auto]] [--cones A,B,C,D] [--memory-limit-mb M]\n"
                "               [--smooth-iterations N] [--smooth-min-decrease X] [--smooth-seconds S] [--threads N]\n"
+               "               [--feature-angle DEG] [--no-features] [--features FILE]\n"
                "  writes DIR/NAME.igm.obj, NAME.igm.exact, NAME.quad.obj, NAME.cert.json, NAME.schema.svg,\n"
                "  NAME.quad.svg (a shaded picture of the quads, cones marked by valence)\n"
                "  --quads Q       about Q quads (default %lld): each layout edge gets round(length / H) quads,\n"
@@ -71,6 +72,12 @@ int usage(const std::string& message, bool help = false) {
                "                  it (default 0.001) or two steps in a row below 1/200 of the Newton step\n"
                "  --smooth-seconds S  also stop after S seconds of wall time (default 0: never; with S the\n"
                "                  result depends on the machine's speed and load)\n"
+               "  --feature-angle DEG  sharp features: edges whose faces' normals differ by >= DEG degrees\n"
+               "                  (0..180, default 35; short chains of scans dropped, docs/quality.md); at this\n"
+               "                  step they are only measured (cert.json quality.features: the share of their\n"
+               "                  length on quad edges), the layout does not follow them yet\n"
+               "  --no-features   detect no sharp edge (only those of --features)\n"
+               "  --features FILE more feature edges: one pair \"i j\" of 0-based vertex ids per line, '#' comments\n"
                "  --threads N     threads for the parallel stages (default 0: IGM_THREADS if set, else all\n"
                "                  cores); the outputs are the same for any N\n"
                "  --split-nonmanifold  cut non-manifold vertices and edges apart (each cut named in a warning)\n"
@@ -253,12 +260,14 @@ int run_surfaces(const igm::SurfaceSet& set, const std::string& name, const std:
         << "\", \"layout_fallback\": " << fallback_json(r.components[c].stats) << ", \"field\": " << field_json(r.components[c].stats) << "}";
     s << "]},\n"
       << "\"quality\": {\"igm\": " << igm::to_json(r.igm_quality) << ", \"quads\": " << igm::to_json(r.quad_quality)
-      << "},\n"
+      << ", \"features\": " << igm::to_json(r.feature_quality) << "},\n"
       << "\"igm\": " << igm::certify::to_json(r.igm_report) << ",\n"
       << "\"quad\": " << igm::certify::to_json(r.quad_report) << "}\n";
   });
   print_floor(r);
-  if (base.quality) std::printf("[quality ] all surfaces: %s\n", igm::summary_line(r.igm_quality, r.quad_quality).c_str());
+  if (base.quality)
+    std::printf("[quality ] all surfaces: %s; %s\n", igm::summary_line(r.igm_quality, r.quad_quality).c_str(),
+                igm::summary_line(r.feature_quality).c_str());
   std::vector<const igm::PipelineStats*> runs;
   for (const igm::PipelineResult& rc : r.components) runs.push_back(&rc.stats);
   std::printf("[total]    %8.3f s  peak memory %.0f MB\n", total, peak_rss_mb(runs));
@@ -305,10 +314,11 @@ int run_pipeline(const igm::ValidMesh& mesh, const std::string& name, const std:
                               "},\n"
                         : std::string())
       << "\"quality\": {\"igm\": " << igm::to_json(r.igm_quality) << ", \"quads\": " << igm::to_json(r.quad_quality)
-      << "},\n"
+      << ", \"features\": " << igm::to_json(r.feature_quality) << "},\n"
       << "\"igm\": " << igm::certify::to_json(r.igm_report) << ",\n"
       << "\"quad\": " << igm::certify::to_json(r.quad_report) << "}\n";
   });
+  if (base.quality) std::printf("[features] %s\n", igm::summary_line(r.feature_quality).c_str());
   std::printf("[total]    %8.3f s  peak memory %.0f MB\n", total, peak_rss_mb({&r.stats}));
   std::printf("wrote %s/%s.{igm.obj,igm.exact,quad.obj,cert.json,schema.svg,quad.svg}\n", dir.string().c_str(),
               name.c_str());
@@ -322,6 +332,7 @@ int run_command(const std::vector<std::string_view>& args) {
   std::filesystem::path dir = "out";
   igm::PipelineOptions options;
   bool split_nonmanifold = false;
+  std::string features_path;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string_view a = args[i];
     if (a == "--help" || a == "-h") return usage("", true);
@@ -340,6 +351,24 @@ int run_command(const std::vector<std::string_view>& args) {
         if (comma == std::string_view::npos) break;
         start = comma + 1;
       }
+      continue;
+    }
+    if (a == "--feature-angle") {
+      if (i + 1 >= args.size()) return usage("--feature-angle needs a value");
+      const std::string_view v = args[++i];
+      double d = 0;
+      if (!parse_double(v, d) || !(d >= 0 && d <= 180))
+        return usage("--feature-angle needs a number of degrees in [0, 180], got '" + std::string(v) + "'");
+      options.features.angle_degrees = d;
+      continue;
+    }
+    if (a == "--features") {
+      if (i + 1 >= args.size()) return usage("--features needs a file");
+      features_path = std::string(args[++i]);
+      continue;
+    }
+    if (a == "--no-features") {
+      options.features.enabled = false;
       continue;
     }
     if (a == "--field-alignment") {
@@ -438,6 +467,14 @@ int run_command(const std::vector<std::string_view>& args) {
   if ((options.resolution > 0) + (options.edge_length > 0) + (options.quads > 0) > 1)
     return usage("give at most one of --quads, --edge-length and --resolution");
   if (options.restarts != 0 && !options.normal_form) return usage("--restarts needs --normal-form");
+  if (!features_path.empty()) {
+    try {
+      options.feature_edges = igm::read_feature_edges(features_path);
+    } catch (const igm::Error& e) {
+      std::fprintf(stderr, "igm: %s: %s\n", features_path.c_str(), e.what());
+      return kExitInput;
+    }
+  }
   igm::PolygonSoup soup;
   try {
     soup = igm::read_soup(std::filesystem::path(mesh_path));

@@ -475,9 +475,39 @@ void map_disk(PipelineResult& result, CutDisk& cut, const PipelineOptions& optio
   smooth_extract_certify(result, options, stage, surface.input_positions, rectangles);
 }
 
+FeatureEdges surface_features(const TriMesh& mesh, const std::vector<Vec3d>& positions,
+                              const std::vector<std::int64_t>& input_vertex, const PipelineOptions& options,
+                              std::vector<std::uint8_t>& found) {
+  return detect_features(mesh, positions, input_feature_edges(mesh, input_vertex, options.feature_edges, found),
+                         options.features);
+}
+
+FeatureQuality feature_quality(const std::vector<const FeatureEdges*>& features, const std::vector<int>& base,
+                               const std::vector<Vec3d>& input_positions, const QuadMesh& quads) {
+  std::vector<std::array<int, 2>> edges;
+  int curves = 0, corners = 0;
+  for (std::size_t i = 0; i < features.size(); ++i) {
+    for (const FeatureCurve& c : features[i]->curves)
+      for (std::size_t k = 0; k + 1 < c.vertices.size(); ++k) edges.push_back({c.vertices[k] + base[i], c.vertices[k + 1] + base[i]});
+    curves += features[i]->stats.curves;
+    corners += features[i]->stats.corners;
+  }
+  FeatureQuality q = measure_features(input_positions, edges, quads.positions, quads.quads);
+  q.curves = curves;
+  q.corners = corners;
+  return q;
+}
+
 PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& options) {
   PipelineResult result;
-  with_threads(options.threads, [&] { result = compute_igm_closed(input, options); });
+  std::vector<std::uint8_t> found;
+  FeatureEdges features = surface_features(input.mesh, input.positions, input.input_vertex, options, found);
+  check_feature_edges_found(options.feature_edges, found);
+  with_threads(options.threads, [&] {
+    result = compute_igm_closed(input, options);
+    if (options.quality) result.feature_quality = feature_quality({&features}, {0}, input.positions, result.quads);
+  });
+  result.features = std::move(features);
   return result;
 }
 

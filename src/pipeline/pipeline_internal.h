@@ -30,6 +30,17 @@ struct StageReporter {
   void done(const char* name, Clock::time_point t0, std::string detail);
 };
 
+/// The features of one input surface (PipelineOptions::features and the user's pairs that are
+/// edges of this surface, marked in `found`).
+FeatureEdges surface_features(const TriMesh& mesh, const std::vector<Vec3d>& positions,
+                              const std::vector<std::int64_t>& input_vertex, const PipelineOptions& options,
+                              std::vector<std::uint8_t>& found);
+
+/// measure_features of the curves of features[i] (vertex ids into input_positions offset by
+/// base[i]) against `quads`, with the curve and corner counts.
+FeatureQuality feature_quality(const std::vector<const FeatureEdges*>& features, const std::vector<int>& base,
+                               const std::vector<Vec3d>& input_positions, const QuadMesh& quads);
+
 /// Throws igm::Error(InvalidArgument) for a resolution, edge length or quad count out of range.
 void check_sizes(const PipelineOptions& options);
 

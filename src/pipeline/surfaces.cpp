@@ -49,6 +49,16 @@ SurfacesResult compute_igms_here(const SurfaceSet& set, const PipelineOptions& o
     }
     if (std::isfinite(area[c])) total_area += area[c];
   }
+  // The features of every surface, first (a user's pair on no surface is an error before any work).
+  std::vector<FeatureEdges> features;
+  {
+    std::vector<std::uint8_t> found;
+    for (const SurfaceComponent& comp : set.components) {
+      const TriMesh mesh = TriMesh::from_triangles(static_cast<int>(comp.positions.size()), comp.triangles, true);
+      features.push_back(surface_features(mesh, comp.positions, comp.input_vertex, options, found));
+    }
+    check_feature_edges_found(options.feature_edges, found);
+  }
   const bool share_quads = options.resolution <= 0 && options.edge_length <= 0;
   const std::int64_t quads = options.quads > 0 ? options.quads : kDefaultQuads;
   if (share_quads) out.quads_asked = quads;
@@ -66,6 +76,7 @@ SurfacesResult compute_igms_here(const SurfaceSet& set, const PipelineOptions& o
         options.progress(tagged);
       };
     out.components.push_back(compute_igm(comp, o));
+    out.components.back().features = std::move(features[c]);
     const PipelineResult& r = out.components.back();
     // Merge: the IGM (vertex ids and the locations' input ids offset), the quads.
     const int v0 = static_cast<int>(out.igm.positions.size());
@@ -114,6 +125,15 @@ SurfacesResult compute_igms_here(const SurfaceSet& set, const PipelineOptions& o
     QuadQualityOptions qo;
     qo.distance = options.quality_distance;
     out.quad_quality = measure_quads(out.quads.positions, out.quads.quads, out.input_positions, input_triangles, qo);
+    std::vector<const FeatureEdges*> each;
+    std::vector<int> bases;
+    base = 0;
+    for (std::size_t c = 0; c < set.components.size(); ++c) {
+      each.push_back(&out.components[c].features);
+      bases.push_back(base);
+      base += static_cast<int>(set.components[c].positions.size());
+    }
+    out.feature_quality = feature_quality(each, bases, out.input_positions, out.quads);
   }
   return out;
 }

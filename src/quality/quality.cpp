@@ -468,6 +468,184 @@ QuadQuality measure_quads(const std::vector<Vec3d>& quad_positions,
   return r;
 }
 
+FeatureQuality measure_features(const std::vector<Vec3d>& input_positions,
+                                const std::vector<std::array<int, 2>>& feature_edges,
+                                const std::vector<Vec3d>& quad_positions,
+                                const std::vector<std::array<int, 4>>& quads,
+                                const FeatureQualityOptions& options) {
+  require_ids(feature_edges, input_positions.size(), "measure_features: feature edge");
+  require_ids(quads, quad_positions.size(), "measure_features: quad");
+  require_finite(input_positions, "measure_features: input");
+  require_finite(quad_positions, "measure_features: quad mesh");
+  if (!(options.spacing > 0) || !(options.tolerance >= 0) || options.max_samples < 1)
+    throw Error(ErrorKind::InvalidArgument,
+                "measure_features: need spacing > 0, tolerance >= 0 and max_samples >= 1");
+  const double s = unit_scale(std::max(max_abs(quad_positions), max_abs(input_positions)));
+  const std::vector<Vec3d> ip = scaled(input_positions, s), qp = scaled(quad_positions, s);
+  FeatureQuality r;
+  r.edges = static_cast<int>(feature_edges.size());
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  double total = 0;
+  for (const auto& e : feature_edges) total += norm(sub(ip[e[1]], ip[e[0]]));
+  r.length = total / s;
+  if (!(total > 0)) {
+    r.covered_fraction = r.distance_max = r.distance_p99 = nan;
+    return r;
+  }
+  Vec3d lo = ip.empty() ? Vec3d{0, 0, 0} : ip[0], hi = lo;
+  for (const Vec3d& p : ip) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  const double diagonal = norm(sub(hi, lo));
+  // The samples: midpoints of equal pieces of each edge, weighted by the piece's length.
+  const double step = std::max(options.spacing * diagonal, total / static_cast<double>(options.max_samples));
+  std::vector<Vec3d> samples;
+  std::vector<double> weight;
+  for (const auto& e : feature_edges) {
+    const Vec3d a = ip[e[0]], d = sub(ip[e[1]], a);
+    const double len = norm(d);
+    const auto n = static_cast<std::int64_t>(std::max(1.0, std::ceil(len / step)));
+    for (std::int64_t k = 0; k < n; ++k) {
+      samples.push_back(add(a, mul(d, (static_cast<double>(k) + 0.5) / static_cast<double>(n))));
+      weight.push_back(len / static_cast<double>(n));
+    }
+  }
+  r.samples = samples.size();
+  // The quads' edges, once each.
+  std::vector<std::array<int, 2>> segments;
+  for (const auto& q : quads)
+    for (int i = 0; i < 4; ++i) segments.push_back({std::min(q[i], q[(i + 1) % 4]), std::max(q[i], q[(i + 1) % 4])});
+  std::sort(segments.begin(), segments.end());
+  segments.erase(std::unique(segments.begin(), segments.end()), segments.end());
+  if (segments.empty()) {
+    r.covered_fraction = 0;
+    r.distance_max = r.distance_p99 = kInf;
+    return r;
+  }
+  // A uniform grid over the segments and the samples: cells of about the mean segment length,
+  // at most ~4 cells per segment (the cell grows until they fit).
+  Vec3d glo = samples[0], ghi = glo;
+  double mean = 0;
+  auto grow = [&](const Vec3d& p) {
+    glo = {std::min(glo.x, p.x), std::min(glo.y, p.y), std::min(glo.z, p.z)};
+    ghi = {std::max(ghi.x, p.x), std::max(ghi.y, p.y), std::max(ghi.z, p.z)};
+  };
+  for (const Vec3d& p : samples) grow(p);
+  for (const auto& g : segments) {
+    grow(qp[g[0]]);
+    grow(qp[g[1]]);
+    mean += norm(sub(qp[g[1]], qp[g[0]]));
+  }
+  mean /= static_cast<double>(segments.size());
+  const Vec3d extent = sub(ghi, glo);
+  double h = std::max({mean, options.tolerance * diagonal, 1e-300 + 1e-9 * norm(extent)});
+  std::array<std::int64_t, 3> dims{};
+  const double budget = 4.0 * static_cast<double>(segments.size()) + 64;
+  for (int round = 0; round < 200; ++round) {  // bound: h doubles each round
+    for (int a = 0; a < 3; ++a) dims[a] = static_cast<std::int64_t>(coordinate(extent, a) / h) + 1;
+    if (static_cast<double>(dims[0]) * static_cast<double>(dims[1]) * static_cast<double>(dims[2]) <= budget) break;
+    h *= 2;
+  }
+  auto cell_of = [&](double x, int a) {
+    const auto c = static_cast<std::int64_t>((x - coordinate(glo, a)) / h);
+    return std::clamp<std::int64_t>(c, 0, dims[a] - 1);
+  };
+  const std::int64_t cells = dims[0] * dims[1] * dims[2];
+  std::vector<std::int64_t> first(static_cast<std::size_t>(cells) + 1, 0);
+  std::vector<int> members;
+  for (int pass = 0; pass < 2; ++pass) {  // count, then fill (CSR)
+    std::vector<std::int64_t> fill(first.begin(), first.end() - 1);
+    for (std::size_t g = 0; g < segments.size(); ++g) {
+      const Vec3d &a = qp[segments[g][0]], &b = qp[segments[g][1]];
+      std::array<std::int64_t, 3> c0{}, c1{};
+      for (int k = 0; k < 3; ++k) {
+        c0[k] = cell_of(std::min(coordinate(a, k), coordinate(b, k)), k);
+        c1[k] = cell_of(std::max(coordinate(a, k), coordinate(b, k)), k);
+      }
+      for (std::int64_t i = c0[0]; i <= c1[0]; ++i)
+        for (std::int64_t j = c0[1]; j <= c1[1]; ++j)
+          for (std::int64_t k = c0[2]; k <= c1[2]; ++k) {
+            const std::int64_t c = (i * dims[1] + j) * dims[2] + k;
+            if (pass == 0) ++first[static_cast<std::size_t>(c) + 1];
+            else members[static_cast<std::size_t>(fill[static_cast<std::size_t>(c)]++)] = static_cast<int>(g);
+          }
+    }
+    if (pass == 0) {
+      for (std::int64_t c = 0; c < cells; ++c) first[c + 1] += first[c];
+      members.assign(static_cast<std::size_t>(first[cells]), 0);
+    }
+  }
+  auto segment_distance2 = [&](const Vec3d& p, int g) {
+    const Vec3d &a = qp[segments[g][0]], d = sub(qp[segments[g][1]], a), pa = sub(p, a);
+    const double dd = dot(d, d);
+    const double t = dd > 0 ? std::clamp(dot(pa, d) / dd, 0.0, 1.0) : 0.0;
+    const Vec3d e = sub(pa, mul(d, t));
+    return dot(e, e);
+  };
+  // Nearest segment: shells of cells at Chebyshev index distance r = 0, 1, ... around the sample's
+  // cell; after shell r every unseen segment is at least r h away. Bound: r <= max(dims).
+  std::vector<double> dist(samples.size());
+  const std::int64_t max_r = std::max({dims[0], dims[1], dims[2]});
+  parallel::for_each_index(static_cast<std::int64_t>(samples.size()), 256, [&](std::int64_t i) {
+    const Vec3d& p = samples[i];
+    const std::array<std::int64_t, 3> c{cell_of(p.x, 0), cell_of(p.y, 1), cell_of(p.z, 2)};
+    double best = kInf;
+    // The shell's cells inside the grid only: over all shells, each cell of the grid once.
+    auto lo_of = [&](std::int64_t rr, int a) { return std::max(-rr, -c[a]); };
+    auto hi_of = [&](std::int64_t rr, int a) { return std::min(rr, dims[a] - 1 - c[a]); };
+    for (std::int64_t rr = 0; rr <= max_r; ++rr) {
+      for (std::int64_t di = lo_of(rr, 0); di <= hi_of(rr, 0); ++di)
+        for (std::int64_t dj = lo_of(rr, 1); dj <= hi_of(rr, 1); ++dj) {
+          const bool side = di == -rr || di == rr || dj == -rr || dj == rr;
+          for (std::int64_t dk = lo_of(rr, 2); dk <= hi_of(rr, 2); ++dk) {
+            if (!side && dk != -rr && dk != rr) {
+              if (dk < rr) dk = rr - 1;  // jump to the far face (the loop's ++ lands on rr)
+              continue;
+            }
+            const std::int64_t x = c[0] + di, y = c[1] + dj, z = c[2] + dk;
+            const std::int64_t cell = (x * dims[1] + y) * dims[2] + z;
+            for (std::int64_t m = first[cell]; m < first[cell + 1]; ++m)
+              best = std::min(best, segment_distance2(p, members[static_cast<std::size_t>(m)]));
+          }
+        }
+      const double reach = static_cast<double>(rr) * h;
+      if (best <= reach * reach) break;
+    }
+    dist[i] = std::sqrt(best) / diagonal;
+  });
+  double covered = 0, sum = 0;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    sum += weight[i];
+    if (dist[i] <= options.tolerance) covered += weight[i];
+  }
+  r.covered_fraction = covered / sum;
+  r.distance_max = *std::max_element(dist.begin(), dist.end());
+  r.distance_p99 = weighted_quantiles(dist, weight, {0.99})[0];
+  return r;
+}
+
+std::string to_json(const FeatureQuality& q) {
+  std::string o = "{";
+  put_count(o, "edges", q.edges);
+  put_count(o, "curves", q.curves);
+  put_count(o, "corners", q.corners);
+  put_field(o, "length", q.length);
+  put_field(o, "covered_fraction", q.covered_fraction);
+  put_field(o, "distance_max", q.distance_max);
+  put_field(o, "distance_p99", q.distance_p99);
+  put_count(o, "samples", static_cast<long long>(q.samples));
+  return o + "}";
+}
+
+std::string summary_line(const FeatureQuality& q) {
+  if (q.edges == 0) return "no features";
+  char line[256];
+  std::snprintf(line, sizeof line, "features %d curves, %d edges: %.1f %% covered, distance max %.3g %% p99 %.3g %%",
+                q.curves, q.edges, 100 * q.covered_fraction, 100 * q.distance_max, 100 * q.distance_p99);
+  return line;
+}
+
 std::string to_json(const IgmQuality& q) {
   std::string o = "{";
   put_count(o, "triangles", q.triangles);

@@ -467,3 +467,34 @@ TEST_CASE("igm run writes the same bytes alone and under load, for any thread co
     }
   }
 }
+
+TEST_CASE("igm run: features in cert.json and the quality line, --features FILE, bad feature options exit 2") {
+  IGM_REQUIRE_DATA(data);
+  const auto cwd = tmp_dir() / "features";
+  std::filesystem::create_directories(cwd);
+  const std::string run = quote(IGM_CLI_PATH) + " run " + quote((data / "meshes/clean/cube.off").string()) + " --quads 300";
+  const Run ok = in_folder(cwd, run + " -o res");
+  CHECK(ok.code == 0);
+  CHECK(has(ok.out, "[features] features 12 curves, 12 edges: "));
+  const std::string cert = slurp(cwd / "res/cube.cert.json");
+  CHECK(has(cert, "\"features\": {\"edges\": 12, \"curves\": 12, \"corners\": 8, \"length\": 24, \"covered_fraction\": "));
+  CHECK(in_folder(cwd, quote(IGM_CERTIFY_CLI_PATH) + " --quad --genus 0 res/cube.quad.obj").code == 0);
+  const Run info = in_folder(cwd, quote(IGM_CLI_PATH) + " info " + quote((data / "meshes/clean/cube.off").string()));
+  CHECK(info.code == 0);
+  CHECK(has(info.out, "features: 12 edges, 12 curves, 8 corners"));
+  // Only the user's edges: 0 1 is an edge of cube.off (its face 0 is 0 1 3), 0 6 opposite corners.
+  std::ofstream(cwd / "f.txt") << "# one crease\n0 1\n";
+  const Run user = in_folder(cwd, run + " -o user --no-features --features f.txt");
+  CHECK(user.code == 0);
+  CHECK(has(user.out, "features 1 curves, 1 edges"));
+  for (const auto& [text, said] : {std::pair{"0 1\n0 x\n", "line 2"}, std::pair{"0 6\n", "(0, 6)"}}) {
+    std::ofstream(cwd / "bad.txt") << text;
+    const Run bad = in_folder(cwd, run + " --features bad.txt");
+    CHECK(bad.code == 2);
+    CHECK(has(bad.err, said));
+  }
+  for (const char* a : {" --feature-angle -1", " --feature-angle 181", " --feature-angle x", " --features"}) {
+    CAPTURE(a);
+    CHECK(in_folder(cwd, run + a).code == 2);
+  }
+}

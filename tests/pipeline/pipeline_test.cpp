@@ -751,3 +751,60 @@ TEST_CASE("the floor: small surfaces of every kind at the smallest sizes certify
     }
   }
 }
+
+TEST_CASE("pipeline: features of a box are measured (12 curves, 8 corners), user edges checked, certified") {
+  const PolygonSoup box = igm_test::box_soup();
+  PipelineOptions o;
+  o.quads = 300;
+  const PipelineResult r = compute_igm(validate(box), o);
+  CHECK(r.features.stats.curves == 12);
+  CHECK(r.features.stats.corners == 8);
+  CHECK(r.feature_quality.edges == 12);
+  CHECK(r.feature_quality.curves == 12);
+  CHECK(r.feature_quality.corners == 8);
+  CHECK(r.feature_quality.length == doctest::Approx(12));
+  CHECK(r.feature_quality.covered_fraction >= 0.0);
+  CHECK(r.feature_quality.covered_fraction <= 1.0);
+  CHECK(r.feature_quality.distance_max >= r.feature_quality.distance_p99);
+  CHECK(r.feature_quality.distance_max < 0.5);  // the quads are near the box
+  CHECK(r.certified());
+
+  // Two boxes (compute_igms): the features of both, a user edge in the second by input ids.
+  PolygonSoup two = box;
+  for (const Vec3d& p : box.positions) two.positions.push_back({p.x + 3, p.y, p.z});
+  for (std::size_t f = 0; f < box.num_faces(); ++f) {
+    std::vector<std::int64_t> face(box.corners.begin() + static_cast<std::ptrdiff_t>(box.face_begin[f]),
+                                   box.corners.begin() + static_cast<std::ptrdiff_t>(box.face_begin[f + 1]));
+    for (std::int64_t& v : face) v += 8;
+    two.add_face(face.begin(), face.end());
+  }
+  const SurfaceSet set = validate_surfaces(two);
+  REQUIRE(set.components.size() == 2);
+  const SurfacesResult both = compute_igms(set, o);
+  CHECK(both.feature_quality.curves == 24);
+  CHECK(both.feature_quality.edges == 24);
+  CHECK(both.feature_quality.length == doctest::Approx(24));
+  CHECK(both.feature_quality.covered_fraction >= 0.0);
+  CHECK(both.feature_quality.covered_fraction <= 1.0);
+  CHECK(both.certified());
+  PipelineOptions user = o;
+  user.features.enabled = false;
+  user.feature_edges = {{8 + 0, 8 + 3}};  // a face diagonal of the second box (box_soup's split)
+  user.quality_distance = false;
+  const SurfacesResult one = compute_igms(set, user);
+  CHECK(one.feature_quality.edges == 1);
+  CHECK(one.components[1].features.stats.user_edges == 1);
+  CHECK(one.components[0].features.stats.edges == 0);
+  CHECK(one.certified());
+  user.feature_edges = {{0, 8}};  // across the boxes
+  try {
+    compute_igms(set, user);
+    FAIL("no error");
+  } catch (const Error& e) {
+    CHECK(e.kind() == ErrorKind::InvalidArgument);
+    CHECK(std::string(e.what()).find("(0, 8)") != std::string::npos);
+  }
+  PipelineOptions bad = o;
+  bad.features.angle_degrees = 200;
+  CHECK_THROWS_AS(compute_igm(validate(box), bad), Error);
+}

@@ -263,3 +263,31 @@ def test_smoothing_options():
     assert all(s["cpu_seconds"] >= 0 for s in one["stats"]["stages"])
     with pytest.raises(igm.Error):
         igm.compute(V, F, quads=800, threads=-1)
+
+
+def unit_cube():
+    V = np.array([[i & 1, (i >> 1) & 1, (i >> 2) & 1] for i in range(8)], dtype=float)
+    F = []
+    for a, b, c, d in ((0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)):
+        F += [[a, b, c], [a, c, d]]
+    return V, np.array(F)
+
+
+def test_features_are_measured_and_bad_feature_options_raise():
+    V, F = unit_cube()
+    r = igm.compute(V, F, quads=200)
+    assert r["certified"]
+    f = r["quality"]["features"]
+    assert f["edges"] == 12 and f["curves"] == 12 and f["corners"] == 8 and f["length"] == 12
+    assert 0 <= f["covered_fraction"] <= 1
+    n = igm.compute(V, F, quads=200, no_features=True)
+    assert n["certified"] and n["quality"]["features"]["edges"] == 0
+    # One user edge (a face diagonal of the triangulation) with detection off.
+    u = igm.compute(V, F, quads=200, no_features=True, features=np.array([[0, 3]]))
+    assert u["quality"]["features"]["edges"] == 1
+    with pytest.raises(igm.Error) as e:
+        igm.compute(V, F, features=np.array([[0, 7]]))  # opposite corners: not an edge
+    assert e.value.kind == "invalid_argument" and "(0, 7)" in str(e.value)
+    with pytest.raises(igm.Error) as e:
+        igm.compute(V, F, feature_angle=-1.0)
+    assert e.value.kind == "invalid_argument"

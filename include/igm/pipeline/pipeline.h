@@ -11,6 +11,7 @@
 #include "igm/embed/orbifold_tutte.h"
 #include "igm/embed/tutte.h"
 #include "igm/embed/weights.h"
+#include "igm/features/feature_edges.h"
 #include "igm/field/cross_field.h"
 #include "igm/field/field_layout.h"
 #include "igm/igm/patch_maps.h"
@@ -153,6 +154,17 @@ struct PipelineOptions {
   /// between the quad mesh and the input (the costly part: ~1 s on 1M input triangles).
   bool quality = true;
   bool quality_distance = true;
+  /// Sharp features (features/feature_edges.h): detected once per input surface after validation
+  /// (compute_igm on a ValidMesh, compute_igms on each surface), with the user's feature_edges
+  /// merged in. At this step they feed the quality report only (PipelineResult::feature_quality:
+  /// how much of their length the quad edges cover); the layout does not follow them yet.
+  /// Options out of range: igm::Error(InvalidArgument) before any other stage.
+  FeatureOptions features;
+  /// The user's feature edges: pairs of input vertex ids (0-based, the mesh file's order, as
+  /// ValidMesh::input_vertex and SurfaceComponent::input_vertex give them), either direction. A
+  /// pair that is an edge of no surface: igm::Error(InvalidArgument) naming it, before any other
+  /// stage. Read from a file by read_feature_edges (`igm run --features FILE`).
+  std::vector<std::array<std::int64_t, 2>> feature_edges;
   std::function<void(const StageEvent&)> progress;  // optional
   /// Measure each stage's peak resident memory (StageEvent::peak_mb; Linux: the process's peak is
   /// reset at the start of every stage, see igm/core/memory.h). Off by default: it resets a
@@ -223,6 +235,12 @@ struct PipelineResult {
   SchemaDrawing schema;              // the polygonal schema, for the SVG picture
   IgmQuality igm_quality;            // with PipelineOptions::quality (else zero)
   QuadQuality quad_quality;
+  /// The input's features (PipelineOptions::features; vertex ids of the input mesh or surface),
+  /// and, with PipelineOptions::quality, how the quads cover them (quality/quality.h). Filled by
+  /// compute_igm on a ValidMesh; under compute_igms each surface gets `features` and the measure
+  /// is SurfacesResult::feature_quality; compute_igm on a SurfaceComponent fills neither.
+  FeatureEdges features;
+  FeatureQuality feature_quality;
   PipelineStats stats;
   bool certified() const { return igm_report.valid() && quad_report.valid(); }
 };
@@ -257,6 +275,7 @@ struct SurfacesResult {
   certify::Report igm_report, quad_report;  // the certifier on the merged outputs
   IgmQuality igm_quality;                   // with PipelineOptions::quality, over all of it
   QuadQuality quad_quality;
+  FeatureQuality feature_quality;           // every surface's features (components[c].features)
   std::vector<Vec3d> input_positions;       // the components' input vertices, merged
   /// The quad count shared among the surfaces (the option or the default; 0 with an edge length
   /// or a resolution) and the quads they got: more when a surface's share is below its floor.

@@ -93,6 +93,45 @@ QuadQuality measure_quads(const std::vector<Vec3d>& quad_positions,
                           const std::vector<std::array<int, 3>>& input_triangles,
                           const QuadQualityOptions& options = {});
 
+/// How the feature metrics sample (docs/quality.md, "Features").
+struct FeatureQualityOptions {
+  double tolerance = 0.002;  // a sample is covered within this fraction of the input's diagonal
+  double spacing = 0.0005;   // samples at most this fraction of the diagonal apart along each edge
+  /// Bound on the samples: past it the spacing grows to total feature length / max_samples.
+  /// Must be >= 1.
+  std::size_t max_samples = 2000000;
+};
+
+/// How well a quad mesh follows the input's feature curves (features/feature_edges.h;
+/// docs/quality.md, "Features"). At this step a report only: the layout does not follow them.
+struct FeatureQuality {
+  int edges = 0;              // feature edges measured
+  int curves = 0, corners = 0;  // as detected (filled by the caller: the pipeline copies them)
+  double length = 0;          // their total 3D length, in the input's units
+  /// Fraction of the feature length within tolerance x diagonal of a quad edge; null (nan) with
+  /// no feature length, 0 with no quads.
+  double covered_fraction = 0;
+  /// Length-weighted max and p99 of the samples' distance to the nearest quad edge, / diagonal
+  /// (fractions, as QuadQuality's distances; +inf with no quads, nan with no feature).
+  double distance_max = 0, distance_p99 = 0;
+  std::size_t samples = 0;
+};
+
+/// Samples every feature edge (a, b) (ids into input_positions) at the midpoints of
+/// n = ceil(length / step) equal pieces (step = options.spacing x diagonal, or more under
+/// max_samples), each weighing length / n, and measures each sample's distance to the nearest
+/// edge segment of the quads (a uniform grid over the quad edges searched in growing shells: exact
+/// nearest in double, deterministic for any thread count). diagonal: of the bounding box of all
+/// input_positions. Pre (checked): ids in range (igm::Error(IndexOutOfRange)), finite positions
+/// (NonFinite), options in range: 0 < spacing, 0 <= tolerance, max_samples >= 1
+/// (InvalidArgument). Invariant under a uniform scaling of both meshes. Cost O(S x the segments
+/// near each sample + E_q log E_q) for S samples and E_q quad edges.
+FeatureQuality measure_features(const std::vector<Vec3d>& input_positions,
+                                const std::vector<std::array<int, 2>>& feature_edges,
+                                const std::vector<Vec3d>& quad_positions,
+                                const std::vector<std::array<int, 4>>& quads,
+                                const FeatureQualityOptions& options = {});
+
 /// Weighted quantiles (docs/quality.md, "Quantiles"): for each q in `qs`, the smallest value v such
 /// that the total weight of the values <= v is >= q times the total weight (sums in double, in
 /// increasing order of value). Empty input: 0 for every q. Pre (checked, igm::Error
@@ -110,6 +149,12 @@ std::vector<double> quantiles(const std::vector<double>& values, const std::vect
 /// distances when not measured); `valence` an object from the valence (as a string) to the count.
 std::string to_json(const IgmQuality& q);
 std::string to_json(const QuadQuality& q);
+/// {"edges", "curves", "corners", "length", "covered_fraction", "distance_max", "distance_p99",
+/// "samples"} (null for nan and inf).
+std::string to_json(const FeatureQuality& q);
+/// For the quality line, e.g. "features 12 curves, 24 edges: 87.5 % covered, distance max 1.2 %
+/// p99 0.9 %" ("no features" without any).
+std::string summary_line(const FeatureQuality& q);
 
 /// One line for a human, e.g. "quads 10234: SJ median 0.93 p5 0.61 min -0.20, <0.5 3.1 %, <=0
 /// 0.4 %, angle dev median 6.1 deg, area/input 0.998, smallest half 41 %, distance max 0.3 %;
