@@ -5,7 +5,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <optional>
 #include <string>
 
@@ -32,50 +31,31 @@ std::string cones_summary(const CrossFieldStats& s) {
 
 }  // namespace
 
-FieldFeatures field_features(const TriMesh& mesh, const std::vector<char>& feature) {
-  const int nh = mesh.num_halfedges(), nv = mesh.num_vertices();
+FieldFeatures field_features(const TriMesh& mesh, const FeatureEdges* features) {
   FieldFeatures out;
-  if (feature.empty()) return out;
+  if (!features || features->edges.empty()) return out;
+  const int nh = mesh.num_halfedges();
+  if (static_cast<int>(features->halfedge.size()) != nh)
+    throw Error(ErrorKind::Internal, "field layout: the features do not match the surface");
   out.constrained.assign(nh, 0);
-  std::vector<int> degree(nv, 0);
-  for (int h = 0; h < nh; ++h) {
-    const int t = mesh.twin(h);
-    if (!feature[h] || t < 0 || (t >= 0 && !feature[t])) continue;
-    out.constrained[h] = 1;
-    if (h < t) ++degree[mesh.origin(h)], ++degree[mesh.target(h)];
+  for (const FeatureCurve& c : features->curves) {
+    std::vector<int> wall;
+    auto flush = [&] {
+      if (wall.size() >= 2) out.walls.push_back(std::move(wall));
+      wall.clear();
+    };
+    for (std::size_t i = 0; i < c.halfedges.size(); ++i) {
+      const int h = c.halfedges[i], t = mesh.twin(h);
+      if (t < 0) {  // along the boundary: not a wall
+        flush();
+        continue;
+      }
+      out.constrained[h] = out.constrained[t] = 1;
+      if (wall.empty()) wall.push_back(c.vertices[i]);
+      wall.push_back(c.vertices[i + 1]);
+    }
+    flush();
   }
-  // Chains: from every end or junction (degree != 2) along each feature edge until the next one,
-  // then the closed loops left (from their least vertex). Bound: every edge is taken once.
-  std::vector<char> taken(nh, 0);
-  auto walk = [&](int h) {
-    std::vector<int> chain{mesh.origin(h)};
-    for (int guard = 0; guard < nh; ++guard) {
-      taken[h] = taken[mesh.twin(h)] = 1;
-      const int x = mesh.target(h);
-      chain.push_back(x);
-      if (degree[x] != 2 || x == chain.front()) break;
-      int next = -1;
-      const int first = mesh.vertex_halfedge(x);
-      for (int o = first, g = 0; o >= 0 && g < nh; ++g) {
-        if (out.constrained[o] && !taken[o]) next = o;
-        o = mesh.next_around_origin(o);
-        if (o == first) break;
-      }
-      if (next < 0) break;
-      h = next;
-    }
-    out.walls.push_back(std::move(chain));
-  };
-  for (int pass = 0; pass < 2; ++pass)
-    for (int v = 0; v < nv; ++v) {
-      if (degree[v] == 0 || (pass == 0 && degree[v] == 2)) continue;
-      const int first = mesh.vertex_halfedge(v);
-      for (int o = first, g = 0; o >= 0 && g < nh; ++g) {
-        if (out.constrained[o] && !taken[o]) walk(o);
-        o = mesh.next_around_origin(o);
-        if (o == first) break;
-      }
-    }
   return out;
 }
 
@@ -130,28 +110,7 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
     return std::nullopt;
   };
   const std::vector<Vec3d>& positions = *input.positions;
-  std::vector<char> feature_flags;
-  if (const char* env = std::getenv("IGM_EXPERIMENT_FEATURE_ANGLE")) {  // EXPERIMENT: replaced by features/
-    const double cos_limit = std::cos(std::atof(env) * 3.14159265358979 / 180);
-    const TriMesh& m = *input.mesh;
-    feature_flags.assign(m.num_halfedges(), 0);
-    auto normal = [&](int f) {
-      const auto fv = m.face_vertices(f);
-      const Vec3d &p0 = positions[fv[0]], &p1 = positions[fv[1]], &p2 = positions[fv[2]];
-      const Vec3d u{p1.x - p0.x, p1.y - p0.y, p1.z - p0.z}, v{p2.x - p0.x, p2.y - p0.y, p2.z - p0.z};
-      Vec3d n{u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x};
-      const double l = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
-      return l > 0 ? Vec3d{n.x / l, n.y / l, n.z / l} : Vec3d{0, 0, 0};
-    };
-    for (int h = 0; h < m.num_halfedges(); ++h) {
-      const int t = m.twin(h);
-      if (t < 0) continue;
-      const Vec3d a = normal(TriMesh::face(h)), b = normal(TriMesh::face(t));
-      const double d = a.x * b.x + a.y * b.y + a.z * b.z;
-      if ((a.x != 0 || a.y != 0 || a.z != 0) && (b.x != 0 || b.y != 0 || b.z != 0) && d <= cos_limit) feature_flags[h] = 1;
-    }
-  }
-  FieldFeatures features = field_features(*input.mesh, feature_flags);
+  FieldFeatures features = field_features(*input.mesh, input.features);
 
   // The quad size the sizing aims at (for the tracing's snapping): from the area and the quad
   // count, or the edge length; 0 with a resolution (then the tracing's own default).

@@ -9,14 +9,14 @@
 
 namespace igm {
 
-PipelineResult compute_igm_open(const SurfaceComponent& input, const PipelineOptions& options) {
+PipelineResult compute_igm_open(const SurfaceComponent& input, const PipelineOptions& options, const FeatureEdges* features) {
   if (!options.cones.empty())
     throw Error(ErrorKind::InvalidArgument, "cones: only a closed genus-0 mesh takes a cone list (this one has " +
                                                 std::to_string(input.boundary_loops.size()) + " boundary loops)");
   if (options.layout == LayoutKind::Field) {
     const TriMesh mesh = TriMesh::from_triangles(static_cast<int>(input.positions.size()), input.triangles, true);
     FieldSurface surface{&mesh, &input.positions, &input.triangles, input.genus,
-                         static_cast<int>(input.boundary_loops.size())};
+                         static_cast<int>(input.boundary_loops.size()), features};
     PipelineStats attempt;
     if (std::optional<PipelineResult> r = compute_igm_field(surface, options, attempt)) return std::move(*r);
     PipelineOptions topological = options;

@@ -504,19 +504,19 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
   FeatureEdges features = surface_features(input.mesh, input.positions, input.input_vertex, options, found);
   check_feature_edges_found(options.feature_edges, found);
   with_threads(options.threads, [&] {
-    result = compute_igm_closed(input, options);
+    result = compute_igm_closed(input, options, &features);
     if (options.quality) result.feature_quality = feature_quality({&features}, {0}, input.positions, result.quads);
   });
   result.features = std::move(features);
   return result;
 }
 
-PipelineResult compute_igm_closed(const ValidMesh& input, const PipelineOptions& options) {
+PipelineResult compute_igm_closed(const ValidMesh& input, const PipelineOptions& options, const FeatureEdges* features) {
   check_sizes(options);
   if (options.layout == LayoutKind::Field && options.cones.empty()) {
     std::vector<std::array<int, 3>> triangles(input.mesh.num_faces());
     for (int f = 0; f < input.mesh.num_faces(); ++f) triangles[f] = input.mesh.face_vertices(f);
-    FieldSurface surface{&input.mesh, &input.positions, &triangles, input.genus, 0};
+    FieldSurface surface{&input.mesh, &input.positions, &triangles, input.genus, 0, features};
     PipelineStats attempt;
     if (std::optional<PipelineResult> r = compute_igm_field(surface, options, attempt)) return std::move(*r);
     PipelineOptions topological = options;

@@ -81,6 +81,9 @@ struct FieldSurface {
   const std::vector<Vec3d>* positions = nullptr;
   const std::vector<std::array<int, 3>>* triangles = nullptr;
   int genus = 0, boundary_loops = 0;
+  /// The surface's features (features/feature_edges.h, on `mesh`'s vertex ids) or none: the field
+  /// layout follows them (docs/field.md, section 8).
+  const FeatureEdges* features = nullptr;
 };
 
 /// The edges of `igm` that lie on the input edges flagged in `constrained` (one flag per half-edge
@@ -90,14 +93,14 @@ struct FieldSurface {
 std::vector<std::pair<int, int>> igm_edges_on(const TriMesh& input, const std::vector<char>& constrained, const IgmMesh& igm);
 
 /// Feature edges for the field layout (issue 45): the cross field's constraint flags (per
-/// half-edge, both halves of each flagged interior edge; empty when none) and the walls to trace
-/// (chains between ends and junctions, then closed loops; field/motorcycle.h). `feature`: empty
-/// or one flag per half-edge (an edge counts when both halves are flagged). O(H).
+/// half-edge, both halves of each interior feature edge; empty when none) and the walls to trace
+/// (the feature curves, split where they run along the boundary, which is on isolines anyway;
+/// field/motorcycle.h). `features` may be null. O(H).
 struct FieldFeatures {
   std::vector<char> constrained;
   std::vector<std::vector<int>> walls;
 };
-FieldFeatures field_features(const TriMesh& mesh, const std::vector<char>& feature);
+FieldFeatures field_features(const TriMesh& mesh, const FeatureEdges* features);
 
 /// The field layout's IGM of a surface (field_pipeline.cpp): field, trace, quantize, igm, then
 /// smooth_extract_certify and the quality. Nothing where a stage cannot finish or the certifier
@@ -111,7 +114,8 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
 PipelineResult with_fallback(PipelineStats attempt, PipelineResult result);
 
 /// compute_igm in the caller's thread arena (compute_igm sets it up from options.threads).
-PipelineResult compute_igm_closed(const ValidMesh& input, const PipelineOptions& options);
+PipelineResult compute_igm_closed(const ValidMesh& input, const PipelineOptions& options,
+                                  const FeatureEdges* features = nullptr);
 
 /// compute_igms in the caller's thread arena.
 SurfacesResult compute_igms_here(const SurfaceSet& set, const PipelineOptions& options);
@@ -129,7 +133,12 @@ void measure_quality(PipelineResult& result, const std::vector<Vec3d>& input_pos
                      StageReporter& stage);
 
 /// compute_igm for an open surface (boundary loops; open_pipeline.cpp). Options range-checked.
-PipelineResult compute_igm_open(const SurfaceComponent& input, const PipelineOptions& options);
+PipelineResult compute_igm_open(const SurfaceComponent& input, const PipelineOptions& options,
+                                const FeatureEdges* features = nullptr);
+
+/// compute_igm of one surface whose features (or none) are known: the field layout follows them.
+PipelineResult compute_igm_surface(const SurfaceComponent& surface, const PipelineOptions& options,
+                                   const FeatureEdges* features);
 
 /// The stages after the map, shared by both branches: with options.smooth, "smooth" (smooth_igm on
 /// result.igm, its UVs replaced by the smoothed ones) then "extract" by the integer isolines

@@ -11,14 +11,20 @@
 namespace igm {
 
 PipelineResult compute_igm(const SurfaceComponent& surface, const PipelineOptions& options) {
+  return compute_igm_surface(surface, options, nullptr);
+}
+
+PipelineResult compute_igm_surface(const SurfaceComponent& surface, const PipelineOptions& options,
+                                   const FeatureEdges* features) {
   PipelineResult result;
   with_threads(options.threads, [&] {
     if (surface.boundary_loops.empty()) {
-      result = compute_igm_closed(to_valid_mesh(surface), options);
+      // The surface's own mesh (to_valid_mesh keeps the vertex and face order): the features' ids hold.
+      result = compute_igm_closed(to_valid_mesh(surface), options, features);
       return;
     }
     check_sizes(options);
-    result = compute_igm_open(surface, options);  // open_pipeline.cpp
+    result = compute_igm_open(surface, options, features);  // open_pipeline.cpp
   });
   return result;
 }
@@ -75,7 +81,7 @@ SurfacesResult compute_igms_here(const SurfaceSet& set, const PipelineOptions& o
         tagged.detail = "surface " + std::to_string(c) + ": " + e.detail;
         options.progress(tagged);
       };
-    out.components.push_back(compute_igm(comp, o));
+    out.components.push_back(compute_igm_surface(comp, o, &features[c]));
     out.components.back().features = std::move(features[c]);
     const PipelineResult& r = out.components.back();
     // Merge: the IGM (vertex ids and the locations' input ids offset), the quads.
