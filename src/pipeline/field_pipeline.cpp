@@ -201,16 +201,26 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
       traced.failure = std::string("internal error: ") + e.what();
     }
     stats.field_layout = traced.stats;
+    // A wall not drawn whole leaves its feature off the arcs (the layout may still close without it).
+    if (!traced.graph.stuck_walls.empty()) {
+      if (feature_round < kFeatureRounds) {
+        walls_stuck = true;
+        stage.done("trace", t0, std::to_string(traced.graph.stuck_walls.size()) +
+                                    " feature walls could not be drawn: left out, the field again" + attempt_name);
+        break;
+      }
+      traced.ok = false;
+      traced.failure = std::to_string(traced.graph.stuck_walls.size()) + " feature walls could not be drawn (wall " +
+                       std::to_string(traced.graph.stuck_walls.front()) + ")";
+    }
     stage.done("trace", t0,
                traced.ok ? std::to_string(traced.stats.trace.curves) + " curves, " + std::to_string(traced.stats.patches) +
                                " patches, " + std::to_string(traced.stats.t_junctions) + " T-junctions, " +
-                               std::to_string(traced.stats.rounds) + " rounds"
+                               std::to_string(traced.stats.rounds) + " rounds" +
+                               (features.walls.empty() ? std::string()
+                                                       : ", " + std::to_string(features.walls.size()) + " feature walls")
                          : "no layout: " + traced.failure);
     if (traced.ok) break;
-    if (!traced.graph.stuck_walls.empty() && feature_round < kFeatureRounds) {
-      walls_stuck = true;
-      break;
-    }
     if (first_failure.empty()) first_failure = "trace: " + traced.failure;
   }
   if (!walls_stuck) break;
