@@ -152,6 +152,7 @@ py::dict stats_dict(const igm::PipelineStats& st) {
                   "smooth_iterations"_a = st.smooth.iterations, "smooth_stop"_a = igm::to_string(st.smooth.stop),
                   "layout"_a = st.layout,
                   "layout_fallback"_a = st.layout_fallback.empty() ? py::object(py::none()) : py::object(py::str(st.layout_fallback)),
+                  "feature_walls"_a = st.feature_walls, "features_dropped"_a = st.features_dropped,
                   "floor_quads"_a = st.floor_quads, "quads_asked"_a = st.quads_asked,
                   "raised_by_floor"_a = st.raised_by_floor(), "floor_note"_a = igm::floor_note(st),
                   "quad_defects"_a = st.quad_defects, "stages"_a = stages);

@@ -153,7 +153,9 @@ std::string field_json(const igm::PipelineStats& st) {
   return "{\"cone_valences\": " + v + ", \"curves\": " + std::to_string(l.trace.curves) + ", \"patches\": " +
          std::to_string(l.patches) + ", \"t_junctions\": " + std::to_string(l.t_junctions) + ", \"rounds\": " +
          std::to_string(l.rounds) + ", \"banned_rays\": " + std::to_string(l.banned_rays) + ", \"seeds\": " +
-         std::to_string(l.seeds) + ", \"quantize_deviation\": " + std::to_string(st.quantize.deviation) + "}";
+         std::to_string(l.seeds) + ", \"feature_walls\": " + std::to_string(st.feature_walls) +
+         ", \"features_dropped\": " + std::to_string(st.features_dropped) +
+         ", \"quantize_deviation\": " + std::to_string(st.quantize.deviation) + "}";
 }
 
 // The options with a line per stage, and per smoothing iteration once it has run 2 s (at most one a
