@@ -187,18 +187,19 @@ std::vector<std::int64_t> feature_edge_ids(const Topology& t, const std::vector<
   ids.reserve(pairs.size());
   for (std::size_t i = 0; i < pairs.size(); ++i) {  // bound: number of pairs
     const FeatureEdge& p = pairs[i];
-    const std::string where = (p.line > 0 ? "features line " + std::to_string(p.line)
-                                          : "feature edge " + std::to_string(i)) +
-                              ": pair \"" + std::to_string(p.a) + " " + std::to_string(p.b) + "\"";
+    auto where = [&] {  // built only for the message
+      return (p.line > 0 ? "features line " + std::to_string(p.line) : "feature edge " + std::to_string(i)) +
+             ": pair \"" + std::to_string(p.a) + " " + std::to_string(p.b) + "\"";
+    };
     for (std::int64_t x : {p.a, p.b})
       if (x < 0 || x >= t.V) {
-        error = where + ": vertex id " + std::to_string(x) + " out of range (the mesh has " +
+        error = where() + ": vertex id " + std::to_string(x) + " out of range (the mesh has " +
                 std::to_string(t.V) + " vertices, ids 0.." + std::to_string(t.V - 1) + ")";
         return {};
       }
     const std::int64_t e = detail::find_edge(t, p.a, p.b);
     if (e < 0) {
-      error = where + " is not an edge of the mesh";
+      error = where() + " is not an edge of the mesh";
       return {};
     }
     ids.push_back(e);
