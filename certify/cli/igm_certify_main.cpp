@@ -1,6 +1,6 @@
 // igm-certify: judge an IGM (triangle OBJ with per-corner UVs) or a quad mesh exactly.
 //   igm-certify [--quad] [--genus G] [--boundary] [--components] [--boundary-loops B]
-//               [--component G:B]... [--json OUT] [--max-witnesses N] FILE
+//               [--component G:B]... [--features FEATURES] [--json OUT] [--max-witnesses N] FILE
 // JSON certificate on stdout (or OUT), one summary line on stderr.
 // Exit: 0 valid, 1 invalid, 2 unreadable input or bad arguments.
 #include <cstdio>
@@ -18,8 +18,11 @@ int usage(const char* msg) {
                "igm-certify: %s\n"
                "usage: igm-certify [--quad] [--genus G] [--boundary] [--components]\n"
                "                   [--boundary-loops B] [--component G:B]... [--json OUT]\n"
-               "                   [--max-witnesses N] FILE\n"
+               "                   [--features FEATURES] [--max-witnesses N] FILE\n"
                "  --boundary         accept boundary edges (open surfaces)\n"
+               "  --features F       every feature edge listed in F (lines \"i j\", 0-based vertex\n"
+               "                     ids of FILE; '#' lines ignored) must lie on an integer\n"
+               "                     isoline of every face's chart containing it\n"
                "  --components       accept several connected components\n"
                "  --genus G          (--quad) the total genus must be G\n"
                "  --boundary-loops B (--quad) the total number of boundary loops must be B\n"
@@ -53,7 +56,7 @@ bool parse_component(const char* s, igm::certify::ComponentTopology& out) {
 
 int main(int argc, char** argv) {
   bool quad = false;
-  std::string json_out, file;
+  std::string json_out, file, features;
   igm::certify::Options opt;
   for (int i = 1; i < argc; ++i) {  // bound: argc
     std::string a = argv[i];
@@ -76,6 +79,9 @@ int main(int argc, char** argv) {
       if (i + 1 >= argc || !parse_component(argv[++i], c))
         return usage("--component needs GENUS:LOOPS (non-negative integers)");
       opt.expected_components.push_back(c);
+    } else if (a == "--features") {
+      if (i + 1 >= argc) return usage("--features needs a file name");
+      features = argv[++i];
     } else if (a == "--json") {
       if (i + 1 >= argc) return usage("--json needs a file name");
       json_out = argv[++i];
@@ -103,8 +109,19 @@ int main(int argc, char** argv) {
     return usage("boundary loops expected: add --boundary");
   if (opt.expected_components.size() > 1 && !opt.allow_components)
     return usage("several --component expected: add --components");
-  const igm::certify::Report r =
-      quad ? igm::certify::certify_quads_file(file, opt) : igm::certify::certify_igm_file(file, opt);
+  if (!features.empty() && quad) return usage("--features applies to IGMs, not to --quad");
+  igm::certify::Report r;
+  if (!features.empty()) {
+    igm::certify::FeatureReadResult fr = igm::certify::read_feature_edges_file(features);
+    if (fr.ok) {
+      opt.feature_edges = std::move(fr.edges);
+    } else {  // unreadable (exit 2); the message names the features file and its line
+      r.source = file;
+      r.error = "features file '" + features + "': " + fr.error;
+    }
+  }
+  if (r.error.empty())
+    r = quad ? igm::certify::certify_quads_file(file, opt) : igm::certify::certify_igm_file(file, opt);
   const std::string json = igm::certify::to_json(r);
   if (json_out.empty()) {
     std::fwrite(json.data(), 1, json.size(), stdout);

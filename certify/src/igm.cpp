@@ -111,6 +111,102 @@ bool on_integer_isoline(const ExactPoint& a, const ExactPoint& b) {
   return (a.x == b.x && is_integer(a.x)) || (a.y == b.y && is_integer(a.y));
 }
 
+std::string isoline_condition(const ExactPoint& a, const ExactPoint& b);
+
+// The edge of half-edge h in h's face (chart) lies on an integer isoline (on_integer_isoline of the
+// corner UVs at its ends): nullopt; else a witness without reason: the edge (u < v), the face and
+// the UVs of its corners at u and v (and with `condition`, which test failed). The rule shared by
+// boundary edges (check 3) and feature edges (the features check).
+std::optional<Witness> off_isoline(const IgmData& d, const Topology& t, std::int64_t h, bool condition = false) {
+  const std::int64_t hu = t.origin(h) < t.target(h) ? h : t.next(h);
+  const std::int64_t hv = hu == h ? t.next(h) : h;
+  const ExactPoint &pu = d.uv[d.corner_uv[hu]], &pv = d.uv[d.corner_uv[hv]];
+  if (on_integer_isoline(pu, pv)) return std::nullopt;
+  Witness w{"edge", {t.origin(hu), t.origin(hv)}, "",
+            {{"face", std::to_string(t.corner_face[h])},
+             {"uv_u", point_string(pu.x, pu.y)},
+             {"uv_v", point_string(pv.x, pv.y)}}};
+  if (condition) w.values.emplace_back("condition", isoline_condition(pu, pv));
+  return w;
+}
+
+// Why a and b are on no integer isoline, per coordinate: "u differs" or "u equal, not integer",
+// then the same for v.
+std::string isoline_condition(const ExactPoint& a, const ExactPoint& b) {
+  auto one = [](const char* name, const mpq_class& x, const mpq_class& y) {
+    return std::string(name) + (x != y ? " differs" : " equal, not integer");
+  };
+  return one("u", a.x, b.x) + "; " + one("v", a.y, b.y);
+}
+
+// Every feature edge lies on an integer isoline in the chart of every face containing it. The
+// pairs were validated (find_edge) into `edges`, in the order given.
+CheckResult check_features(const IgmData& d, const Topology& t, const std::vector<FeatureEdge>& pairs,
+                           const std::vector<std::int64_t>& edges, std::size_t W) {
+  CheckResult c;
+  c.id = 6;
+  c.name = "features";
+  std::vector<char> seen(static_cast<std::size_t>(t.E), 0);
+  std::int64_t distinct = 0, off_edges = 0, sides = 0, off_sides = 0;
+  for (std::size_t i = 0; i < pairs.size(); ++i) {  // bound: number of pairs
+    const std::int64_t e = edges[i];
+    if (seen[e]) continue;
+    seen[e] = 1;
+    ++distinct;
+    bool off = false;
+    for (std::int64_t k = t.edge_start[e]; k < t.edge_start[e + 1]; ++k) {  // bound: faces on e
+      const std::int64_t h = t.edge_halfedges[k];
+      ++sides;
+      std::optional<Witness> w = off_isoline(d, t, h, true);
+      if (!w) continue;
+      ++off_sides;
+      off = true;
+      w->reason = "feature edge not on an integer isoline of this face's chart (u or v constant and integer)";
+      if (pairs[i].line > 0) w->values.emplace_back("line", std::to_string(pairs[i].line));
+      add_witness(c, W, std::move(*w));
+    }
+    off_edges += off ? 1 : 0;
+  }
+  c.counts = {{"feature_pairs", std::int64_t(pairs.size())},
+              {"duplicates", std::int64_t(pairs.size()) - distinct},
+              {"edges_checked", distinct},
+              {"edges_on_isoline", distinct - off_edges},
+              {"edges_off_isoline", off_edges},
+              {"faces_checked", sides},
+              {"faces_off_isoline", off_sides}};
+  c.note = "in every face containing a feature edge (u < v): u_u = u_v in Z or v_u = v_v in Z, exactly; "
+           "one witness per face off its isoline";
+  c.status = off_edges == 0 ? Status::Pass : Status::Fail;
+  return c;
+}
+
+// The pairs as edges of t (same order), or the message of the first that is not one.
+std::vector<std::int64_t> feature_edge_ids(const Topology& t, const std::vector<FeatureEdge>& pairs,
+                                           std::string& error) {
+  std::vector<std::int64_t> ids;
+  ids.reserve(pairs.size());
+  for (std::size_t i = 0; i < pairs.size(); ++i) {  // bound: number of pairs
+    const FeatureEdge& p = pairs[i];
+    auto where = [&] {  // built only for the message
+      return (p.line > 0 ? "features line " + std::to_string(p.line) : "feature edge " + std::to_string(i)) +
+             ": pair \"" + std::to_string(p.a) + " " + std::to_string(p.b) + "\"";
+    };
+    for (std::int64_t x : {p.a, p.b})
+      if (x < 0 || x >= t.V) {
+        error = where() + ": vertex id " + std::to_string(x) + " out of range (the mesh has " +
+                std::to_string(t.V) + " vertices, ids 0.." + std::to_string(t.V - 1) + ")";
+        return {};
+      }
+    const std::int64_t e = detail::find_edge(t, p.a, p.b);
+    if (e < 0) {
+      error = where() + " is not an edge of the mesh";
+      return {};
+    }
+    ids.push_back(e);
+  }
+  return ids;
+}
+
 int quadrant(const ExactPoint& o, const ExactPoint& p) {
   const bool f = o.filterable && p.filterable;
   const int sx = compare(p.x, p.ax, o.x, o.ax, f), sy = compare(p.y, p.ay, o.y, o.ay, f);
@@ -134,6 +230,7 @@ Report unreadable(const std::string& mode, const std::string& source, const std:
 void finish(Report& r) {
   bool all = !r.checks.empty();
   for (const auto& c : r.checks) all = all && c.status == Status::Pass;
+  if (r.features) all = all && r.features->status == Status::Pass;
   r.verdict = all ? Verdict::Valid : Verdict::Invalid;
 }
 
@@ -158,6 +255,12 @@ Report certify_igm_data(IgmData& d, const Options& opt, const std::string& sourc
   c1.name = "topology";
   Topology t = detail::analyze_topology(d.V, d.face_begin, d.corner_vertex, opt, c1);
   detail::fill_mesh(rep, t, c1);
+  std::vector<std::int64_t> feature_ids;
+  if (opt.feature_edges) {
+    std::string error;
+    feature_ids = feature_edge_ids(t, *opt.feature_edges, error);
+    if (!error.empty()) return unreadable("igm", source, error, 0);
+  }
 
   // ---- check 2: strictly positive UV triangles ----
   CheckResult c2;
@@ -219,17 +322,10 @@ Report certify_igm_data(IgmData& d, const Options& opt, const std::string& sourc
       // A boundary edge lies on an integer isoline of its face's chart (rigid transitions keep
       // both the direction class and integrality, so the chart does not matter).
       ++bnd_checked;
-      const std::int64_t hu = t.origin(h0) < t.target(h0) ? h0 : t.next(h0);
-      const std::int64_t hv = hu == h0 ? t.next(h0) : h0;
-      const ExactPoint &pu = uv(hu), &pv = uv(hv);
-      if (!on_integer_isoline(pu, pv)) {
+      if (std::optional<Witness> w = off_isoline(d, t, h0)) {
         ++bnd_off;
-        add_witness(c3, W,
-                    {"edge", {t.origin(hu), t.origin(hv)},
-                     "boundary edge not on an integer isoline (u or v constant and integer)",
-                     {{"face", std::to_string(t.corner_face[h0])},
-                      {"uv_u", point_string(pu.x, pu.y)},
-                      {"uv_v", point_string(pv.x, pv.y)}}});
+        w->reason = "boundary edge not on an integer isoline (u or v constant and integer)";
+        add_witness(c3, W, std::move(*w));
       }
       continue;
     }
@@ -642,6 +738,7 @@ Report certify_igm_data(IgmData& d, const Options& opt, const std::string& sourc
   rep.checks.push_back(std::move(c2));
   rep.checks.push_back(std::move(c3));
   rep.checks.push_back(std::move(c4));
+  if (opt.feature_edges) rep.features = check_features(d, t, *opt.feature_edges, feature_ids, W);
   finish(rep);
   return rep;
 }
@@ -739,16 +836,6 @@ Report certify_quad_data(std::int64_t V, const std::vector<std::int64_t>& face_b
   return rep;
 }
 
-std::string read_file(const std::string& path, bool& ok) {
-  std::ifstream in(path, std::ios::binary);
-  ok = static_cast<bool>(in);
-  if (!ok) return {};
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  ok = !in.bad();
-  return ss.str();
-}
-
 Report igm_from_text(const std::string& text, const Options& opt, const std::string& source) {
   ObjReadResult r = read_obj(text);
   if (!r.ok) return unreadable("igm", source, r.error, r.error_line);
@@ -789,6 +876,20 @@ Report quads_from_text(const std::string& text, const Options& opt, const std::s
 }
 
 }  // namespace
+
+namespace detail {
+
+std::string read_file(const std::string& path, bool& ok) {
+  std::ifstream in(path, std::ios::binary);
+  ok = static_cast<bool>(in);
+  if (!ok) return {};
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  ok = !in.bad();
+  return ss.str();
+}
+
+}  // namespace detail
 
 Report certify_igm(const IgmInput& in, const Options& opt) {
   IgmInput copy = in;
@@ -873,14 +974,14 @@ Report certify_quads_text(const std::string& text, const Options& opt) { return 
 
 Report certify_igm_file(const std::string& path, const Options& opt) {
   bool ok = false;
-  std::string text = read_file(path, ok);
+  std::string text = detail::read_file(path, ok);
   if (!ok) return unreadable("igm", path, "cannot read file '" + path + "'", 0);
   return igm_from_text(text, opt, path);
 }
 
 Report certify_quads_file(const std::string& path, const Options& opt) {
   bool ok = false;
-  std::string text = read_file(path, ok);
+  std::string text = detail::read_file(path, ok);
   if (!ok) return unreadable("quad", path, "cannot read file '" + path + "'", 0);
   return quads_from_text(text, opt, path);
 }

@@ -58,6 +58,10 @@ struct Topology {
   std::int64_t target(std::int64_t h) const { return origin(next(h)); }
 };
 
+/// The undirected edge {u, v} (edges are numbered by sorted (min, max) key), or -1 when no face
+/// has u and v as consecutive corners (also for u == v or ids outside [0, V)). Cost O(log E).
+std::int64_t find_edge(const Topology& t, std::int64_t u, std::int64_t v);
+
 /// Builds the adjacency and fills check 1 (topology) counts, status and witnesses; boundary
 /// edges and several components pass where options allow them. Also counts boundary loops
 /// (walking boundary half-edges) and per-component V, E, F, loops when manifold and oriented.
@@ -72,6 +76,9 @@ void fill_mesh(Report& report, const Topology& t, CheckResult& check);
 
 /// Adds a witness unless the cap is reached; always counts it in check.offending.
 void add_witness(CheckResult& check, std::size_t max_witnesses, Witness w);
+
+/// The whole file's bytes; ok = false when it cannot be opened or read.
+std::string read_file(const std::string& path, bool& ok);
 
 std::string point_string(const mpq_class& x, const mpq_class& y);
 

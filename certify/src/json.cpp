@@ -54,6 +54,56 @@ void put_histogram(std::string& o, const char* key, const std::string& name,
   o += "}}";
 }
 
+// One check's object after its opening brace, through its closing brace.
+void put_check(std::string& o, const CheckResult& c) {
+  app(o, "\"id\": ", std::to_string(c.id), ", \"name\": ");
+  put_string(o, c.name);
+  o += ", \"status\": \"";
+  o += to_string(c.status);
+  o += "\", \"pass\": ";
+  o += c.passed() ? "true" : "false";
+  o += ",\n     \"counts\": {";
+  for (std::size_t k = 0; k < c.counts.size(); ++k) {
+    if (k) o += ", ";
+    put_string(o, c.counts[k].first);
+    o += ": ";
+    o += std::to_string(c.counts[k].second);
+  }
+  o += "}";
+  if (!c.histogram_name.empty()) put_histogram(o, "histogram", c.histogram_name, c.histogram);
+  if (!c.boundary_histogram_name.empty())
+    put_histogram(o, "boundary_histogram", c.boundary_histogram_name, c.boundary_histogram);
+  o += ",\n     \"offending\": ";
+  o += std::to_string(c.offending);
+  o += ", \"witnesses_shown\": ";
+  o += std::to_string(c.witnesses.size());
+  o += ", \"note\": ";
+  put_string(o, c.note);
+  o += ",\n     \"witnesses\": [";
+  for (std::size_t w = 0; w < c.witnesses.size(); ++w) {  // bound: max_witnesses
+    const Witness& x = c.witnesses[w];
+    o += w ? ",\n       {" : "\n       {";
+    o += "\"kind\": ";
+    put_string(o, x.kind);
+    o += ", \"ids\": [";
+    for (std::size_t j = 0; j < x.ids.size(); ++j) {
+      if (j) o += ", ";
+      o += std::to_string(x.ids[j]);
+    }
+    o += "], \"reason\": ";
+    put_string(o, x.reason);
+    o += ", \"values\": {";
+    for (std::size_t j = 0; j < x.values.size(); ++j) {
+      if (j) o += ", ";
+      put_string(o, x.values[j].first);
+      o += ": ";
+      put_string(o, x.values[j].second);
+    }
+    o += "}}";
+  }
+  o += c.witnesses.empty() ? "]}" : "\n     ]}";
+}
+
 }  // namespace
 
 std::string to_json(const Report& r) {
@@ -104,56 +154,15 @@ std::string to_json(const Report& r) {
   o += r.components.empty() ? "]" : "\n  ]";
   o += ",\n  \"checks\": [";
   for (std::size_t i = 0; i < r.checks.size(); ++i) {  // bound: <= 5 checks
-    const CheckResult& c = r.checks[i];
     o += i ? ",\n    {" : "\n    {";
-    app(o, "\"id\": ", std::to_string(c.id), ", \"name\": ");
-    put_string(o, c.name);
-    o += ", \"status\": \"";
-    o += to_string(c.status);
-    o += "\", \"pass\": ";
-    o += c.passed() ? "true" : "false";
-    o += ",\n     \"counts\": {";
-    for (std::size_t k = 0; k < c.counts.size(); ++k) {
-      if (k) o += ", ";
-      put_string(o, c.counts[k].first);
-      o += ": ";
-      o += std::to_string(c.counts[k].second);
-    }
-    o += "}";
-    if (!c.histogram_name.empty()) put_histogram(o, "histogram", c.histogram_name, c.histogram);
-    if (!c.boundary_histogram_name.empty())
-      put_histogram(o, "boundary_histogram", c.boundary_histogram_name, c.boundary_histogram);
-    o += ",\n     \"offending\": ";
-    o += std::to_string(c.offending);
-    o += ", \"witnesses_shown\": ";
-    o += std::to_string(c.witnesses.size());
-    o += ", \"note\": ";
-    put_string(o, c.note);
-    o += ",\n     \"witnesses\": [";
-    for (std::size_t w = 0; w < c.witnesses.size(); ++w) {  // bound: max_witnesses
-      const Witness& x = c.witnesses[w];
-      o += w ? ",\n       {" : "\n       {";
-      o += "\"kind\": ";
-      put_string(o, x.kind);
-      o += ", \"ids\": [";
-      for (std::size_t j = 0; j < x.ids.size(); ++j) {
-        if (j) o += ", ";
-        o += std::to_string(x.ids[j]);
-      }
-      o += "], \"reason\": ";
-      put_string(o, x.reason);
-      o += ", \"values\": {";
-      for (std::size_t j = 0; j < x.values.size(); ++j) {
-        if (j) o += ", ";
-        put_string(o, x.values[j].first);
-        o += ": ";
-        put_string(o, x.values[j].second);
-      }
-      o += "}}";
-    }
-    o += c.witnesses.empty() ? "]}" : "\n     ]}";
+    put_check(o, r.checks[i]);
   }
-  o += r.checks.empty() ? "]\n}\n" : "\n  ]\n}\n";
+  o += r.checks.empty() ? "]" : "\n  ]";
+  if (r.features) {  // only with Options::feature_edges: without it the bytes are as before
+    o += ",\n  \"features\": {";
+    put_check(o, *r.features);
+  }
+  o += "\n}\n";
   return o;
 }
 
@@ -171,6 +180,10 @@ std::string summary(const Report& r) {
   for (const auto& c : r.checks) {
     app(s, "; ", std::to_string(c.id), ":", c.name, "=", to_string(c.status));
     if (c.offending) app(s, "(", std::to_string(c.offending), ")");
+  }
+  if (r.features) {
+    app(s, "; features=", to_string(r.features->status), " ", std::to_string(r.features->count("edges_on_isoline")),
+        "/", std::to_string(r.features->count("edges_checked")), " on isolines");
   }
   return s;
 }

@@ -2,6 +2,7 @@
 // producer's TriMesh.
 #include <algorithm>
 #include <numeric>
+#include <utility>
 
 #include "internal.h"
 
@@ -281,6 +282,26 @@ Topology analyze_topology(std::int64_t V, const std::vector<std::int64_t>& face_
   if (t.F == 0) check.note = "no faces";
   check.status = t.ok ? Status::Pass : Status::Fail;
   return t;
+}
+
+std::int64_t find_edge(const Topology& t, std::int64_t u, std::int64_t v) {
+  if (u == v || u < 0 || v < 0 || u >= t.V || v >= t.V) return -1;
+  if (u > v) std::swap(u, v);
+  auto key = [&](std::int64_t e) {
+    const std::int64_t h = t.edge_halfedges[t.edge_start[e]];
+    const std::int64_t a = t.origin(h), b = t.target(h);
+    return std::pair(std::min(a, b), std::max(a, b));
+  };
+  std::int64_t lo = 0, hi = t.E;  // edges are numbered in increasing key order
+  while (lo < hi) {               // bound: log2(E) + 1 halvings
+    const std::int64_t mid = lo + (hi - lo) / 2;
+    if (key(mid) < std::pair(u, v)) {
+      lo = mid + 1;
+    } else {
+      hi = mid;
+    }
+  }
+  return lo < t.E && key(lo) == std::pair(u, v) ? lo : -1;
 }
 
 }  // namespace igm::certify::detail

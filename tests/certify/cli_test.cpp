@@ -10,6 +10,7 @@
 #include <sys/wait.h>
 
 #include "boundary_builders.h"
+#include "cli_files.h"
 
 namespace fs = std::filesystem;
 using namespace certify_test;
@@ -20,18 +21,6 @@ fs::path tmp_dir() {
   fs::path d = fs::temp_directory_path() / ("igm_certify_cli_test_" + std::to_string(::getpid()));
   fs::create_directories(d);
   return d;
-}
-
-void write(const fs::path& p, const std::string& text) {
-  std::ofstream o(p, std::ios::binary);
-  o << text;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream i(p, std::ios::binary);
-  std::stringstream s;
-  s << i.rdbuf();
-  return s.str();
 }
 
 // Runs the CLI with args; returns the exit code, stdout in out.

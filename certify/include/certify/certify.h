@@ -17,6 +17,9 @@
 //                  integer point; Poincare-Hopf per component sum_int(4-k) + sum_bnd(2-k) = 4 chi
 //   5 quad mesh    (quad mode) pure quads, manifold oriented (closed and connected unless allowed),
 //                  genus, boundary loops, per-component (genus, loops), valences
+//   features       (IGM mode, when Options::feature_edges is set; Report::features) every given
+//                  feature edge lies on an integer isoline u = c or v = c (c in Z) in the chart of
+//                  every face containing it: the same exact test as boundary edges in check 3
 // Ids in reports are 0-based (vertex v of an OBJ file is OBJ index v+1; faces in file order).
 #include <array>
 #include <compare>
@@ -95,6 +98,10 @@ struct Report {
   std::optional<std::int64_t> boundary_loops;  // total, when the mesh is manifold and oriented
   std::vector<ComponentInfo> components;       // by increasing first_vertex
   std::vector<CheckResult> checks;
+  /// Options::feature_edges given and the input readable: the features check (id 6, name
+  /// "features"; counts, witnesses per face off its isoline). Not in `checks`; the verdict
+  /// requires it to pass too.
+  std::optional<CheckResult> features;
 
   /// The check with this id (1..5), or nullptr.
   const CheckResult* check(int id) const;
@@ -107,6 +114,30 @@ struct ComponentTopology {
   std::int64_t boundary_loops = 0;
   auto operator<=>(const ComponentTopology&) const = default;
 };
+
+/// One feature edge (a crease the IGM must map onto an integer isoline): an unordered pair of
+/// 0-based vertex ids, and its 1-based line in a features file (0 when given in memory).
+struct FeatureEdge {
+  std::int64_t a = 0, b = 0;
+  std::int64_t line = 0;
+};
+
+/// A parsed features file (read_feature_edges): the pairs in file order, or the error.
+struct FeatureReadResult {
+  bool ok = false;
+  std::string error;           // "line N: ..." when !ok
+  std::int64_t error_line = 0; // 1-based, 0 when the file cannot be read
+  std::vector<FeatureEdge> edges;
+};
+
+/// Parses a features file: text, one feature edge per line as two 0-based vertex ids "i j"
+/// (decimal digits, separated by spaces or tabs; surrounding spaces, tabs and a trailing CR
+/// allowed); blank lines and lines whose first non-blank character is '#' are ignored. Anything
+/// else (a third token, a sign, a trailing comment, an id above 2^31 - 1) is malformed: ok =
+/// false, error names the line. Cost O(text). The same format as `igm run --features FILE`.
+FeatureReadResult read_feature_edges(const std::string& text);
+/// The same for a file (a missing or unreadable file: ok = false, error_line 0).
+FeatureReadResult read_feature_edges_file(const std::string& path);
 
 /// The defaults judge closed, connected surfaces only (a boundary edge or a second component
 /// fails check 1).
@@ -125,6 +156,13 @@ struct Options {
   /// Threads for the per-element checks (certify/README.md, "Threads"): 0 = the environment's
   /// IGM_THREADS if set, else every core. The report is the same for any count.
   int threads = 0;
+  /// IGM mode, when set (even empty): the features check (Report::features). Each pair must be an
+  /// edge of the mesh (vertex ids in range, a != b, some face has both as consecutive corners),
+  /// else the report is Unreadable naming the pair (and its line when line > 0). Each edge is
+  /// checked once (repeated pairs, in either order, are counted in "duplicates"): in every face
+  /// containing it, the corner UVs at a and b satisfy u_a = u_b in Z or v_a = v_b in Z, exactly.
+  /// A failure makes the verdict Invalid. Quad mode ignores it. Cost O(E + n log E), n pairs.
+  std::optional<std::vector<FeatureEdge>> feature_edges;
 };
 
 /// In-memory IGM: triangles (0-based vertex ids) and one exact UV per face corner, three per face
