@@ -313,6 +313,7 @@ IsolineResult extract_isolines(const IsolineInput& input, const IsolineOptions& 
     copt.allow_boundary = options.allow_boundary;
     copt.allow_components = options.allow_components;
     copt.threads = options.threads;
+    copt.feature_edges = options.feature_edges;
     result.report = certify::certify_igm(std::move(cin), copt);
     stats.seconds_certify = seconds_since(t0);
   }

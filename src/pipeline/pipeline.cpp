@@ -209,6 +209,10 @@ void smooth_extract_certify(PipelineResult& result, const PipelineOptions& optio
     io.max_witnesses = options.max_witnesses;
     io.allow_boundary = stats.boundary_loops > 0;
     io.threads = resolve_threads(options.threads);
+    if (!isoline_edges.empty()) {  // the field layout's feature edges: certified on their isolines
+      io.feature_edges.emplace();
+      for (const auto& [a, b] : isoline_edges) io.feature_edges->push_back({a, b, 0});
+    }
     IsolineResult x = extract_isolines(in, io);
     igm.triangles = std::move(in.triangles);
     igm.corner_uv = std::move(in.corner_uv);

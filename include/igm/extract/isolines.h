@@ -37,6 +37,9 @@ struct IsolineOptions {
   /// Threads for the certifier (certify::Options::threads; 0: all cores). The other steps run in
   /// the caller's oneTBB arena (igm/core/threads.h). The result is the same for any count.
   int threads = 0;
+  /// Edges the certifier checks on integer isolines (certify::Options::feature_edges: issue 45's
+  /// feature edges); none: no features check.
+  std::optional<std::vector<certify::FeatureEdge>> feature_edges;
 };
 
 /// Where a grid point lies on its triangle.
