@@ -154,7 +154,8 @@ std::string field_json(const igm::PipelineStats& st) {
          std::to_string(l.patches) + ", \"t_junctions\": " + std::to_string(l.t_junctions) + ", \"rounds\": " +
          std::to_string(l.rounds) + ", \"banned_rays\": " + std::to_string(l.banned_rays) + ", \"seeds\": " +
          std::to_string(l.seeds) + ", \"feature_walls\": " + std::to_string(st.feature_walls) +
-         ", \"features_dropped\": " + std::to_string(st.features_dropped) +
+         ", \"features_dropped\": " + std::to_string(st.features_dropped) + ", \"features_failure\": " +
+         (st.features_failure.empty() ? std::string("null") : "\"" + json_escape(st.features_failure) + "\"") +
          ", \"quantize_deviation\": " + std::to_string(st.quantize.deviation) + "}";
 }
 

@@ -151,8 +151,11 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
   // Feature walls that cannot be drawn (their field rays taken: a sharp turn of a crease) are
   // left out with their constraints and the field computed again, at most kFeatureRounds times
   // (each removes at least one wall); the rest of the walls then still hold.
+  // Where no attempt gives a layout with the walls, every attempt is tried once more without any
+  // feature (the features are then only measured): one more round, the last.
   constexpr int kFeatureRounds = 4;
-  for (int feature_round = 0; feature_round <= kFeatureRounds; ++feature_round) {
+  bool without_features = features.constrained.empty();
+  for (int feature_round = 0; feature_round <= kFeatureRounds + 1; ++feature_round) {
   bool walls_stuck = false;
   for (std::size_t k = 0; k < attempts.size(); ++k) {
     const std::string attempt_name = attempts.size() > 1 ? " (attempt " + std::to_string(k + 1) + ")" : "";
@@ -203,7 +206,7 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
     stats.field_layout = traced.stats;
     // A wall not drawn whole leaves its feature off the arcs (the layout may still close without it).
     if (!traced.graph.stuck_walls.empty()) {
-      if (feature_round < kFeatureRounds) {
+      if (feature_round < kFeatureRounds && !without_features) {
         walls_stuck = true;
         stage.done("trace", t0, std::to_string(traced.graph.stuck_walls.size()) +
                                     " feature walls could not be drawn: left out, the field again" + attempt_name);
@@ -223,7 +226,20 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
     if (traced.ok) break;
     if (first_failure.empty()) first_failure = "trace: " + traced.failure;
   }
-  if (!walls_stuck) break;
+  if (!walls_stuck) {
+    if (traced.ok || without_features) break;
+    // No layout with the walls: all of them left out, every attempt again.
+    stage.done("features", Clock::now(), "no field layout follows the " + std::to_string(features.walls.size()) +
+                                             " feature walls: every attempt again without them");
+    stats.features_dropped += static_cast<int>(features.walls.size());
+    stats.features_failure = first_failure;
+    features = FieldFeatures{};
+    for (Attempt& a : attempts) a.field.constrained_edges.clear();
+    fields.clear();
+    first_failure.clear();
+    without_features = true;
+    continue;
+  }
   // Leave out the stuck walls and their constraints; every field is computed again.
   std::vector<char> drop(features.walls.size(), 0);
   for (int w : traced.graph.stuck_walls) drop[w] = 1;

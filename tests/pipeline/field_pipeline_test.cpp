@@ -5,6 +5,8 @@
 #include <doctest/doctest.h>
 
 #include <array>
+#include <cmath>
+#include <numbers>
 #include <map>
 #include <sstream>
 #include <string>
@@ -18,7 +20,9 @@
 #include "igm/pipeline/pipeline.h"
 #include "generated_mesh.h"
 #include "refinement_check.h"
+#include "random_mesh.h"  // after refinement_check.h: its to_string overloads
 #include "test_data.h"
+#include "test_surfaces.h"
 #include "uv_area.h"
 
 using namespace igm;
@@ -61,7 +65,89 @@ ValidMesh needle() {
   return validate(soup);
 }
 
+// A ring of square cross-section (genus 1): n sections around the axis, each the square
+// [R - 1/2, R + 1/2] x [0, 1] with its side midpoints. Its four rims are closed creases without
+// corners (90 degrees); the other edges are not creases (360 / n or 0 degrees).
+ValidMesh square_ring(int n) {
+  constexpr double R = 2;
+  const std::array<std::array<double, 2>, 8> section{
+      {{R - 0.5, 0}, {R, 0}, {R + 0.5, 0}, {R + 0.5, 0.5}, {R + 0.5, 1}, {R, 1}, {R - 0.5, 1}, {R - 0.5, 0.5}}};
+  PolygonSoup soup;
+  for (int k = 0; k < n; ++k) {
+    const double a = 2 * std::numbers::pi * k / n;
+    for (const auto& [r, z] : section) soup.positions.push_back({r * std::cos(a), r * std::sin(a), z});
+  }
+  const std::int64_t m = section.size();
+  for (std::int64_t k = 0; k < n; ++k)
+    for (std::int64_t j = 0; j < m; ++j) {
+      const std::int64_t a = k * m + j, b = k * m + (j + 1) % m, c = ((k + 1) % n) * m + (j + 1) % m, d = ((k + 1) % n) * m + j;
+      soup.add_face({a, b, c});
+      soup.add_face({a, c, d});
+    }
+  return validate(soup);
+}
+
+std::int64_t count_of(const certify::CheckResult& c, const std::string& name) {
+  for (const auto& [n, v] : c.counts)
+    if (n == name) return v;
+  return -1;
+}
+
 }  // namespace
+
+TEST_CASE("field pipeline: feature curves on quad edges, certified (issue 45)") {
+  // A box: its 12 creases are walls, every one on the quads' edges, checked by the certifier.
+  const PipelineResult b = compute_igm(validate(igm_test::box_soup()), field_options(300));
+  check_certified(b, 0);
+  CHECK(b.stats.layout == "field");
+  CHECK(b.stats.feature_walls == 12);
+  CHECK(b.stats.features_dropped == 0);
+  REQUIRE(b.igm_report.features.has_value());
+  CHECK(b.igm_report.features->status == certify::Status::Pass);
+  CHECK(count_of(*b.igm_report.features, "edges_checked") >= 12);
+  CHECK(b.feature_quality.covered_fraction == doctest::Approx(1.0));
+  // A square ring: four closed rims without corners (no cone at all; the bands between them
+  // seeded), certified on their isolines.
+  const ValidMesh p = square_ring(32);
+  const PipelineResult r = compute_igm(p, field_options(1000));
+  check_certified(r, 1);
+  CHECK(r.stats.layout == "field");
+  CHECK(r.features.stats.closed_curves == 4);
+  CHECK(r.stats.feature_walls == 4);
+  REQUIRE(r.igm_report.features.has_value());
+  CHECK(r.igm_report.features->status == certify::Status::Pass);
+  CHECK(count_of(*r.igm_report.features, "edges_checked") >= 128);
+  CHECK(r.feature_quality.covered_fraction >= 0.95);
+  // Without features: no wall, no features check, and the rims are not followed as well.
+  PipelineOptions off = field_options(1000);
+  off.features.enabled = false;
+  const PipelineResult q = compute_igm(p, off);
+  check_certified(q, 1);
+  CHECK(q.stats.feature_walls == 0);
+  CHECK_FALSE(q.igm_report.features.has_value());
+  // A smooth surface (no edge at 35 degrees) gives the same output with features as without.
+  const igm_test::Surface t = igm_test::torus(3, 1, 24, 12);
+  PolygonSoup ts;
+  ts.positions = t.positions;
+  for (int f = 0; f < t.mesh.num_faces(); ++f) {
+    const auto v = t.mesh.face_vertices(f);
+    ts.add_face({v[0], v[1], v[2]});
+  }
+  const ValidMesh torus = validate(ts);
+  PipelineOptions o = field_options(500);
+  const PipelineResult with = compute_igm(torus, o);
+  o.features.enabled = false;
+  const PipelineResult without = compute_igm(torus, o);
+  check_certified(with, 1);
+  CHECK(with.features.stats.edges == 0);
+  bool same_uv = with.igm.corner_uv.size() == without.igm.corner_uv.size();
+  for (std::size_t f = 0; same_uv && f < with.igm.corner_uv.size(); ++f)
+    for (int i = 0; i < 3; ++i)
+      same_uv = same_uv && with.igm.corner_uv[f][i].x == without.igm.corner_uv[f][i].x &&
+                with.igm.corner_uv[f][i].y == without.igm.corner_uv[f][i].y;
+  CHECK(same_uv);
+  CHECK(with.quads.quads == without.quads.quads);
+}
 
 TEST_CASE("field pipeline: generated closed surfaces of genus 0 to 8 certified with the field layout") {
   for (int genus : {0, 1, 2, 5, 8}) {

@@ -186,6 +186,8 @@ struct PipelineStats {
   /// The field layout's feature walls (issue 45): chains of feature edges traced as layout
   /// curves (kept), and those left out because the field gave no ray for them (a sharp turn).
   int feature_walls = 0, features_dropped = 0;
+  /// When no field layout could follow the walls (all of them then left out): the first reason.
+  std::string features_failure;
   QuantizeStats quantize;
   int genus = 0;
   int boundary_loops = 0;  // of an open surface (0: closed)
