@@ -1,8 +1,8 @@
 #pragma once
 // Sharp features of a triangle mesh: the feature edges (sharp by dihedral angle, or given by the
 // user), the feature curves (their chains) and the feature corners (issue 45, step 1; QuadWild,
-// Pietroni et al. 2021, detects them the same way). At this step they feed the quality report only
-// (quality/quality.h, measure_features); the layout does not follow them yet.
+// Pietroni et al. 2021, detects them the same way). They feed the quality report
+// (quality/quality.h, measure_features) and the field layout (docs/field.md, section 8).
 #include <array>
 #include <cstdint>
 #include <filesystem>

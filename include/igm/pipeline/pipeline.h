@@ -156,8 +156,9 @@ struct PipelineOptions {
   bool quality_distance = true;
   /// Sharp features (features/feature_edges.h): detected once per input surface after validation
   /// (compute_igm on a ValidMesh, compute_igms on each surface), with the user's feature_edges
-  /// merged in. At this step they feed the quality report only (PipelineResult::feature_quality:
-  /// how much of their length the quad edges cover); the layout does not follow them yet.
+  /// merged in. They feed the quality report (PipelineResult::feature_quality: how much of their
+  /// length the quad edges cover); LayoutKind::Field follows them (docs/field.md, section 8: every
+  /// kept feature edge on an integer isoline, checked by the certifier), the other layouts do not.
   /// Options out of range: igm::Error(InvalidArgument) before any other stage.
   FeatureOptions features;
   /// The user's feature edges: pairs of input vertex ids (0-based, the mesh file's order, as

@@ -103,7 +103,8 @@ struct FeatureQualityOptions {
 };
 
 /// How well a quad mesh follows the input's feature curves (features/feature_edges.h;
-/// docs/quality.md, "Features"). At this step a report only: the layout does not follow them.
+/// docs/quality.md, "Features"). A report (geometric, in doubles); the exact statement that the
+/// field layout's feature edges lie on isolines is the certifier's (certify::Report::features).
 struct FeatureQuality {
   int edges = 0;              // feature edges measured
   int curves = 0, corners = 0;  // as detected (filled by the caller: the pipeline copies them)
