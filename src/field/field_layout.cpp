@@ -26,6 +26,8 @@ namespace igm {
 namespace {
 
 using field_detail::FieldFrames;
+using field_detail::TraceReuse;
+using field_detail::trace_motorcycles_reusing;
 
 std::string str(std::int64_t x) { return std::to_string(x); }
 
@@ -50,10 +52,25 @@ struct Arc {
 };
 
 // The layout under construction for one trace graph.
+// One input face's triangulation problem (Builder::triangulate_face: the local points, the
+// boundary and the chords in local ids) and its answer (triangles in local ids, or the error), kept
+// from one round of build_field_layout to the next: a face whose problem is the same (most of them:
+// a round changes a few curves) takes the answer without the exact predicates again.
+struct FaceTriangulation {
+  bool known = false;
+  std::vector<Point2q> pos;
+  std::vector<int> boundary;
+  std::vector<std::vector<int>> chords;
+  std::vector<std::array<int, 3>> triangles;
+  std::string error;
+};
+
 class Builder {
  public:
-  Builder(const TriMesh& mesh, const std::vector<Vec3d>& positions, const FieldFrames& frames, const TraceGraph& g)
-      : mesh_(mesh), positions_(positions), frames_(frames), g_(g) {}
+  // `cache` (may be null): per input face, the last triangulation made (FaceTriangulation).
+  Builder(const TriMesh& mesh, const std::vector<Vec3d>& positions, const FieldFrames& frames, const TraceGraph& g,
+          std::vector<FaceTriangulation>* cache = nullptr)
+      : mesh_(mesh), positions_(positions), frames_(frames), g_(g), cache_(cache) {}
 
   // Builds everything; "" or the reason it failed. non_disk: a seed vertex per patch that is not
   // a disk (when that is the only problem).
@@ -148,11 +165,17 @@ class Builder {
       }
     }
     const int nf = mesh_.num_faces();
+    // Busy faces: with a chord, a point inside, or a point on one of their edges.
+    std::vector<char> busy(static_cast<std::size_t>(nf), 0);
+    for (const auto& entry : chords) busy[entry.first] = 1;
+    for (const auto& entry : face_points_) busy[entry.first] = 1;
+    for (const auto& entry : edge_points_) {
+      busy[TriMesh::face(entry.first)] = 1;
+      if (const int t = mesh_.twin(entry.first); t >= 0) busy[TriMesh::face(t)] = 1;
+    }
     for (int f = 0; f < nf; ++f) {
       const auto fv = mesh_.face_vertices(f);
-      bool busy = chords.count(f) > 0 || face_points_.count(f) > 0;
-      for (int i = 0; i < 3 && !busy; ++i) busy = edge_points_.count(canonical(3 * f + i)) > 0;
-      if (!busy) {
+      if (!busy[f]) {
         triangles_.push_back(fv);
         continue;
       }
@@ -188,13 +211,46 @@ class Builder {
       if (ce != h) std::reverse(pts.begin(), pts.end());
       for (int p : pts) boundary.push_back(add(point_vertex_[p], plane_point(mesh_, g_.points[p], f)));
     }
-    std::vector<std::vector<int>> cells{boundary};
     std::vector<std::vector<int>> pending;
     for (const auto& ch : face_chords) {
       std::vector<int> lc;
       for (int p : ch) lc.push_back(add(point_vertex_[p], plane_point(mesh_, g_.points[p], f)));
       pending.push_back(std::move(lc));
     }
+    FaceTriangulation* memo = cache_ && static_cast<int>(cache_->size()) > f ? &(*cache_)[f] : nullptr;
+    if (memo && memo->known && memo->boundary == boundary && memo->chords == pending && same_points(memo->pos, pos)) {
+      for (const auto& t : memo->triangles) triangles_.push_back({rid[t[0]], rid[t[1]], rid[t[2]]});
+      return memo->error;
+    }
+    const std::size_t first_triangle = triangles_.size();
+    std::string error = solve_face(f, pos, rid, boundary, pending, face_chords.size());
+    if (memo) {
+      memo->known = true;
+      memo->pos = pos;
+      memo->boundary = boundary;
+      memo->chords = std::move(pending);
+      memo->triangles.clear();
+      for (std::size_t k = first_triangle; k < triangles_.size(); ++k) {
+        std::array<int, 3> t{};
+        for (int i = 0; i < 3; ++i) t[i] = local.at(triangles_[k][i]);
+        memo->triangles.push_back(t);
+      }
+      memo->error = error;
+    }
+    return error;
+  }
+
+  static bool same_points(const std::vector<Point2q>& a, const std::vector<Point2q>& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      if (!(a[i].x == b[i].x) || !(a[i].y == b[i].y)) return false;
+    return true;
+  }
+
+  // The cells of face f cut by its chords, triangulated (appended to triangles_ in refined ids).
+  std::string solve_face(int f, const std::vector<Point2q>& pos, const std::vector<int>& rid, const std::vector<int>& boundary,
+                         std::vector<std::vector<int>> pending, std::size_t num_chords) {
+    std::vector<std::vector<int>> cells{boundary};
     // Curves that end at one point inside the face, none passing through it: two of them merged
     // head-on there (they run on from it in opposite directions) and are one chord through it
     // (any others then end on that chord). The pair joined is the straightest at the point.
@@ -244,7 +300,7 @@ class Builder {
       if (!joined) break;
     }
     // Insert chords whose two ends lie on one cell with the chord inside it, until none is left.
-    for (std::size_t guard = 0; !pending.empty() && guard <= face_chords.size(); ++guard) {
+    for (std::size_t guard = 0; !pending.empty() && guard <= num_chords; ++guard) {
       bool progress = false;
       for (std::size_t k = 0; k < pending.size();) {
         if (insert_chord(cells, pending[k], pos)) {
@@ -369,9 +425,17 @@ class Builder {
     const int nv = static_cast<int>(locations_.size());
     // from_triangles throws for a non-manifold edge; the checks after it are the layout's own.
     refined_ = TriMesh::from_triangles(nv, triangles_, /*allow_boundary=*/true);
-    directed_.reserve(static_cast<std::size_t>(refined_.num_halfedges()));
-    for (int h = 0; h < refined_.num_halfedges(); ++h)
-      directed_.emplace((static_cast<std::uint64_t>(refined_.origin(h)) << 32) | static_cast<std::uint32_t>(refined_.target(h)), h);
+    // The half-edges leaving each vertex, in increasing order (a counting sort by origin).
+    const int nh = refined_.num_halfedges();
+    out_start_.assign(static_cast<std::size_t>(nv) + 1, 0);
+    for (int h = 0; h < nh; ++h) ++out_start_[refined_.origin(h) + 1];
+    for (int v = 0; v < nv; ++v) out_start_[v + 1] += out_start_[v];
+    out_.resize(nh);
+    {
+      std::vector<int> fill(out_start_.begin(), out_start_.end() - 1);
+      for (int h = 0; h < nh; ++h) out_[fill[refined_.origin(h)]++] = h;
+    }
+    arc_of_he_.assign(nh, -1);
     // Nodes: curve ends, and boundary vertices whose angle is not straight.
     node_rays_.assign(nv, 0);
     node_cyclic_.assign(nv, 1);
@@ -453,8 +517,10 @@ class Builder {
         const int h = halfedge(vs[k], vs[k + 1]);
         const int hb = halfedge(vs[k + 1], vs[k]);
         if (h < 0 && hb < 0) return "arc " + str(a) + ": consecutive vertices not joined by an edge";
-        const auto key = edge_key(vs[k], vs[k + 1]);
-        if (!arc_of_edge_.emplace(key, a).second) return "arc " + str(a) + ": an edge on two arcs";
+        // from_triangles made at most one half-edge each way: these are the edge's half-edges.
+        if ((h >= 0 && arc_of_he_[h] >= 0) || (hb >= 0 && arc_of_he_[hb] >= 0)) return "arc " + str(a) + ": an edge on two arcs";
+        if (h >= 0) arc_of_he_[h] = a;
+        if (hb >= 0) arc_of_he_[hb] = a;
       }
     }
     return "";
@@ -471,20 +537,16 @@ class Builder {
 
   // The refined half-edge from a to b, or -1 (works across the boundary, unlike a rotation).
   int halfedge(int a, int b) const {
-    auto it = directed_.find((static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b));
-    return it == directed_.end() ? -1 : it->second;
-  }
-
-  static std::uint64_t edge_key(int a, int b) {
-    if (a > b) std::swap(a, b);
-    return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
+    for (int i = out_start_[a]; i < out_start_[a + 1]; ++i)
+      if (refined_.target(out_[i]) == b) return out_[i];
+    return -1;
   }
 
   // ---- patches ----
   std::string make_patches(SurfaceLayout& out, FieldLayoutStats& stats, std::vector<int>& seeds) {
     const int nt = refined_.num_faces();
     auto on_arc = [&](int h) {
-      return arc_of_edge_.count(edge_key(refined_.origin(h), refined_.target(h))) > 0;
+      return arc_of_he_[h] >= 0;
     };
     std::vector<int> patch(nt, -1);
     int np = 0;
@@ -571,7 +633,7 @@ class Builder {
     if (refined_.twin(h0) < 0) return true;
     int h = h0;
     for (int guard = 0; guard <= refined_.num_halfedges(); ++guard) {
-      if (arc_of_edge_.count(edge_key(v, refined_.target(h)))) return true;
+      if (arc_of_he_[h] >= 0) return true;
       h = refined_.next_around_origin(h);
       if (h < 0 || h == h0) break;
     }
@@ -592,7 +654,10 @@ class Builder {
     if (bnd.empty()) return "N: it has no boundary (a closed surface without curves)";
     // Euler characteristic of the patch cut along its boundary: wedges - edges + faces.
     UnionFind wedges(static_cast<int>(3 * tris.size()));
-    std::unordered_map<int, int> corner_index;  // half-edge (its origin's corner) -> local corner id
+    // Per half-edge of the patch (its origin's corner): the local corner id. Only the patch's own
+    // half-edges are read (across a non-arc edge is the same patch).
+    std::vector<int>& corner_index = he_scratch_;
+    corner_index.resize(static_cast<std::size_t>(refined_.num_halfedges()));
     for (std::size_t k = 0; k < tris.size(); ++k)
       for (int i = 0; i < 3; ++i) corner_index[3 * tris[k] + i] = static_cast<int>(3 * k + i);
     for (int t : tris)
@@ -609,17 +674,19 @@ class Builder {
     const std::int64_t F = static_cast<std::int64_t>(tris.size()), B = static_cast<std::int64_t>(bnd.size());
     const std::int64_t E = (3 * F + B) / 2;
     // Loops of boundary half-edges.
-    std::unordered_map<int, int> bnd_index;
+    // bnd's half-edges: the patch's own with no twin or on an arc; their index in bnd.
+    std::vector<int>& bnd_index = he_scratch_;  // corner_index is not read below
     for (std::size_t k = 0; k < bnd.size(); ++k) bnd_index[bnd[k]] = static_cast<int>(k);
+    auto in_bnd = [&](int x) { return patch[TriMesh::face(x)] == p && (refined_.twin(x) < 0 || on_arc(x)); };
     std::vector<int> next(bnd.size(), -1);
     for (std::size_t k = 0; k < bnd.size(); ++k) {
       int x = TriMesh::next(bnd[k]);
-      for (int r = 0; r <= refined_.num_halfedges() && !bnd_index.count(x); ++r) {
+      for (int r = 0; r <= refined_.num_halfedges() && !in_bnd(x); ++r) {
         const int tw = refined_.twin(x);
         if (tw < 0) break;
         x = TriMesh::next(tw);
       }
-      if (!bnd_index.count(x)) return "N: its boundary does not close";
+      if (!in_bnd(x)) return "N: its boundary does not close";
       next[k] = bnd_index[x];
     }
     int loops = 0;
@@ -645,7 +712,8 @@ class Builder {
     std::vector<ArcUse> uses;
     for (std::size_t k = 0; k < loop.size();) {
       const int h = loop[k];
-      const int a = arc_of_edge_.at(edge_key(refined_.origin(h), refined_.target(h)));
+      const int a = arc_of_he_[h];
+      if (a < 0) throw Error(ErrorKind::Internal, "field layout: a patch side off every arc");
       const auto& vs = arcs_[a].vertices;
       const bool forward = vs.size() >= 2 && vs[0] == refined_.origin(h) && vs[1] == refined_.target(h) &&
                            !(vs.front() == vs.back() && vs.size() == 2 && false);
@@ -660,8 +728,6 @@ class Builder {
       uses.push_back({a, forward});
       k += len;
     }
-    (void)patch;
-    (void)p;
     // Quarter turns at each node between consecutive uses.
     const int nu = static_cast<int>(uses.size());
     std::vector<int> corners;
@@ -712,8 +778,10 @@ class Builder {
   std::vector<int> node_rays_;
   std::vector<char> node_cyclic_, is_node_;
   std::vector<Arc> arcs_;
-  std::unordered_map<std::uint64_t, int> arc_of_edge_;
-  std::unordered_map<std::uint64_t, int> directed_;  // (origin, target) -> refined half-edge
+  std::vector<int> arc_of_he_;           // per refined half-edge: the arc on its edge, or -1
+  std::vector<int> out_start_, out_;     // the refined half-edges leaving each vertex (CSR)
+  std::vector<int> he_scratch_;          // patch_sides: per refined half-edge, a local index
+  std::vector<FaceTriangulation>* cache_ = nullptr;
   std::vector<std::pair<int, int>> culprits_;
 };
 
@@ -803,14 +871,16 @@ FieldLayoutResult build_field_layout(const TriMesh& mesh, const std::vector<Vec3
   const FieldFrames frames(mesh, scaled_positions(positions, unit_scale(positions)), face_direction);
   TraceOptions trace = options.trace;
   const int max_rounds = std::max(0, options.max_seed_rounds) + std::max(0, options.max_ban_rounds);
+  TraceReuse reuse;  // the rounds differ in seeds and banned rays only
+  std::vector<FaceTriangulation> triangulations(static_cast<std::size_t>(mesh.num_faces()));
   for (int round = 0; round <= max_rounds; ++round) {
-    r.graph = trace_motorcycles(mesh, positions, face_direction, trace);
+    r.graph = trace_motorcycles_reusing(mesh, positions, face_direction, trace, frames, reuse);
     r.stats.trace = r.graph.stats;
     r.stats.rounds = round + 1;
     std::vector<int> seeds;
     r.layout = SurfaceLayout{};
     r.stats.non_disk_patches = r.stats.bad_corner_patches = 0;
-    Builder b(mesh, positions, frames, r.graph);
+    Builder b(mesh, positions, frames, r.graph, &triangulations);
     r.failure = b.build(r.layout, r.stats, seeds);
     if (r.failure.empty()) {
       // Lengths >= the minima must be able to satisfy every patch; where they cannot (a strip of

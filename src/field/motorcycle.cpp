@@ -5,12 +5,14 @@
 #include <cstdlib>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <set>
 #include <tuple>
 #include <optional>
 #include <queue>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "igm/core/error.h"
 #include "igm/exact/intersect.h"
@@ -252,6 +254,7 @@ Point2q point_in_face(const TriMesh& mesh, const TracePoint& q, int f) {
 namespace {
 
 using field_detail::FieldFrames;
+using field_detail::TraceReuse;
 using field_detail::VertexRay;
 using field_detail::VertexRays;
 
@@ -318,20 +321,28 @@ struct Runner {
 
 class Tracer {
  public:
+  // `frames` (those of the scaled positions) and `reuse` (TraceReuse) may be null.
   Tracer(const TriMesh& mesh, const std::vector<Vec3d>& positions, const std::vector<Vec3d>& face_direction,
-         const TraceOptions& options)
+         const TraceOptions& options, const FieldFrames* frames = nullptr, TraceReuse* reuse = nullptr)
       : mesh_(mesh),
         scale_(unit_scale(positions)),
         positions_(scaled_positions(positions, scale_)),
-        frames_(mesh, positions_, face_direction),
-        options_(options) {
+        own_frames_(frames ? nullptr : std::make_unique<FieldFrames>(mesh, positions_, face_direction)),
+        frames_(frames ? *frames : *own_frames_),
+        options_(options),
+        reuse_(reuse) {
     // Hostile coordinates (1e-300, 1e300): every length in units scaled by a power of two.
     options_.snap_length *= scale_;
     bits_ = options.parameter_bits;
     max_segments_ = options.max_segments > 0 ? options.max_segments : 2 * mesh.num_faces() + 64;
     const int nv = mesh.num_vertices();
-    rays_.resize(nv);
-    rays_done_.assign(nv, 0);
+    if (reuse_ && static_cast<int>(reuse_->rays.size()) == nv && static_cast<int>(reuse_->rays_done.size()) == nv) {
+      rays_ = std::move(reuse_->rays);
+      rays_done_ = std::move(reuse_->rays_done);
+    } else {
+      rays_.resize(nv);
+      rays_done_.assign(nv, 0);
+    }
     vertex_point_.assign(nv, -1);
     on_curve_vertex_.assign(nv, 0);
     traced_.assign(nv, 0);
@@ -382,9 +393,13 @@ class Tracer {
       for (int v = 0; v < nv; ++v)
         if (traced_[v]) {
           const Vec3d& X = positions_[v];
-          traced_hash_[cell_key(static_cast<long>(std::floor(X.x / steer_length_)), static_cast<long>(std::floor(X.y / steer_length_)),
-                                static_cast<long>(std::floor(X.z / steer_length_)))]
-              .push_back(v);
+          const long i = static_cast<long>(std::floor(X.x / steer_length_)), j = static_cast<long>(std::floor(X.y / steer_length_)),
+                     k = static_cast<long>(std::floor(X.z / steer_length_));
+          traced_hash_[cell_key(i, j, k)].push_back(v);
+          // The cells whose 27-cell neighbourhood holds v: maybe_steer looks no further elsewhere.
+          for (long a = i - 1; a <= i + 1; ++a)
+            for (long b = j - 1; b <= j + 1; ++b)
+              for (long c = k - 1; c <= k + 1; ++c) near_cells_.insert(cell_key(a, b, c));
         }
     // Pairs of rays that trace one separatrix between two of those vertices.
     // Every ray traced alone: the vertex and ray it is taken into, and in how many steps. A ray
@@ -395,8 +410,32 @@ class Tracer {
       std::pair<int, int> a, b;
     };
     std::map<std::pair<int, int>, std::pair<std::pair<int, int>, int>> reach;
-    for (const auto& s : starts)
-      if (auto x = solo(s.first, s.second)) reach[s] = *x;
+    if (reuse_ && (reuse_->solo_traced != traced_ || static_cast<int>(reuse_->solo.size()) != nv)) {
+      reuse_->solo_traced = traced_;
+      reuse_->solo.assign(nv, {});
+    }
+    for (const auto& s : starts) {
+      TraceReuse::Solo memo;
+      const TraceReuse::Solo* known = nullptr;
+      if (reuse_)
+        for (const auto& [k, m] : reuse_->solo[s.first])
+          if (k == s.second) known = &m;
+      if (!known) {
+        const int steers = g.stats.steers;
+        if (const auto x = solo(s.first, s.second)) {
+          memo.reached = true;
+          memo.vertex = x->first.first;
+          memo.ray = x->first.second;
+          memo.steps = x->second;
+        }
+        memo.steers = g.stats.steers - steers;
+        if (reuse_) reuse_->solo[s.first].push_back({s.second, memo});
+        known = &memo;
+      } else {
+        g.stats.steers += known->steers;
+      }
+      if (known->reached) reach[s] = {{known->vertex, known->ray}, known->steps};
+    }
     std::vector<Claim> claims;
     for (const auto& [a, bx] : reach) {
       const auto& b = bx.first;
@@ -466,6 +505,10 @@ class Tracer {
     g.curves = std::move(kept);
     compact_points();
     finish_stats();
+    if (reuse_) {
+      reuse_->rays = std::move(rays_);
+      reuse_->rays_done = std::move(rays_done_);
+    }
     g.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return std::move(graph_);
   }
@@ -633,6 +676,7 @@ class Tracer {
     const Vec3d d{d2.x * ax.x + d2.y * ay.x, d2.x * ax.y + d2.y * ay.y, d2.x * ax.z + d2.y * ay.z};
     const long cx = static_cast<long>(std::floor(P.x / steer_length_)), cy = static_cast<long>(std::floor(P.y / steer_length_)),
                cz = static_cast<long>(std::floor(P.z / steer_length_));
+    if (!near_cells_.count(cell_key(cx, cy, cz))) return;  // no traced vertex in the 27 cells below
     int best = -1;
     double best_d = steer_length_;
     for (long i = cx - 1; i <= cx + 1; ++i)
@@ -1780,8 +1824,10 @@ class Tracer {
   const TriMesh& mesh_;
   double scale_ = 1;
   std::vector<Vec3d> positions_;  // the input's, times scale_
-  FieldFrames frames_;
+  std::unique_ptr<FieldFrames> own_frames_;  // when none are given
+  const FieldFrames& frames_;
   TraceOptions options_;
+  TraceReuse* reuse_ = nullptr;
   int bits_ = 24, max_segments_ = 0;
   std::vector<VertexRays> rays_;
   std::vector<char> rays_done_;
@@ -1799,6 +1845,7 @@ class Tracer {
   double mean_edge_ = 0;
   double steer_length_ = 0;
   std::unordered_map<std::uint64_t, std::vector<int>> traced_hash_;  // steering: traced vertices by cell
+  std::unordered_set<std::uint64_t> near_cells_;                     // the cells next to (or of) one of them
   std::vector<char> dead_;       // per point: cut away with a merged curve
   std::vector<int> finished_elsewhere_;   // curves finished by another's step (merges)
   std::set<std::pair<int, int>> reserved_;  // (vertex point, ray) kept for a paired curve's arrival
@@ -1809,14 +1856,29 @@ class Tracer {
 
 }  // namespace
 
-TraceGraph trace_motorcycles(const TriMesh& mesh, const std::vector<Vec3d>& positions,
-                             const std::vector<Vec3d>& face_direction, const TraceOptions& options) {
+namespace {
+void check_trace_inputs(const TriMesh& mesh, const std::vector<Vec3d>& positions, const std::vector<Vec3d>& face_direction,
+                        const TraceOptions& options) {
   if (static_cast<int>(positions.size()) != mesh.num_vertices() ||
       static_cast<int>(face_direction.size()) != mesh.num_faces())
     throw Error(ErrorKind::InvalidArgument, "trace_motorcycles: positions or face directions do not match the mesh");
   if (options.parameter_bits < 2 || options.parameter_bits > 40)
     throw Error(ErrorKind::InvalidArgument, "trace_motorcycles: parameter_bits must be in 2..40");
+}
+}  // namespace
+
+TraceGraph trace_motorcycles(const TriMesh& mesh, const std::vector<Vec3d>& positions,
+                             const std::vector<Vec3d>& face_direction, const TraceOptions& options) {
+  check_trace_inputs(mesh, positions, face_direction, options);
   Tracer tracer(mesh, positions, face_direction, options);
+  return tracer.run(options.seeds);
+}
+
+TraceGraph field_detail::trace_motorcycles_reusing(const TriMesh& mesh, const std::vector<Vec3d>& positions,
+                                                   const std::vector<Vec3d>& face_direction, const TraceOptions& options,
+                                                   const FieldFrames& frames, TraceReuse& reuse) {
+  check_trace_inputs(mesh, positions, face_direction, options);
+  Tracer tracer(mesh, positions, face_direction, options, &frames, &reuse);
   return tracer.run(options.seeds);
 }
 

@@ -3,6 +3,7 @@
 // field given by one direction per face, its nearest matchings, and the separatrix rays of a vertex.
 #include <array>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "igm/exact/predicates.h"
@@ -53,6 +54,28 @@ struct FieldFrames {
   /// The separatrix rays of vertex v (VertexRays). Cost O(valence).
   VertexRays vertex_rays(int v) const;
 };
+
+/// What trace_motorcycles_reusing carries from one call to the next on the same mesh, positions,
+/// field and options but for the seeds and banned rays (build_field_layout's rounds): the vertices'
+/// rays, and each start ray's solo pre-pass result (kept while the set of traced vertices, which
+/// alone decides it, stays the same). The graph is the same with or without it.
+struct TraceReuse {
+  struct Solo {
+    bool reached = false;
+    int vertex = -1, ray = -1, steps = 0;
+    int steers = 0;  // the steering it counted (TraceStats::steers)
+  };
+  std::vector<VertexRays> rays;
+  std::vector<char> rays_done;
+  std::vector<char> solo_traced;  // the traced vertices the solo results below were made with
+  std::vector<std::vector<std::pair<int, Solo>>> solo;  // per vertex: (ray, result)
+};
+
+/// trace_motorcycles (field/motorcycle.h) with the frames given (those of the positions scaled by
+/// unit_scale, as trace_motorcycles makes them) and what earlier calls left in `reuse`.
+TraceGraph trace_motorcycles_reusing(const TriMesh& mesh, const std::vector<Vec3d>& positions,
+                                     const std::vector<Vec3d>& face_direction, const TraceOptions& options,
+                                     const FieldFrames& frames, TraceReuse& reuse);
 
 /// Trace point q (field/motorcycle.h) in the barycentric plane (w1, w2) of face f, exactly, or
 /// nothing when q is not in f's closure (a corner, a point of one of its edges, or a point of f).

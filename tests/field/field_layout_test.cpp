@@ -15,12 +15,14 @@
 #include "igm/field/field_layout.h"
 #include "igm/field/motorcycle.h"
 #include "igm/layout/surface_layout.h"
+#include "igm/mesh/scale.h"
 #include "igm/io/read_mesh.h"
 #include "igm/mesh/generate.h"
 #include "igm/mesh/validate.h"
 #include "igm/mesh/validate_surfaces.h"
 #include "test_data.h"
 #include "test_surfaces.h"
+#include "../../src/field/motorcycle_internal.h"
 
 using namespace igm;
 using igm_test::Surface;
@@ -35,9 +37,8 @@ std::vector<Vec3d> directions(const Surface& s, const CrossFieldOptions& o = {})
   return d;
 }
 
-// The layout with the trace options the pipeline uses for `quads` quads: curves ending near a node
-// snap to it within half a quad's side.
-FieldLayoutResult layout(const Surface& s, const std::vector<Vec3d>& d, double quads = 2000) {
+// The snap length the pipeline uses for `quads` quads: half a quad's side.
+double snap_for(const Surface& s, double quads) {
   double area = 0;
   for (int f = 0; f < s.mesh.num_faces(); ++f) {
     const auto v = s.mesh.face_vertices(f);
@@ -46,8 +47,14 @@ FieldLayoutResult layout(const Surface& s, const std::vector<Vec3d>& d, double q
     const Vec3d n{u.y * w.z - u.z * w.y, u.z * w.x - u.x * w.z, u.x * w.y - u.y * w.x};
     area += 0.5 * std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
   }
+  return 0.5 * std::sqrt(area / quads);
+}
+
+// The layout with the trace options the pipeline uses for `quads` quads: curves ending near a node
+// snap to it within half a quad's side.
+FieldLayoutResult layout(const Surface& s, const std::vector<Vec3d>& d, double quads = 2000) {
   FieldLayoutOptions o;
-  o.trace.snap_length = 0.5 * std::sqrt(area / quads);
+  o.trace.snap_length = snap_for(s, quads);
   return build_field_layout(s.mesh, s.positions, d, o);
 }
 
@@ -254,4 +261,48 @@ TEST_CASE("field layout: walls (issue 45 feature curves) are drawn whole and bou
   CHECK_THROWS_AS(trace_motorcycles(s.mesh, s.positions, d, t), Error);
   t.walls = {wall, {wall[1], wall[0]}};
   CHECK_THROWS_AS(trace_motorcycles(s.mesh, s.positions, d, t), Error);
+}
+
+TEST_CASE("field layout: the rounds' reuse (frames, rays, solo pre-pass) traces the same graph as a fresh trace") {
+  // build_field_layout's rounds trace with one TraceReuse; each round's graph must be the one a
+  // fresh trace_motorcycles gives for its options: bans alone keep the solo results, a seed
+  // changes the traced vertices (the kept results are dropped), and back again.
+  const Surface s = generated(0, 3000, 0, 5);
+  const std::vector<Vec3d> d = directions(s);
+  const field_detail::FieldFrames frames(s.mesh, scaled_positions(s.positions, unit_scale(s.positions)), d);
+  field_detail::TraceReuse reuse;
+  TraceOptions base;
+  base.snap_length = snap_for(s, 2000);
+  const TraceGraph first = trace_motorcycles(s.mesh, s.positions, d, base);
+  REQUIRE(first.curves.size() >= 4);
+  REQUIRE(first.stats.steers > 0);  // the steering count must be carried over with the solo results
+  std::vector<TraceOptions> rounds(4, base);
+  const auto& c0 = first.curves[0];
+  rounds[1].banned_rays = {{first.points[c0.points.front()].element, c0.ray_forward.front()}};
+  rounds[2] = rounds[1];
+  int seed = 0;
+  while (first.valence[seed] != 4) ++seed;
+  rounds[2].seeds = {seed};
+  int checked = 0;
+  for (const TraceOptions& o : rounds) {
+    const TraceGraph a = field_detail::trace_motorcycles_reusing(s.mesh, s.positions, d, o, frames, reuse);
+    const TraceGraph b = trace_motorcycles(s.mesh, s.positions, d, o);
+    REQUIRE(a.curves.size() == b.curves.size());
+    REQUIRE(a.points.size() == b.points.size());
+    for (std::size_t c = 0; c < a.curves.size(); ++c) {
+      CHECK(a.curves[c].points == b.curves[c].points);
+      CHECK(a.curves[c].ray_back == b.curves[c].ray_back);
+      CHECK(a.curves[c].ray_forward == b.curves[c].ray_forward);
+      CHECK(a.curves[c].end == b.curves[c].end);
+    }
+    for (std::size_t p = 0; p < a.points.size(); ++p) {
+      CHECK(a.points[p].element == b.points[p].element);
+      CHECK(a.points[p].t == b.points[p].t);
+    }
+    CHECK(a.stats.steers == b.stats.steers);
+    CHECK(a.stats.cone_pairs == b.stats.cone_pairs);
+    CHECK(a.stats.segments == b.stats.segments);
+    ++checked;
+  }
+  CHECK(checked == 4);
 }
