@@ -178,12 +178,17 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
     stats.cross_field = field.stats;
     // A cone of valence 1 (a quarter turn of angle) gives a valid IGM but no quad mesh: a quad
     // would close on itself around it.
-    int bad_cone = -1;
+    // With feature walls, a cone of valence 2 (which the constraints kept from being split) is
+    // refused too: the walls are then left out rather than bought with a valence-2 vertex.
+    int bad_cone = -1, bad_valence = 0;
+    const int lowest = features.constrained.empty() ? 1 : 2;
     for (const Cone& cone : field.cones)
-      if (cone.valence <= 1) bad_cone = cone.vertex;
+      if (cone.valence <= lowest) bad_cone = cone.vertex, bad_valence = cone.valence;
     if (bad_cone >= 0) {
-      stage.done("field", t0, "a cone of valence 1 at vertex " + std::to_string(bad_cone) + attempt_name);
-      if (first_failure.empty()) first_failure = "field: a cone of valence 1 at vertex " + std::to_string(bad_cone);
+      const std::string what = "a cone of valence " + std::to_string(std::max(bad_valence, 1)) + " at vertex " +
+                               std::to_string(bad_cone) + (bad_valence == 2 ? " (with the feature walls)" : "");
+      stage.done("field", t0, what + attempt_name);
+      if (first_failure.empty()) first_failure = "field: " + what;
       continue;
     }
     stage.done("field", t0,
