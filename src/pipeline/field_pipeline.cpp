@@ -137,133 +137,134 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
     double snap;  // in quad sizes; <= 0: the trace options' own snap length
   };
   std::vector<Attempt> attempts{{options.field, options.field_layout.trace.snap_length > 0 ? 0.0 : 0.5}};
-  attempts.front().field.constrained_edges = features.constrained;
   for (const PipelineOptions::FieldAttempt& a : options.field_attempts) {
     CrossFieldOptions fo = options.field;
-    fo.constrained_edges = features.constrained;
     fo.alignment = a.alignment;
     fo.remove_close_pairs = a.cleanup;
     attempts.push_back({fo, a.snap});
   }
-  std::vector<std::pair<CrossFieldOptions, CrossField>> fields;  // computed so far
+  // Fields computed so far with the current features (each attempt's own with
+  // features.constrained as its constraints; cleared whenever the features change).
+  std::vector<std::pair<CrossFieldOptions, CrossField>> fields;
   FieldLayoutResult traced;
   std::string first_failure;
+  // Every attempt in order until one gives a layout; true when it stopped at walls that could not
+  // be drawn and `may_drop` (the caller leaves them out and calls again).
+  auto run_attempts = [&](bool may_drop) {
+    for (std::size_t k = 0; k < attempts.size(); ++k) {
+      const std::string attempt_name = attempts.size() > 1 ? " (attempt " + std::to_string(k + 1) + ")" : "";
+      auto t0 = Clock::now();
+      CrossFieldOptions fo = attempts[k].field;
+      fo.constrained_edges = features.constrained;
+      const CrossField* known = nullptr;
+      for (const auto& [o, f] : fields)
+        if (o.alignment == fo.alignment && o.remove_close_pairs == fo.remove_close_pairs) known = &f;
+      if (!known) {
+        try {
+          fields.emplace_back(fo, compute_cross_field(*input.mesh, positions, fo));
+        } catch (const Error& e) {
+          if (e.kind() != ErrorKind::Internal) throw;
+          if (first_failure.empty()) first_failure = std::string("field: ") + e.what();
+          continue;
+        }
+        known = &fields.back().second;
+      }
+      const CrossField& field = *known;
+      stats.cross_field = field.stats;
+      // A cone of valence 1 (a quarter turn of angle) gives a valid IGM but no quad mesh: a quad
+      // would close on itself around it. With feature walls, a cone of valence 2 (which the
+      // constraints kept from being split) is refused too: the walls are then left out rather
+      // than bought with a valence-2 vertex.
+      int bad_cone = -1, bad_valence = 0;
+      const int lowest = features.constrained.empty() ? 1 : 2;
+      for (const Cone& cone : field.cones)
+        if (cone.valence <= lowest) bad_cone = cone.vertex, bad_valence = cone.valence;
+      if (bad_cone >= 0) {
+        const std::string what = "a cone of valence " + std::to_string(std::max(bad_valence, 1)) + " at vertex " +
+                                 std::to_string(bad_cone) + (bad_valence == 2 ? " (with the feature walls)" : "");
+        stage.done("field", t0, what + attempt_name);
+        if (first_failure.empty()) first_failure = "field: " + what;
+        continue;
+      }
+      stage.done("field", t0,
+                 std::to_string(field.cones.size()) + " cones (" + cones_summary(field.stats) + "), alignment " +
+                     std::to_string(static_cast<int>(fo.alignment)) + (fo.remove_close_pairs ? "" : ", close pairs kept") +
+                     attempt_name);
+      t0 = Clock::now();
+      std::vector<Vec3d> direction(input.mesh->num_faces());
+      for (int f = 0; f < input.mesh->num_faces(); ++f) direction[f] = field_direction(field, f, 0);
+      FieldLayoutOptions lo = options.field_layout;
+      lo.trace.walls = features.walls;
+      if (attempts[k].snap > 0 && quad_size > 0) lo.trace.snap_length = attempts[k].snap * quad_size;
+      try {
+        traced = build_field_layout(*input.mesh, positions, direction, lo);
+      } catch (const std::exception& e) {
+        // A broken invariant of the tracing is a bug; the surface still gets a certified output.
+        traced = FieldLayoutResult{};
+        traced.failure = std::string("internal error: ") + e.what();
+      }
+      stats.field_layout = traced.stats;
+      // A wall not drawn whole leaves its feature off the arcs (the layout may still close without it).
+      if (!traced.graph.stuck_walls.empty()) {
+        if (may_drop) {
+          stage.done("trace", t0, std::to_string(traced.graph.stuck_walls.size()) +
+                                      " feature walls could not be drawn: left out, the field again" + attempt_name);
+          return true;
+        }
+        traced.ok = false;
+        traced.failure = std::to_string(traced.graph.stuck_walls.size()) + " feature walls could not be drawn (wall " +
+                         std::to_string(traced.graph.stuck_walls.front()) + ")";
+      }
+      stage.done("trace", t0,
+                 traced.ok ? std::to_string(traced.stats.trace.curves) + " curves, " + std::to_string(traced.stats.patches) +
+                                 " patches, " + std::to_string(traced.stats.t_junctions) + " T-junctions, " +
+                                 std::to_string(traced.stats.rounds) + " rounds" +
+                                 (features.walls.empty() ? std::string()
+                                                         : ", " + std::to_string(features.walls.size()) + " feature walls")
+                           : "no layout: " + traced.failure);
+      if (traced.ok) return false;
+      if (first_failure.empty()) first_failure = "trace: " + traced.failure;
+    }
+    return false;
+  };
   // Feature walls that cannot be drawn (their field rays taken: a sharp turn of a crease) are
   // left out with their constraints and the field computed again, at most kFeatureRounds times
-  // (each removes at least one wall); the rest of the walls then still hold.
-  // Where no attempt gives a layout with the walls, every attempt is tried once more without any
-  // feature (the features are then only measured): one more round, the last.
+  // (each removes at least one wall); the rest of the walls then still hold. Where no attempt
+  // gives a layout with the walls, every attempt is tried once more without any feature (the
+  // features are then only measured): one more round, the last.
   constexpr int kFeatureRounds = 4;
   bool without_features = features.constrained.empty();
   for (int feature_round = 0; feature_round <= kFeatureRounds + 1; ++feature_round) {
-  bool walls_stuck = false;
-  for (std::size_t k = 0; k < attempts.size(); ++k) {
-    const std::string attempt_name = attempts.size() > 1 ? " (attempt " + std::to_string(k + 1) + ")" : "";
-    auto t0 = Clock::now();
-    const CrossFieldOptions& fo = attempts[k].field;
-    const CrossField* known = nullptr;
-    for (const auto& [o, f] : fields)
-      if (o.alignment == fo.alignment && o.remove_close_pairs == fo.remove_close_pairs) known = &f;
-    if (!known) {
-      try {
-        fields.emplace_back(fo, compute_cross_field(*input.mesh, positions, fo));
-      } catch (const Error& e) {
-        if (e.kind() != ErrorKind::Internal) throw;
-        if (first_failure.empty()) first_failure = std::string("field: ") + e.what();
-        continue;
+    if (!run_attempts(feature_round < kFeatureRounds && !without_features)) {
+      if (traced.ok || without_features) break;
+      // No layout with the walls: all of them left out, every attempt again.
+      stage.done("features", Clock::now(), "no field layout follows the " + std::to_string(features.walls.size()) +
+                                               " feature walls: every attempt again without them");
+      stats.features_dropped += static_cast<int>(features.walls.size());
+      stats.features_failure = first_failure;
+      features = FieldFeatures{};
+      first_failure.clear();
+      without_features = true;
+    } else {
+      // Leave out the stuck walls and their constraints.
+      std::vector<char> drop(features.walls.size(), 0);
+      for (int w : traced.graph.stuck_walls) drop[w] = 1;
+      std::vector<std::vector<int>> kept;
+      for (std::size_t w = 0; w < features.walls.size(); ++w) {
+        if (!drop[w]) {
+          kept.push_back(std::move(features.walls[w]));
+          continue;
+        }
+        const std::vector<int>& chain = features.walls[w];
+        for (std::size_t i = 0; i + 1 < chain.size(); ++i) {
+          const int h = input.mesh->find_halfedge(chain[i], chain[i + 1]);
+          features.constrained[h] = features.constrained[input.mesh->twin(h)] = 0;
+        }
+        ++stats.features_dropped;
       }
-      known = &fields.back().second;
+      features.walls = std::move(kept);
     }
-    const CrossField& field = *known;
-    stats.cross_field = field.stats;
-    // A cone of valence 1 (a quarter turn of angle) gives a valid IGM but no quad mesh: a quad
-    // would close on itself around it.
-    // With feature walls, a cone of valence 2 (which the constraints kept from being split) is
-    // refused too: the walls are then left out rather than bought with a valence-2 vertex.
-    int bad_cone = -1, bad_valence = 0;
-    const int lowest = features.constrained.empty() ? 1 : 2;
-    for (const Cone& cone : field.cones)
-      if (cone.valence <= lowest) bad_cone = cone.vertex, bad_valence = cone.valence;
-    if (bad_cone >= 0) {
-      const std::string what = "a cone of valence " + std::to_string(std::max(bad_valence, 1)) + " at vertex " +
-                               std::to_string(bad_cone) + (bad_valence == 2 ? " (with the feature walls)" : "");
-      stage.done("field", t0, what + attempt_name);
-      if (first_failure.empty()) first_failure = "field: " + what;
-      continue;
-    }
-    stage.done("field", t0,
-               std::to_string(field.cones.size()) + " cones (" + cones_summary(field.stats) + "), alignment " +
-                   std::to_string(static_cast<int>(fo.alignment)) + (fo.remove_close_pairs ? "" : ", close pairs kept") +
-                   attempt_name);
-    t0 = Clock::now();
-    std::vector<Vec3d> direction(input.mesh->num_faces());
-    for (int f = 0; f < input.mesh->num_faces(); ++f) direction[f] = field_direction(field, f, 0);
-    FieldLayoutOptions lo = options.field_layout;
-    lo.trace.walls = features.walls;
-    if (attempts[k].snap > 0 && quad_size > 0) lo.trace.snap_length = attempts[k].snap * quad_size;
-    try {
-      traced = build_field_layout(*input.mesh, positions, direction, lo);
-    } catch (const std::exception& e) {
-      // A broken invariant of the tracing is a bug; the surface still gets a certified output.
-      traced = FieldLayoutResult{};
-      traced.failure = std::string("internal error: ") + e.what();
-    }
-    stats.field_layout = traced.stats;
-    // A wall not drawn whole leaves its feature off the arcs (the layout may still close without it).
-    if (!traced.graph.stuck_walls.empty()) {
-      if (feature_round < kFeatureRounds && !without_features) {
-        walls_stuck = true;
-        stage.done("trace", t0, std::to_string(traced.graph.stuck_walls.size()) +
-                                    " feature walls could not be drawn: left out, the field again" + attempt_name);
-        break;
-      }
-      traced.ok = false;
-      traced.failure = std::to_string(traced.graph.stuck_walls.size()) + " feature walls could not be drawn (wall " +
-                       std::to_string(traced.graph.stuck_walls.front()) + ")";
-    }
-    stage.done("trace", t0,
-               traced.ok ? std::to_string(traced.stats.trace.curves) + " curves, " + std::to_string(traced.stats.patches) +
-                               " patches, " + std::to_string(traced.stats.t_junctions) + " T-junctions, " +
-                               std::to_string(traced.stats.rounds) + " rounds" +
-                               (features.walls.empty() ? std::string()
-                                                       : ", " + std::to_string(features.walls.size()) + " feature walls")
-                         : "no layout: " + traced.failure);
-    if (traced.ok) break;
-    if (first_failure.empty()) first_failure = "trace: " + traced.failure;
-  }
-  if (!walls_stuck) {
-    if (traced.ok || without_features) break;
-    // No layout with the walls: all of them left out, every attempt again.
-    stage.done("features", Clock::now(), "no field layout follows the " + std::to_string(features.walls.size()) +
-                                             " feature walls: every attempt again without them");
-    stats.features_dropped += static_cast<int>(features.walls.size());
-    stats.features_failure = first_failure;
-    features = FieldFeatures{};
-    for (Attempt& a : attempts) a.field.constrained_edges.clear();
-    fields.clear();
-    first_failure.clear();
-    without_features = true;
-    continue;
-  }
-  // Leave out the stuck walls and their constraints; every field is computed again.
-  std::vector<char> drop(features.walls.size(), 0);
-  for (int w : traced.graph.stuck_walls) drop[w] = 1;
-  std::vector<std::vector<int>> kept;
-  for (std::size_t w = 0; w < features.walls.size(); ++w) {
-    if (!drop[w]) {
-      kept.push_back(std::move(features.walls[w]));
-      continue;
-    }
-    const std::vector<int>& chain = features.walls[w];
-    for (std::size_t i = 0; i + 1 < chain.size(); ++i) {
-      const int h = input.mesh->find_halfedge(chain[i], chain[i + 1]);
-      features.constrained[h] = features.constrained[input.mesh->twin(h)] = 0;
-    }
-    ++stats.features_dropped;
-  }
-  features.walls = std::move(kept);
-  for (Attempt& a : attempts) a.field.constrained_edges = features.constrained;
-  fields.clear();
+    fields.clear();  // the features changed: every field again
   }
   if (!traced.ok) return fail(first_failure);
   stats.feature_walls = static_cast<int>(features.walls.size());

@@ -118,22 +118,16 @@ MapCheck check_map(const SeamlessStructure& s, const std::vector<std::array<Vec2
   r.nonpositive = bad.first;
   r.first_nonpositive = bad.second;
   if (r.nonpositive > 0) return r;
-  for (const BoundaryIsoline& e : s.boundary_edges) {  // exact comparisons of doubles
-    const int f = e.halfedge / 3;
-    const std::optional<double> value = small_integer(e.value);  // no grid holds a larger one
-    const Vec2d &a = corners[f][e.halfedge % 3], &b = corners[f][TriMesh::next(e.halfedge) % 3];
-    if (!value || (e.axis == 0 ? a.x : a.y) != *value || (e.axis == 0 ? b.x : b.y) != *value) {
-      if (r.off_isoline++ == 0) r.first_off_isoline = e.halfedge;
+  // Boundary edges, then held interior edges, on their isolines: exact comparisons of doubles.
+  for (const std::vector<BoundaryIsoline>* edges : {&s.boundary_edges, &s.isoline_edges})
+    for (const BoundaryIsoline& e : *edges) {
+      const int f = e.halfedge / 3;
+      const std::optional<double> value = small_integer(e.value);  // no grid holds a larger one
+      const Vec2d &a = corners[f][e.halfedge % 3], &b = corners[f][TriMesh::next(e.halfedge) % 3];
+      if (!value || (e.axis == 0 ? a.x : a.y) != *value || (e.axis == 0 ? b.x : b.y) != *value) {
+        if (r.off_isoline++ == 0) r.first_off_isoline = e.halfedge;
+      }
     }
-  }
-  for (const BoundaryIsoline& e : s.isoline_edges) {  // held interior edges, the same way
-    const int f = e.halfedge / 3;
-    const std::optional<double> value = small_integer(e.value);
-    const Vec2d &a = corners[f][e.halfedge % 3], &b = corners[f][TriMesh::next(e.halfedge) % 3];
-    if (!value || (e.axis == 0 ? a.x : a.y) != *value || (e.axis == 0 ? b.x : b.y) != *value) {
-      if (r.off_isoline++ == 0) r.first_off_isoline = e.halfedge;
-    }
-  }
   if (r.off_isoline > 0) return r;
   const std::vector<int> angles = angle_indices(s.mesh, corners);
   for (std::size_t v = 0; v < angles.size(); ++v)

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "../core/parallel.h"
@@ -121,12 +122,17 @@ GridMotion edge_transition(const TriMesh& m, const std::vector<std::array<Point2
 
 // The integer isoline of boundary half-edge h (u or v constant and integer along it, in its
 // face's chart), or throws naming the edge's vertices.
+// The integer isoline through both ends of half-edge h, whose UVs in face(h)'s chart are a and b:
+// the same integer u (axis 0) or else the same integer v (axis 1); nothing if neither.
+std::optional<BoundaryIsoline> isoline_through(int h, const Point2q& a, const Point2q& b) {
+  if (a.x == b.x && a.x.get_den() == 1) return BoundaryIsoline{h, 0, a.x.get_num()};
+  if (a.y == b.y && a.y.get_den() == 1) return BoundaryIsoline{h, 1, a.y.get_num()};
+  return std::nullopt;
+}
+
 BoundaryIsoline boundary_isoline(const TriMesh& m, const std::vector<std::array<Point2q, 3>>& uv,
                                  int h) {
-  const Point2q& a = uv[h / 3][h % 3];
-  const Point2q& b = uv[h / 3][TriMesh::next(h) % 3];
-  if (a.x == b.x && a.x.get_den() == 1) return {h, 0, a.x.get_num()};
-  if (a.y == b.y && a.y.get_den() == 1) return {h, 1, a.y.get_num()};
+  if (auto e = isoline_through(h, uv[h / 3][h % 3], uv[h / 3][TriMesh::next(h) % 3])) return std::move(*e);
   const int u = m.origin(h), w = m.target(h);
   invalid("the boundary edge (" + std::to_string(std::min(u, w)) + ", " +
               std::to_string(std::max(u, w)) +
@@ -305,18 +311,11 @@ void hold_isoline_edges(SeamlessStructure& s, const std::vector<std::pair<int, i
     if (h < 0) h = m.find_halfedge(b, a);
     if (h < 0) throw Error(ErrorKind::InvalidArgument, "hold_isoline_edges: " + name + " is not an edge of the map", {a, b});
     const int n = TriMesh::next(h);
-    const Point2q pa = apply(s.corner_motion[h], s.vertex_uv[m.origin(h)]);
-    const Point2q pb = apply(s.corner_motion[n], s.vertex_uv[m.origin(n)]);
-    int axis = -1;
-    if (pa.x == pb.x && pa.x.get_den() == 1) axis = 0;
-    else if (pa.y == pb.y && pa.y.get_den() == 1) axis = 1;
-    if (axis < 0)
-      throw Error(ErrorKind::InvalidArgument, "hold_isoline_edges: " + name + " is not on an integer isoline", {a, b});
-    BoundaryIsoline e;
-    e.halfedge = h;
-    e.axis = axis;
-    e.value = axis == 0 ? pa.x.get_num() : pa.y.get_num();
-    s.isoline_edges.push_back(std::move(e));
+    std::optional<BoundaryIsoline> e = isoline_through(h, apply(s.corner_motion[h], s.vertex_uv[m.origin(h)]),
+                                                       apply(s.corner_motion[n], s.vertex_uv[m.origin(n)]));
+    if (!e) throw Error(ErrorKind::InvalidArgument, "hold_isoline_edges: " + name + " is not on an integer isoline", {a, b});
+    const int axis = e->axis;
+    s.isoline_edges.push_back(std::move(*e));
     for (const int c : {h, n}) {  // the fixed coordinate in the end's reference chart
       const int own = s.corner_motion[c].k % 2 == 0 ? axis : 1 - axis;
       s.fixed_axes[m.origin(c)] |= static_cast<std::uint8_t>(1u << own);
