@@ -139,6 +139,7 @@ TEST_CASE("field pipeline: feature curves on quad edges, certified (issue 45)") 
   o.features.enabled = false;
   const PipelineResult without = compute_igm(torus, o);
   check_certified(with, 1);
+  check_certified(without, 1);
   CHECK(with.features.stats.edges == 0);
   bool same_uv = with.igm.corner_uv.size() == without.igm.corner_uv.size();
   for (std::size_t f = 0; same_uv && f < with.igm.corner_uv.size(); ++f)
