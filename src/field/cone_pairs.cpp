@@ -179,14 +179,15 @@ bool solve_angles(const TriMesh& mesh, const System& sys, const FaceFrames& fram
 namespace {
 
 // Lexicographic score of a field's singularities, lower is better: the vertices no seamless map
-// allows (interior valence < 1, boundary k < 1), the cones to split (interior valence 2 / 6 as
-// asked), then the total deviation sum |4 - valence| + sum |2 - k|.
+// allows (interior valence < 1, boundary k < 1), the splits still to do (interior valence 1: two,
+// valence 2 / 6: one, as asked), then the total deviation sum |4 - valence| + sum |2 - k|.
 std::array<long long, 3> singularity_score(const CrossField& field, const CrossFieldOptions& o) {
   long long illegal = 0, halves = 0, deviation = 0;
   for (std::size_t v = 0; v < field.valence.size(); ++v) {
     const int val = field.valence[v];
     illegal += val < 1;
-    if (!field.on_boundary[v]) halves += (o.split_valence2 && val == 2) + (o.split_valence6 && val == 6);
+    if (!field.on_boundary[v])
+      halves += 2 * (o.split_valence1 && val == 1) + (o.split_valence2 && val == 2) + (o.split_valence6 && val == 6);
     deviation += std::abs((field.on_boundary[v] ? 2 : 4) - val);
   }
   return {illegal, halves, deviation};
@@ -221,14 +222,19 @@ void clean_cones(const TriMesh& mesh, const std::vector<Vec3d>& p, const System&
     for (int v = 0; v < nv; ++v) {
       const int val = field.valence[v];
       const bool raise = options.remove_close_pairs && val < 1;
-      const bool split2 = options.split_valence2 && val == 2 && !field.on_boundary[v];
+      const bool split2 = ((options.split_valence2 && val == 2) || (options.split_valence1 && val == 1)) &&
+                          !field.on_boundary[v];
       const bool split6 = options.split_valence6 && val == 6 && !field.on_boundary[v];
       if (!raise && !split2 && !split6) continue;
-      // Candidates within 8 mean edges; ties by vertex id (sorted by (distance, id)).
-      dijkstra(mesh, p, {v}, 8 * mean, true, -1, &singular, dist, via, touched);
+      // Candidates within 8 mean edges; ties by vertex id (sorted by (distance, id)). Paths avoid
+      // the other singular vertices; a cone walled in by them (a spike of three tiny faces whose
+      // neighbours are all cones) is given paths through them (a vertex inside a path keeps its
+      // valence).
+      int partner = -1;
+      for (int pass = 0; pass < 2 && partner < 0; ++pass) {
+      dijkstra(mesh, p, {v}, 8 * mean, true, -1, pass == 0 ? &singular : nullptr, dist, via, touched);
       std::vector<int> near(touched);
       std::sort(near.begin(), near.end(), [&](int a, int b) { return dist[a] != dist[b] ? dist[a] < dist[b] : a < b; });
-      int partner = -1;
       if (raise)  // the nearest interior cone of valence >= 5, else the nearest regular vertex
         for (int pass = 0; pass < 2 && partner < 0; ++pass)
           for (int w : near)
@@ -247,11 +253,16 @@ void clean_cones(const TriMesh& mesh, const std::vector<Vec3d>& p, const System&
         moves.push_back(split6 ? Move{partner, v, d} : Move{v, partner, d});
       }
       reset(dist, via, touched);
+      }
     }
     std::vector<PairPlan> plans;
     std::vector<int> stamp(nf, -1);
     for (const Move& mv : moves) {
       dijkstra(mesh, p, {mv.plus}, (2 * mv.distance + 2) * mean, true, mv.minus, &singular, dist, via, touched);
+      if (via[mv.minus] < 0) {  // walled in by other cones (above): through them
+        reset(dist, via, touched);
+        dijkstra(mesh, p, {mv.plus}, (2 * mv.distance + 2) * mean, true, mv.minus, nullptr, dist, via, touched);
+      }
       PairPlan plan;
       std::vector<int> path;  // vertices, from `minus` back to `plus`
       if (via[mv.minus] >= 0) {

@@ -457,7 +457,7 @@ CrossField compute_cross_field(const TriMesh& mesh, const std::vector<Vec3d>& in
   field.close_pairs = close_cone_pairs(mesh, p, field, options.close_pair_distance);
   st.cones_before_cleanup = static_cast<int>(field.cones.size());
   st.pairs_before_cleanup = static_cast<int>(field.close_pairs.size());
-  if (options.remove_close_pairs || options.split_valence2 || options.split_valence6)
+  if (options.remove_close_pairs || options.split_valence1 || options.split_valence2 || options.split_valence6)
     clean_cones(mesh, p, sys, fixed, options, field);
   st.energy = unit_energy(sys, field.theta) * sys.total_area;
   st.seconds = since(t0);

@@ -367,6 +367,7 @@ TEST_CASE("cross field: close pairs are cancelled without new cones outside vale
     const Surface s = load(dir / "meshes/clean" / (std::string(name) + ".off"));
     CrossFieldOptions o;
     o.remove_close_pairs = false;
+    o.split_valence1 = false;
     o.split_valence2 = false;
     const CrossField before = compute_cross_field(s.mesh, s.positions, o);
     o.remove_close_pairs = true;
@@ -429,6 +430,7 @@ TEST_CASE("cross field: a cone of angle 0 at a spike is raised to valence 1") {
   const Surface s = load(dir / "meshes/open/mannequin-devil.off");
   CrossFieldOptions o;
   o.remove_close_pairs = false;
+  o.split_valence1 = false;
   o.split_valence2 = false;
   const CrossField before = compute_cross_field(s.mesh, s.positions, o);
   REQUIRE(before.valence[11829] == 0);
@@ -438,6 +440,26 @@ TEST_CASE("cross field: a cone of angle 0 at a spike is raised to valence 1") {
   check_field(s, after, "mannequin-devil");
   CHECK(after.valence[11829] == 1);
   CHECK(seamless_obstruction(s.mesh, after) == "");
+}
+
+TEST_CASE("cross field: a cone of valence 1 at a sharp tip is split into three of valence 3") {
+  const Surface s = igm_test::pencil(12, 6, 3.5);
+  const int apex = 0;
+  CrossFieldOptions o;
+  o.split_valence1 = false;
+  const CrossField before = compute_cross_field(s.mesh, s.positions, o);
+  check_field(s, before, "pencil without the split");
+  REQUIRE(before.valence[apex] == 1);
+  o.split_valence1 = true;
+  const CrossField after = compute_cross_field(s.mesh, s.positions, o);
+  check_field(s, after, "pencil");
+  CHECK(after.valence[apex] == 3);
+  // The three quarter turns of the tip now sit on three vertices of valence 3: the pencil's
+  // cones are eight of valence 3 (as a cube's), in at least the two rounds a split of a valence
+  // 1 takes.
+  CHECK(after.stats.valence_count[3] == 8);
+  CHECK(after.cones.size() == 8);
+  CHECK(after.stats.cleanup_rounds >= 2);
 }
 
 TEST_CASE("cross field: the rotation along a loop of faces") {

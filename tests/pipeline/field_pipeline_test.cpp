@@ -208,6 +208,23 @@ TEST_CASE("field pipeline: open surfaces and several components") {
   }
 }
 
+TEST_CASE("field pipeline: a sharp tip (a cone of valence 1 in the field) is split and takes the field layout") {
+  const igm_test::Surface s = igm_test::pencil(12, 6, 3.5);
+  PolygonSoup soup;
+  for (const Vec3d& q : s.positions) soup.positions.push_back(q);
+  for (int f = 0; f < s.mesh.num_faces(); ++f)
+    soup.add_face({s.mesh.origin(3 * f), s.mesh.origin(3 * f + 1), s.mesh.origin(3 * f + 2)});
+  PipelineOptions o = field_options(500);
+  const PipelineResult r = compute_igm(validate(soup), o);
+  check_certified(r, 0);
+  CHECK(r.stats.layout == "field");
+  CHECK(r.stats.layout_fallback.empty());
+  // The field's cones (its split tip among them) all of valence 3..5.
+  const auto& count = r.stats.cross_field.valence_count;
+  CHECK(count[0] + count[1] + count[2] + count[6] + count[7] + count[8] == 0);
+  CHECK(count[3] - count[5] == 8);
+}
+
 TEST_CASE("field pipeline: a surface whose field has a cone of valence 1 falls back to the topological layout") {
   const ValidMesh mesh = needle();
   PipelineOptions o = field_options(500);

@@ -110,4 +110,47 @@ inline Surface torus(double R, double r, int nu, int nv) {
   return from(pos, tris);
 }
 
+// A pencil: a cylinder of radius 1 and height 4 closed by a flat disk below and a cone of height
+// `tip` above; n vertices per ring, m rings on each of the three parts. With tip = 3.5 the apex
+// angles sum to about 98 degrees: the field turns three quarters around it (a cone of valence 1
+// before the cleanup splits it).
+inline Surface pencil(int n, int m, double tip) {
+  std::vector<std::vector<igm::Vec3d>> rings{{{0, 0, 4 + tip}}};
+  auto ring = [&](double r, double z) {
+    std::vector<igm::Vec3d> ps;
+    for (int u = 0; u < n; ++u)
+      ps.push_back({r * std::cos(2 * std::numbers::pi * u / n), r * std::sin(2 * std::numbers::pi * u / n), z});
+    rings.push_back(ps);
+  };
+  for (int k = 1; k <= m; ++k) ring(double(k) / m, 4 + tip * (1 - double(k) / m));
+  for (int k = 1; k <= m; ++k) ring(1, 4 - 4.0 * k / m);
+  for (int k = m - 1; k >= 1; --k) ring(double(k) / m, 0);
+  rings.push_back({{0, 0, 0}});
+  std::vector<igm::Vec3d> pos;
+  std::vector<std::vector<int>> ids;
+  for (const auto& r : rings) {
+    ids.emplace_back();
+    for (const auto& q : r) {
+      ids.back().push_back(static_cast<int>(pos.size()));
+      pos.push_back(q);
+    }
+  }
+  std::vector<std::array<int, 3>> tris;
+  for (std::size_t k = 0; k + 1 < ids.size(); ++k) {
+    const auto &a = ids[k], &b = ids[k + 1];
+    for (int u = 0; u < n; ++u) {
+      const int w = (u + 1) % n;
+      if (a.size() == 1) {
+        tris.push_back({a[0], b[u], b[w]});
+      } else if (b.size() == 1) {
+        tris.push_back({a[u], b[0], a[w]});
+      } else {
+        tris.push_back({a[u], b[u], b[w]});
+        tris.push_back({a[u], b[w], a[w]});
+      }
+    }
+  }
+  return from(pos, tris);
+}
+
 }  // namespace igm_test

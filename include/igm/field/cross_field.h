@@ -93,12 +93,17 @@ struct CrossFieldOptions {
   ///    mean edges, or else from its nearest regular interior vertex;
   ///  - split_valence2 / split_valence6: each interior cone of valence 2 (6) becomes two of
   ///    valence 3 (5), the second at the regular interior vertex nearest to split_distance mean
-  ///    edges away (at least that far, within 8).
+  ///    edges away (at least that far, within 8);
+  ///  - split_valence1: each interior cone of valence 1 (a sharp tip: cow horns, a needle; no
+  ///    patch layout has one) gives a quarter turn to such a vertex (valence 2 and 3), and the
+  ///    valence 2 is split in the next round: three cones of valence 3 (needs 2 rounds).
   /// A move whose re-solve leaves a vertex further from regular and outside valence 3..5
   /// (rounding put the quarter turn elsewhere) is dropped; a round is kept if it lowers
-  /// (vertices of valence < 1, cones of valence 2 / 6 to split, sum |4 - valence| + sum |2 - k|)
+  /// (vertices of valence < 1, splits still to do (2 for a valence 1, 1 for a 2 or 6 as asked),
+  ///  sum |4 - valence| + sum |2 - k|)
   /// lexicographically; at most `cleanup_rounds` rounds. docs/field.md has the counts.
   bool remove_close_pairs = true;
+  bool split_valence1 = true;
   bool split_valence2 = true;
   bool split_valence6 = false;
   double split_distance = 2.0;
