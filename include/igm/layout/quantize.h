@@ -28,12 +28,13 @@ struct QuantizeOptions {
   /// N on every arc: the paper's N quads per layout edge; with T-junctions the integer program
   /// keeps every arc as close to N as the patches allow); edge_length H > 0 the target
   /// (3D length) / H; quads Q > 0: H = sqrt(area / Q) first, then up to `quad_corrections` more
-  /// solves with H scaled by sqrt(quads / Q), the solution whose total is nearest to Q kept (the
-  /// first on ties).
+  /// H by the secant on log total against log H (the first step as if the total went as H^-2),
+  /// each judged by the LP relaxation's total (Clp only), stopping within 0.2 % of Q; the H whose
+  /// total was nearest to Q (the first on ties) gets the one integer solve.
   int resolution = 0;
   double edge_length = 0;
   std::int64_t quads = 0;
-  int quad_corrections = 3;
+  int quad_corrections = 6;
   /// Per arc: its least length (empty: minimum_arc_lengths(layout)); every entry >= 1. The side
   /// sums that minimum_arc_lengths' patch rules ask for hold in either case.
   std::vector<int> minimum;
@@ -59,7 +60,8 @@ const char* to_string(QuantizeStatus status);
 struct QuantizeStats {
   int arcs = 0, patches = 0;
   int rows = 0;                 // equality rows of the integer program (after dropping empty ones)
-  int solves = 0;               // integer programs solved (1 + quad corrections)
+  int solves = 0;               // integer programs solved (1)
+  int relaxations = 0;          // LP relaxations solved alone to choose H (quads Q > 0)
   std::int64_t nodes = 0;       // branch-and-bound nodes, over all solves
   double deviation = 0;         // the kept solution's objective: sum_a w_a |x_a - t_a|
   double seconds = 0;
@@ -93,8 +95,8 @@ std::vector<int> minimum_arc_lengths(const SurfaceLayout& layout);
 /// patch, sum(side 0) = sum(side 2) and sum(side 1) = sum(side 3) (an arc on two opposite sides of
 /// one patch cancels) and the side sums minimum_arc_lengths names (>= 2 or >= 3 across a patch
 /// whose opposite corners are one vertex or whose opposite sides share an arc); t_a = (3D length
-/// of arc a) / H (or N), w_a by options.weight. CBC (CbcMain with presolve, cuts and
-/// heuristics; one thread; at most options.max_nodes nodes per solve); the solution is rounded
+/// of arc a) / H (or N), w_a by options.weight. CBC (CbcMain with presolve, cuts and the
+/// heuristics but the feasibility pump; one thread; at most options.max_nodes nodes per solve); the solution is rounded
 /// and checked in integers. Never throws for an infeasible layout or a bound hit: the status says
 /// so, with the reason, so that the caller can fall back. Throws igm::Error(InvalidArgument) for a
 /// layout check_surface_layout rejects, no or a bad size option, bad minima or options.
