@@ -79,6 +79,7 @@ const std::map<std::string, Setter>& option_setters() {
       {"quality_distance", field(&igm::PipelineOptions::quality_distance)},
       {"threads", field(&igm::PipelineOptions::threads)},
       {"feature_angle", [](igm::PipelineOptions& o, py::handle v) { o.features.angle_degrees = v.cast<double>(); }},
+      {"feature_min_quads", [](igm::PipelineOptions& o, py::handle v) { o.features.min_quad_edges = v.cast<double>(); }},
       {"no_features", [](igm::PipelineOptions& o, py::handle v) { o.features.enabled = !v.cast<bool>(); }},
       {"features", [](igm::PipelineOptions& o, py::handle v) {
          const IndexArray a = IndexArray::ensure(v);
@@ -409,7 +410,8 @@ PYBIND11_MODULE(_igm, m) {
         "components (one IGM each, merged; stats['surfaces'] per surface). Options: quads, edge_length,\n"
         "resolution, layout ('spread', 'kite', 'paper', 'field'), map ('tutte', 'affine'), smooth, smooth_iterations,\n"
         "smooth_min_decrease, smooth_stall_step, smooth_seconds, quality, quality_distance, root, normal_form,\n"
-        "restarts, cones, memory_limit_bytes, max_witnesses, feature_angle (degrees, default 35), no_features,\n"
+        "restarts, cones, memory_limit_bytes, max_witnesses, feature_angle (degrees, default 35),\n"
+        "feature_min_quads (detected chains shorter than this many quad edges not followed, default 6), no_features,\n"
         "features (a (k, 2) int array of vertex-id pairs, more feature edges; measured in\n"
         "result['quality']['features'], followed by layout='field'), threads (0: all cores; the outputs are the same\n"
         "for any count) (igm::PipelineOptions), split_nonmanifold (cut\n"

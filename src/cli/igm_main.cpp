@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <exception>
@@ -22,6 +23,7 @@
 #include "igm/mesh/generate.h"
 #include "igm/mesh/validate.h"
 #include "igm/mesh/validate_surfaces.h"
+#include "igm/pipeline/pipeline.h"
 #include "extract_command.h"
 #include "batch_command.h"
 #include "run_command.h"
@@ -209,18 +211,34 @@ int print_report(const std::string& name, const igm::PolygonSoup& soup, const ig
     for (const std::string& w : set->warnings)
       if (std::find(r.warnings.begin(), r.warnings.end(), w) == r.warnings.end())
         std::printf("surfaces warning: %s\n", w.c_str());
-  if (set) {  // the sharp features `igm run` measures (default options)
+  if (set) {  // the sharp features `igm run` measures (default options: the default quad count)
+    double area = 0;
+    for (const igm::SurfaceComponent& c : set->components)
+      for (const auto& t : c.triangles) {
+        const igm::Vec3d &p0 = c.positions[t[0]], &p1 = c.positions[t[1]], &p2 = c.positions[t[2]];
+        const double ux = p1.x - p0.x, uy = p1.y - p0.y, uz = p1.z - p0.z;
+        const double vx = p2.x - p0.x, vy = p2.y - p0.y, vz = p2.z - p0.z;
+        const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+        area += 0.5 * std::sqrt(nx * nx + ny * ny + nz * nz);
+      }
+    igm::FeatureOptions fo;
+    fo.quad_size = std::sqrt(area / static_cast<double>(igm::kDefaultQuads));
+    if (!std::isfinite(fo.quad_size)) fo.quad_size = 0;
     igm::FeatureStats total;
     for (const igm::SurfaceComponent& c : set->components) {
       const igm::TriMesh mesh = igm::TriMesh::from_triangles(static_cast<int>(c.positions.size()), c.triangles, true);
-      const igm::FeatureStats f = igm::detect_features(mesh, c.positions).stats;
+      const igm::FeatureStats f = igm::detect_features(mesh, c.positions, {}, fo).stats;
       total.edges += f.edges;
       total.curves += f.curves;
       total.corners += f.corners;
       total.dropped_chains += f.dropped_chains;
+      total.short_chains += f.short_chains;
+      total.short_edges += f.short_edges;
     }
-    std::printf("features: %d edges, %d curves, %d corners (dihedral >= %g deg; %d short chains dropped)\n",
-                total.edges, total.curves, total.corners, igm::FeatureOptions{}.angle_degrees, total.dropped_chains);
+    std::printf("features: %d edges, %d curves, %d corners (dihedral >= %g deg; %d short chains dropped; at %lld quads "
+                "%d chains of %d edges shorter than %g quad edges not followed)\n",
+                total.edges, total.curves, total.corners, fo.angle_degrees, total.dropped_chains,
+                static_cast<long long>(igm::kDefaultQuads), total.short_chains, total.short_edges, fo.min_quad_edges);
   }
   if (set) {
     if (one_closed)

@@ -45,7 +45,7 @@ int usage(const std::string& message, bool help = false) {
                "               [--no-smooth] [--root V]\n"
                "               [--normal-form [--restarts K|auto]] [--cones A,B,C,D] [--memory-limit-mb M]\n"
                "               [--smooth-iterations N] [--smooth-min-decrease X] [--smooth-seconds S] [--threads N]\n"
-               "               [--feature-angle DEG] [--no-features] [--features FILE]\n"
+               "               [--feature-angle DEG] [--feature-min-quads K] [--no-features] [--features FILE]\n"
                "  writes DIR/NAME.igm.obj, NAME.igm.exact, NAME.quad.obj, NAME.cert.json, NAME.schema.svg,\n"
                "  NAME.quad.svg (a shaded picture of the quads, cones marked by valence)\n"
                "  --quads Q       about Q quads (default %lld): each layout edge gets round(length / H) quads,\n"
@@ -76,6 +76,8 @@ int usage(const std::string& message, bool help = false) {
                "                  (0..180, default 35; short chains of scans dropped, docs/quality.md); measured\n"
                "                  (cert.json quality.features: the share of their length on quad edges), and\n"
                "                  with --layout field followed: every kept feature edge on quad edges, certified\n"
+               "  --feature-min-quads K  detected feature chains shorter than K quad edges are measured but not\n"
+               "                  followed (default 6; 0: all followed; the quad edge from --quads or --edge-length)\n"
                "  --no-features   detect no sharp edge (only those of --features)\n"
                "  --features FILE more feature edges: one pair \"i j\" of 0-based vertex ids per line, '#' comments\n"
                "  --threads N     threads for the parallel stages (default 0: IGM_THREADS if set, else all\n"
@@ -363,6 +365,15 @@ int run_command(const std::vector<std::string_view>& args) {
       if (!parse_double(v, d) || !(d >= 0 && d <= 180))
         return usage("--feature-angle needs a number of degrees in [0, 180], got '" + std::string(v) + "'");
       options.features.angle_degrees = d;
+      continue;
+    }
+    if (a == "--feature-min-quads") {
+      if (i + 1 >= args.size()) return usage("--feature-min-quads needs a value");
+      const std::string_view v = args[++i];
+      double d = 0;
+      if (!parse_double(v, d) || !(d >= 0 && d <= 1e6))
+        return usage("--feature-min-quads needs a number of quad edges in [0, 1e6], got '" + std::string(v) + "'");
+      options.features.min_quad_edges = d;
       continue;
     }
     if (a == "--features") {

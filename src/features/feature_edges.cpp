@@ -55,6 +55,11 @@ FeatureEdges detect_features(const TriMesh& mesh, const std::vector<Vec3d>& posi
   if (!(options.noise_min_length >= 0 && options.noise_min_length <= 1))
     throw Error(ErrorKind::InvalidArgument,
                 "noise_min_length must be in [0, 1] (of the diagonal), got " + std::to_string(options.noise_min_length));
+  if (!(options.quad_size >= 0 && options.quad_size < INFINITY) ||
+      !(options.min_quad_edges >= 0 && options.min_quad_edges < INFINITY))
+    throw Error(ErrorKind::InvalidArgument, "quad_size and min_quad_edges must be finite and >= 0, got " +
+                                                std::to_string(options.quad_size) + " and " +
+                                                std::to_string(options.min_quad_edges));
   const int nv = mesh.num_vertices(), nh = mesh.num_halfedges(), nf = mesh.num_faces();
   if (static_cast<int>(positions.size()) != nv)
     throw Error(ErrorKind::InvalidArgument, "detect_features: " + std::to_string(positions.size()) +
@@ -148,18 +153,28 @@ FeatureEdges detect_features(const TriMesh& mesh, const std::vector<Vec3d>& posi
     return c;
   };
 
-  // --- the noise rule, once, on the detected edges' chains (split where the degree is not 2) ---
-  std::vector<std::uint8_t> kept(nh, 0);
+  // --- the noise and resolution rules, once, on the chains (split where the degree is not 2) ---
+  std::vector<std::uint8_t> kept(nh, 0), short_edge(nh, 0);
   for (int h = 0; h < nh; ++h) kept[h] = detected[h] || user[h];
-  if (options.noise_min_edges > 0 && options.noise_min_length > 0) {
+  const bool noise_rule = options.noise_min_edges > 0 && options.noise_min_length > 0;
+  const double min_length = options.quad_size * options.min_quad_edges;
+  if (noise_rule || min_length > 0) {
     build(kept);
     auto junction = [&](int v) { return degree(v) != 2; };
     auto consider = [&](const FeatureCurve& c) {
       bool has_user = false;
       for (int h : c.halfedges) has_user |= user[canonical(h)] != 0;
-      if (has_user || static_cast<int>(c.halfedges.size()) >= options.noise_min_edges ||
-          !(c.length < options.noise_min_length * diagonal))
+      if (has_user) return;
+      const bool noise = noise_rule && static_cast<int>(c.halfedges.size()) < options.noise_min_edges &&
+                         c.length < options.noise_min_length * diagonal;
+      if (!noise) {
+        if (c.length < min_length) {  // the resolution rule: kept, not followed
+          ++out.stats.short_chains;
+          out.stats.short_edges += static_cast<int>(c.halfedges.size());
+          for (int h : c.halfedges) short_edge[canonical(h)] = 1;
+        }
         return;
+      }
       ++out.stats.dropped_chains;
       out.stats.dropped_edges += static_cast<int>(c.halfedges.size());
       for (int h : c.halfedges) kept[canonical(h)] = 0;
@@ -195,9 +210,14 @@ FeatureEdges detect_features(const TriMesh& mesh, const std::vector<Vec3d>& posi
     if (!used[h]) out.curves.push_back(walk(mesh.origin(h), h, at_corner));
 
   out.edges = edges;
+  out.follow.assign(nh, 0);
   for (int h : edges) {
     out.halfedge[h] = 1;
     if (mesh.twin(h) >= 0) out.halfedge[mesh.twin(h)] = 1;
+    if (!short_edge[h]) {
+      out.follow[h] = 1;
+      if (mesh.twin(h) >= 0) out.follow[mesh.twin(h)] = 1;
+    }
     out.stats.length += length(h);
     out.stats.user_edges += user[h];
   }

@@ -46,7 +46,7 @@ FieldFeatures field_features(const TriMesh& mesh, const FeatureEdges* features) 
     };
     for (std::size_t i = 0; i < c.halfedges.size(); ++i) {
       const int h = c.halfedges[i], t = mesh.twin(h);
-      if (t < 0) {  // along the boundary: not a wall
+      if (t < 0 || (!features->follow.empty() && !features->follow[h])) {  // boundary, or too short: no wall
         flush();
         continue;
       }

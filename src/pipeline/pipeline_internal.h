@@ -30,11 +30,17 @@ struct StageReporter {
   void done(const char* name, Clock::time_point t0, std::string detail);
 };
 
-/// The features of one input surface (PipelineOptions::features and the user's pairs that are
-/// edges of this surface, marked in `found`).
+/// The target quad edge length for the features' resolution rule (FeatureOptions::quad_size):
+/// options.features.quad_size if set; else 0 with a resolution; the edge length if given; else
+/// sqrt(area / Q), Q = options.quads or kDefaultQuads, `area` the 3D area the quads cover (all
+/// surfaces: a shared quad count gives each surface the same H).
+double feature_quad_size(const PipelineOptions& options, double area);
+
+/// The features of one input surface (PipelineOptions::features with quad_size, and the user's
+/// pairs that are edges of this surface, marked in `found`).
 FeatureEdges surface_features(const TriMesh& mesh, const std::vector<Vec3d>& positions,
                               const std::vector<std::int64_t>& input_vertex, const PipelineOptions& options,
-                              std::vector<std::uint8_t>& found);
+                              double quad_size, std::vector<std::uint8_t>& found);
 
 /// measure_features of the curves of features[i] (vertex ids into input_positions offset by
 /// base[i]) against `quads`, with the curve and corner counts.

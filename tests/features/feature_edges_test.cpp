@@ -53,6 +53,52 @@ Surface sphere(int n) {
 
 }  // namespace
 
+TEST_CASE("features: the resolution rule marks the chains shorter than min_quad_edges quads, not followed") {
+  // A box 4 x 2 x 2 (the subdivided cube stretched along x): 4 creases of length 4 along x, 8 of
+  // length 2. Quads of edge 0.5 need 6 x 0.5 = 3: the 8 short creases are measured, not followed.
+  Surface s = igm_test::subdivided_cube(4);
+  for (igm::Vec3d& p : s.positions) p.x *= 2;
+  FeatureOptions o;
+  const FeatureEdges all = igm::detect_features(s.mesh, s.positions, {}, o);
+  REQUIRE(all.stats.curves == 12);
+  CHECK(all.stats.short_chains == 0);
+  for (int h : all.edges) CHECK(all.follow[h] == 1);
+  o.quad_size = 0.5;
+  const FeatureEdges f = igm::detect_features(s.mesh, s.positions, {}, o);
+  check_curves(s, f);
+  CHECK(f.edges == all.edges);  // still features: measured
+  CHECK(f.stats.curves == 12);
+  CHECK(f.stats.short_chains == 8);
+  CHECK(f.stats.short_edges == 8 * 4);
+  int followed = 0;
+  for (int h = 0; h < s.mesh.num_halfedges(); ++h) {
+    if (!f.halfedge[h]) {
+      CHECK(f.follow[h] == 0);
+      continue;
+    }
+    const igm::Vec3d& a = s.positions[s.mesh.origin(h)];
+    const igm::Vec3d& b = s.positions[s.mesh.target(h)];
+    const bool along_x = a.y == b.y && a.z == b.z;
+    CHECK(f.follow[h] == (along_x ? 1 : 0));
+    followed += f.follow[h];
+  }
+  CHECK(followed == 2 * 4 * 4);  // 4 creases of 4 edges, both half-edges
+  // A user edge on a short crease: that crease is followed.
+  int short_h = -1;
+  for (int h : f.edges)
+    if (!f.follow[h] && short_h < 0) short_h = h;
+  REQUIRE(short_h >= 0);
+  const FeatureEdges u =
+      igm::detect_features(s.mesh, s.positions, {{s.mesh.origin(short_h), s.mesh.target(short_h)}}, o);
+  CHECK(u.stats.short_chains == 7);
+  CHECK(u.follow[short_h] == 1);
+  // 0 for either disables the rule; bad values are typed errors.
+  o.min_quad_edges = 0;
+  CHECK(igm::detect_features(s.mesh, s.positions, {}, o).stats.short_chains == 0);
+  o.quad_size = -1;
+  CHECK_THROWS_AS(igm::detect_features(s.mesh, s.positions, {}, o), igm::Error);
+}
+
 TEST_CASE("features: a subdivided cube has 12 curves of n edges meeting 3 at each of 8 corners") {
   for (int n : {1, 4}) {
     const Surface s = igm_test::subdivided_cube(n);

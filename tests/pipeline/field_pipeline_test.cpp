@@ -208,6 +208,29 @@ TEST_CASE("field pipeline: open surfaces and several components") {
   }
 }
 
+TEST_CASE("field pipeline: creases shorter than 6 quad edges are measured but not followed") {
+  // A box 4 x 2 x 2 at 200 quads: H = sqrt(40 / 200) = 0.45, so the 8 creases of length 2 are
+  // shorter than 6 H = 2.7 and the 4 of length 4 are not: 4 walls (12 with the rule off).
+  igm_test::Surface s = igm_test::subdivided_cube(4);
+  PolygonSoup soup;
+  for (const Vec3d& q : s.positions) soup.positions.push_back({2 * q.x, q.y, q.z});
+  for (int f = 0; f < s.mesh.num_faces(); ++f)
+    soup.add_face({s.mesh.origin(3 * f), s.mesh.origin(3 * f + 1), s.mesh.origin(3 * f + 2)});
+  const ValidMesh mesh = validate(soup);
+  PipelineOptions o = field_options(200);
+  const PipelineResult r = compute_igm(mesh, o);
+  check_certified(r, 0);
+  CHECK(r.stats.layout == "field");
+  CHECK(r.features.stats.curves == 12);
+  CHECK(r.features.stats.short_chains == 8);
+  CHECK(r.stats.feature_walls == 4);
+  o.features.min_quad_edges = 0;
+  const PipelineResult all = compute_igm(mesh, o);
+  check_certified(all, 0);
+  CHECK(all.features.stats.short_chains == 0);
+  CHECK(all.stats.feature_walls == 12);
+}
+
 TEST_CASE("field pipeline: a sharp tip (a cone of valence 1 in the field) is split and takes the field layout") {
   const igm_test::Surface s = igm_test::pencil(12, 6, 3.5);
   PolygonSoup soup;

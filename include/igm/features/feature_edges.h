@@ -33,6 +33,15 @@ struct FeatureOptions {
   /// the coarse scan bull's (bench/README.md, "Issue 45").
   int noise_min_edges = 5;
   double noise_min_length = 0.02;
+  /// Resolution rule: with quad_size > 0 (the target quad edge length, in the positions' units:
+  /// the pipeline sets it from --quads or --edge-length; 0 with --resolution), a chain of
+  /// detected edges (as above) shorter than min_quad_edges * quad_size stays a feature (measured)
+  /// but is not followed (FeatureEdges::follow): a wall that short only bends the layout around
+  /// it (organic scans: elephant 210 curves, most of 1-3 edges). Measured over the shared meshes
+  /// at 10k quads (bench/README.md, "Issue 45: features the quads can follow"). A chain with a
+  /// user edge is always followed; 0 for either disables the rule.
+  double quad_size = 0;
+  double min_quad_edges = 6;
 };
 
 /// One feature curve: vertices[i] -> vertices[i + 1] runs along halfedges[i] (a half-edge of the
@@ -49,6 +58,7 @@ struct FeatureStats {
   int user_edges = 0;      // distinct edges given by the user
   int curves = 0, closed_curves = 0, corners = 0;
   int dropped_chains = 0, dropped_edges = 0;  // by the noise rule
+  int short_chains = 0, short_edges = 0;      // kept but not followed (the resolution rule)
   int degenerate_faces = 0;                   // zero normal (in double): their edges never sharp
   double length = 0;                          // total 3D length of the feature edges kept
 };
@@ -57,6 +67,9 @@ struct FeatureEdges {
   /// Per half-edge of the mesh: 1 if its edge is a feature edge (both half-edges of an interior
   /// edge are set), else 0.
   std::vector<std::uint8_t> halfedge;
+  /// Per half-edge: 1 on the feature edges a layout follows (all but the resolution rule's short
+  /// chains; FeatureOptions::quad_size). Empty (a hand-made FeatureEdges): all followed.
+  std::vector<std::uint8_t> follow;
   /// The feature edges by canonical half-edge: h with h < twin(h) (or twin(h) == -1), increasing.
   std::vector<int> edges;
   /// The feature edges split at the corners: a curve from a corner runs to the next corner; a
@@ -75,8 +88,8 @@ struct FeatureEdges {
 /// exactly by a power of two, mesh/scale.h) with n1.n2 <= cos(angle) |n1| |n2|, decided in
 /// double with squared forms and det_sincos (core/det_math.h): the same bits on every machine.
 /// Boundary edges are never detected (they are boundary already); an edge of a face whose normal
-/// is zero in double is never detected. Then the noise rule (FeatureOptions) is applied once to
-/// the detected chains, the user's edges added (merged with the detected ones; to use only them,
+/// is zero in double is never detected. Then the noise and resolution rules (FeatureOptions) are
+/// applied once to the detected chains, the user's edges added (merged with the detected ones; to use only them,
 /// enabled = false), the corners and curves built. user_edges are pairs of vertex ids of `mesh`,
 /// in either direction, repeats allowed; a boundary edge given by the user is a feature.
 /// Throws igm::Error(InvalidArgument) for options out of range or a pair that is not an edge of
