@@ -1,5 +1,7 @@
 // libFuzzer target over the certifier's OBJ reader and all checks (IGM and quad mode) and the
 // JSON writer: any bytes must give a report (valid/invalid/unreadable), never a crash or a hang.
+// Past a line "#features" the rest is also read as a features file (read_feature_edges) and, when
+// it parses, checked on the IGM before it (Options::feature_edges; check 6).
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -28,5 +30,20 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   open_opt.expected_boundary_loops = 1;
   open_opt.expected_components = {{0, 1}, {1, 0}};
   (void)igm::certify::to_json(igm::certify::certify_quads_text(text, open_opt));
+  // The features file after "#features": parsed alone, then checked on the IGM before it.
+  const std::size_t mark = text.find("\n#features\n");
+  const igm::certify::FeatureReadResult f =
+      igm::certify::read_feature_edges(mark == std::string::npos ? text : text.substr(mark + 11));
+  if (f.ok != f.error.empty()) __builtin_trap();
+  if (f.ok && mark != std::string::npos) {
+    const std::string igm_text = text.substr(0, mark + 1);
+    igm::certify::Options fo = opt;
+    fo.feature_edges = f.edges;
+    const igm::certify::Report r6 = igm::certify::certify_igm_text(igm_text, fo);
+    if (r6.verdict != igm::certify::Verdict::Unreadable && !r6.features) __builtin_trap();
+    // The features check only adds a condition: valid with it implies valid without it.
+    if (r6.valid() && !igm::certify::certify_igm_text(igm_text, opt).valid()) __builtin_trap();
+    (void)igm::certify::to_json(r6);
+  }
   return 0;
 }
