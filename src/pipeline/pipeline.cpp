@@ -498,16 +498,18 @@ FeatureEdges surface_features(const TriMesh& mesh, const std::vector<Vec3d>& pos
 FeatureQuality feature_quality(const std::vector<const FeatureEdges*>& features, const std::vector<int>& base,
                                const std::vector<Vec3d>& input_positions, const QuadMesh& quads) {
   std::vector<std::array<int, 2>> edges;
-  int curves = 0, corners = 0;
+  int curves = 0, corners = 0, short_edges = 0;
   for (std::size_t i = 0; i < features.size(); ++i) {
     for (const FeatureCurve& c : features[i]->curves)
       for (std::size_t k = 0; k + 1 < c.vertices.size(); ++k) edges.push_back({c.vertices[k] + base[i], c.vertices[k + 1] + base[i]});
     curves += features[i]->stats.curves;
     corners += features[i]->stats.corners;
+    short_edges += features[i]->stats.short_edges;
   }
   FeatureQuality q = measure_features(input_positions, edges, quads.positions, quads.quads);
   q.curves = curves;
   q.corners = corners;
+  q.short_edges = short_edges;
   return q;
 }
 

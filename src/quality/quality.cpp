@@ -630,6 +630,7 @@ std::string to_json(const FeatureQuality& q) {
   put_count(o, "edges", q.edges);
   put_count(o, "curves", q.curves);
   put_count(o, "corners", q.corners);
+  put_count(o, "short_edges", q.short_edges);
   put_field(o, "length", q.length);
   put_field(o, "covered_fraction", q.covered_fraction);
   put_field(o, "distance_max", q.distance_max);
@@ -643,7 +644,9 @@ std::string summary_line(const FeatureQuality& q) {
   char line[256];
   std::snprintf(line, sizeof line, "features %d curves, %d edges: %.1f %% covered, distance max %.3g %% p99 %.3g %%",
                 q.curves, q.edges, 100 * q.covered_fraction, 100 * q.distance_max, 100 * q.distance_p99);
-  return line;
+  std::string out = line;
+  if (q.short_edges > 0) out += " (" + std::to_string(q.short_edges) + " edges in chains too short to follow)";
+  return out;
 }
 
 std::string to_json(const IgmQuality& q) {

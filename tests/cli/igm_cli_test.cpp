@@ -477,7 +477,7 @@ TEST_CASE("igm run: features in cert.json and the quality line, --features FILE,
   CHECK(ok.code == 0);
   CHECK(has(ok.out, "[features] features 12 curves, 12 edges: "));
   const std::string cert = slurp(cwd / "res/cube.cert.json");
-  CHECK(has(cert, "\"features\": {\"edges\": 12, \"curves\": 12, \"corners\": 8, \"length\": 24, \"covered_fraction\": "));
+  CHECK(has(cert, "\"features\": {\"edges\": 12, \"curves\": 12, \"corners\": 8, \"short_edges\": 0, \"length\": 24, \"covered_fraction\": "));
   CHECK(in_folder(cwd, quote(IGM_CERTIFY_CLI_PATH) + " --quad --genus 0 res/cube.quad.obj").code == 0);
   const Run info = in_folder(cwd, quote(IGM_CLI_PATH) + " info " + quote((data / "meshes/clean/cube.off").string()));
   CHECK(info.code == 0);

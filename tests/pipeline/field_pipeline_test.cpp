@@ -224,11 +224,17 @@ TEST_CASE("field pipeline: creases shorter than 6 quad edges are measured but no
   CHECK(r.features.stats.curves == 12);
   CHECK(r.features.stats.short_chains == 8);
   CHECK(r.stats.feature_walls == 4);
+  // Every crease measured, the short ones said so (cert.json quality.features.short_edges).
+  CHECK(r.feature_quality.edges == 12 * 4);
+  CHECK(r.feature_quality.short_edges == 8 * 4);
+  CHECK(to_json(r.feature_quality).find("\"short_edges\": 32") != std::string::npos);
   o.features.min_quad_edges = 0;
   const PipelineResult all = compute_igm(mesh, o);
   check_certified(all, 0);
   CHECK(all.features.stats.short_chains == 0);
   CHECK(all.stats.feature_walls == 12);
+  CHECK(all.feature_quality.short_edges == 0);
+  CHECK(all.feature_quality.covered_fraction == 1.0);
 }
 
 TEST_CASE("field pipeline: a sharp tip (a cone of valence 1 in the field) is split and takes the field layout") {

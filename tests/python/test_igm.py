@@ -280,6 +280,11 @@ def test_features_are_measured_and_bad_feature_options_raise():
     f = r["quality"]["features"]
     assert f["edges"] == 12 and f["curves"] == 12 and f["corners"] == 8 and f["length"] == 12
     assert 0 <= f["covered_fraction"] <= 1
+    # At 200 quads on a unit cube (quad edge about 0.17) every crease (length 1) is shorter than
+    # 6 quad edges: measured, but a layout would not follow them; feature_min_quads=0 follows all.
+    assert f["short_edges"] == 12
+    z = igm.compute(V, F, quads=200, feature_min_quads=0)
+    assert z["certified"] and z["quality"]["features"]["short_edges"] == 0
     n = igm.compute(V, F, quads=200, no_features=True)
     assert n["certified"] and n["quality"]["features"]["edges"] == 0
     # One user edge (a face diagonal of the triangulation) with detection off.

@@ -108,6 +108,9 @@ struct FeatureQualityOptions {
 struct FeatureQuality {
   int edges = 0;              // feature edges measured
   int curves = 0, corners = 0;  // as detected (filled by the caller: the pipeline copies them)
+  /// Of the edges, those in chains too short for the quads to follow (FeatureStats::short_edges,
+  /// the resolution rule: measured here, not followed by the field layout; filled by the caller).
+  int short_edges = 0;
   double length = 0;          // their total 3D length, in the input's units
   /// Fraction of the feature length within tolerance x diagonal of a quad edge; null (nan) with
   /// no feature length, 0 with no quads.
