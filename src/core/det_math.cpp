@@ -110,4 +110,56 @@ double det_hypot(double x, double y) {
   return m * std::sqrt(1 + r * r);
 }
 
+namespace {
+
+// ln 2 = kLn2Hi + kLn2Lo (fdlibm's split: kLn2Hi has 21 trailing zero bits, so k * kLn2Hi is exact
+// for |k| < 2^21).
+constexpr double kLn2Hi = 0x1.62e42fee00000p-1, kLn2Lo = 0x1.a39ef35793c76p-33;
+// Each the double nearest to 1 / i! (exp) and to 1 / (2i + 1) (atanh).
+constexpr double kExpC[17] = {0x1.0000000000000p+0,  0x1.0000000000000p+0,  0x1.0000000000000p-1,
+                              0x1.5555555555555p-3,  0x1.5555555555555p-5,  0x1.1111111111111p-7,
+                              0x1.6c16c16c16c17p-10, 0x1.a01a01a01a01ap-13, 0x1.a01a01a01a01ap-16,
+                              0x1.71de3a556c734p-19, 0x1.27e4fb7789f5cp-22, 0x1.ae64567f544e4p-26,
+                              0x1.1eed8eff8d898p-29, 0x1.6124613a86d09p-33, 0x1.93974a8c07c9dp-37,
+                              0x1.ae7f3e733b81fp-41, 0x1.ae7f3e733b81fp-45};
+constexpr double kAtanhC[12] = {0x1.0000000000000p+0, 0x1.5555555555555p-2, 0x1.999999999999ap-3,
+                                0x1.2492492492492p-3, 0x1.c71c71c71c71cp-4, 0x1.745d1745d1746p-4,
+                                0x1.3b13b13b13b14p-4, 0x1.1111111111111p-4, 0x1.e1e1e1e1e1e1ep-5,
+                                0x1.af286bca1af28p-5, 0x1.8618618618618p-5, 0x1.642c8590b2164p-5};
+
+}  // namespace
+
+double det_exp(double x) {
+  if (std::isnan(x)) return x;
+  if (x > 709.8) return std::numeric_limits<double>::infinity();
+  if (x < -745.2) return 0.0;
+  const double k = std::nearbyint(x / (kLn2Hi + kLn2Lo));  // |k| <= 1076
+  const double r = (x - k * kLn2Hi) - k * kLn2Lo;           // |r| <= ln 2 / 2 (a little more)
+  double p = 0;
+  for (int i = 16; i >= 0; --i) p = kExpC[i] + r * p;  // sum r^i / i!, i <= 16
+  // 2^k p in two exact scalings (p in [0.7, 1.5]: one ldexp could overflow or lose bits early).
+  const int ki = static_cast<int>(k);
+  return std::ldexp(std::ldexp(p, ki / 2), ki - ki / 2);
+}
+
+double det_log(double x) {
+  if (std::isnan(x) || x < 0) return std::numeric_limits<double>::quiet_NaN();
+  if (x == 0) return -std::numeric_limits<double>::infinity();
+  if (std::isinf(x)) return x;
+  int e = 0;
+  double m = std::frexp(x, &e);  // x = m 2^e, m in [1/2, 1): exact
+  if (m < 0x1.6a09e667f3bcdp-1) {  // below sqrt(1/2): m in [sqrt(1/2), sqrt(2))
+    m *= 2;
+    --e;
+  }
+  // log m = log(1 + f) = 2 atanh(s) = 2 s + s R, s = f / (2 + f), |s| <= 0.1716, R = 2 sum_i
+  // s^2i / (2i + 1) (i = 1..11), written as f - (f^2/2 - s (f^2/2 + R)) with f = m - 1 exact
+  // (fdlibm's form: the rounding errors stay in the small correction).
+  const double f = m - 1, s = f / (2 + f), z = s * s, hfsq = 0.5 * f * f;
+  double q = 0;
+  for (int i = 11; i >= 1; --i) q = kAtanhC[i] + z * q;
+  const double R = 2 * z * q;
+  return e * kLn2Hi - ((hfsq - (s * (hfsq + R) + e * kLn2Lo)) - f);
+}
+
 }  // namespace igm

@@ -6,12 +6,14 @@
 #include <cstdlib>
 #include <map>
 #include <string>
+#include <type_traits>
 
 #include <CbcModel.hpp>
 #include <CbcSolver.hpp>
 #include <CoinPackedMatrix.hpp>
 #include <OsiClpSolverInterface.hpp>
 
+#include "igm/core/det_math.h"
 #include "igm/core/error.h"
 #include "igm/mesh/scale.h"
 
@@ -295,10 +297,12 @@ Quantization quantize_layout(const SurfaceLayout& L, const QuantizeOptions& o) {
     }
     return s;
   };
-  auto total = [&](const std::vector<int>& x) {
-    std::int64_t q = 0;
+  // sum over patches of a b: in int64 for integer lengths, in double for the relaxation's.
+  auto total = [&]<class T>(const std::vector<T>& x) {
+    using Sum = std::conditional_t<std::is_integral_v<T>, std::int64_t, double>;
+    Sum q = 0;
     for (const LayoutPatch& P : L.patches) {
-      std::int64_t a = 0, b = 0;
+      Sum a = 0, b = 0;
       for (const ArcUse& u : P.sides[0]) a += x[u.arc];
       for (const ArcUse& u : P.sides[1]) b += x[u.arc];
       q += a * b;
@@ -328,36 +332,30 @@ Quantization quantize_layout(const SurfaceLayout& L, const QuantizeOptions& o) {
     // kept; then one integer solve at that H.
     const double Q = static_cast<double>(o.quads);
     double best_H = H, best_gap = -1, prev_H = 0, prev_q = 0, integral_H = 0, integral_best = 0;
-    Solve integral;
+    Solve integral;  // the best integral relaxation (empty x: none)
     for (int round = 0; round <= o.quad_corrections; ++round) {
       set_targets(H, 0);
       ++st.relaxations;
       Solve r = solve(prog, target, weight, o.max_nodes, true);
       if (r.relaxed.empty()) break;  // infeasible (or unbounded): the integer solve says why
-      double q = 0;
-      for (const LayoutPatch& P : L.patches) {
-        double a = 0, b = 0;
-        for (const ArcUse& u : P.sides[0]) a += r.relaxed[u.arc];
-        for (const ArcUse& u : P.sides[1]) b += r.relaxed[u.arc];
-        q += a * b;
-      }
+      const double q = total(r.relaxed);
       const double gap = std::abs(q - Q);
       if (best_gap < 0 || gap < best_gap) best_gap = gap, best_H = H;
       // An integral relaxation is the integer optimum at its H (solve): kept if its total is
       // within 1 % of Q more than the best seen, so that no integer program is needed.
       if (!r.x.empty() && violation(L, r.x, prog.minimum).empty()) {
         const double integral_gap = std::abs(static_cast<double>(total(r.x)) - Q);
-        if (integral_H == 0 || integral_gap < integral_best) integral_best = integral_gap, integral_H = H, integral = std::move(r);
+        if (integral.x.empty() || integral_gap < integral_best) integral_best = integral_gap, integral_H = H, integral = std::move(r);
       }
       if (!(q > 0) || gap <= 0.002 * Q) break;
       double alpha = 2;
       if (prev_H > 0 && prev_H != H && prev_q > 0 && prev_q != q)
-        alpha = std::clamp(std::log(prev_q / q) / std::log(H / prev_H), 0.25, 4.0);
+        alpha = std::clamp(det_log(prev_q / q) / det_log(H / prev_H), 0.25, 4.0);
       prev_H = H;
       prev_q = q;
-      H *= std::pow(q / Q, 1 / alpha);
+      H *= det_exp(det_log(q / Q) / alpha);  // libm's log / pow differ by machine (core/det_math.h)
     }
-    if (integral_H > 0 && integral_best <= best_gap + 0.01 * Q) {
+    if (!integral.x.empty() && integral_best <= best_gap + 0.01 * Q) {
       kept = std::move(integral);
       kept_H = integral_H;
       ++st.solves;

@@ -5,6 +5,7 @@
 #include <map>
 #include <string>
 
+#include "igm/core/det_math.h"
 #include "igm/core/error.h"
 
 namespace igm {
@@ -37,15 +38,17 @@ double edge_length_for_quads(const std::function<std::int64_t(double)>& count, d
                              std::int64_t target) {
   if (!(lo > 0) || !(hi > lo) || !std::isfinite(hi))
     throw Error(ErrorKind::InvalidArgument, "edge_length_for_quads: needs 0 < lo < hi, finite");
-  double a = std::log(lo), b = std::log(hi);
+  // det_log / det_exp: libm's differ in the last bit between machines (core/det_math.h), and
+  // the edge length decides the quad counts.
+  double a = det_log(lo), b = det_log(hi);
   for (int step = 0; step < 200 && b - a > 1e-12; ++step) {
     const double mid = 0.5 * (a + b);
-    if (count(std::exp(mid)) > target) a = mid;
+    if (count(det_exp(mid)) > target) a = mid;
     else b = mid;
   }
   // count(exp(a)) > target >= count(exp(b)), or an end of [lo, hi]: keep the nearer.
-  const std::int64_t na = count(std::exp(a)), nb = count(std::exp(b));
-  return std::llabs(na - target) < std::llabs(nb - target) ? std::exp(a) : std::exp(b);
+  const std::int64_t na = count(det_exp(a)), nb = count(det_exp(b));
+  return std::llabs(na - target) < std::llabs(nb - target) ? det_exp(a) : det_exp(b);
 }
 
 std::vector<int> minimum_chord_counts(const QuadLayout& L) {

@@ -146,3 +146,28 @@ TEST_CASE("det_hypot is within 2 ulp of hypot, without overflow or underflow") {
   CHECK(igm::det_hypot(INFINITY, NAN) == INFINITY);
   CHECK(std::isnan(igm::det_hypot(NAN, 1.0)));
 }
+
+TEST_CASE("det_exp and det_log are within 2 ulp of expl and logl, with libm's special values") {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> ux(-700, 700), um(0.5, 1);
+  std::uniform_int_distribution<int> e(-1000, 1000);
+  double worst_exp = 0, worst_log = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const double x = i % 2 == 0 ? ux(rng) : ux(rng) * 1e-3;  // and near 0, where r is small
+    worst_exp = std::max(worst_exp, ulps(igm::det_exp(x), expl(static_cast<long double>(x))));
+    const double y = i % 2 == 0 ? std::ldexp(um(rng), e(rng)) : 1 + ux(rng) * 1e-6;  // and near 1
+    worst_log = std::max(worst_log, ulps(igm::det_log(y), logl(static_cast<long double>(y))));
+  }
+  MESSAGE("det_exp: largest error " << worst_exp << " ulp; det_log: " << worst_log << " ulp");
+  CHECK(worst_exp <= 2.0);
+  CHECK(worst_log <= 2.0);
+  CHECK(igm::det_exp(0) == 1);
+  CHECK(igm::det_log(1) == 0);
+  CHECK(igm::det_exp(1000) == INFINITY);
+  CHECK(igm::det_exp(-1000) == 0);
+  CHECK(std::isnan(igm::det_exp(NAN)));
+  CHECK(igm::det_log(0) == -INFINITY);
+  CHECK(igm::det_log(INFINITY) == INFINITY);
+  CHECK(std::isnan(igm::det_log(-1)));
+  CHECK(std::isnan(igm::det_log(NAN)));
+}

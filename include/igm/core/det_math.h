@@ -1,5 +1,6 @@
 #pragma once
-// Deterministic elementary functions: atan2, sin and cos computed with +, -, *, / and sqrt only.
+// Deterministic elementary functions: atan2, sin, cos, exp and log computed with +, -, *, / and
+// sqrt only (and exact scalings by powers of two).
 //
 // Why. libm's transcendental functions are not required to be correctly rounded, and x86-64
 // glibc picks their kernels at load time by CPU features (FMA, AVX2): the same binary gives
@@ -36,5 +37,15 @@ SinCos det_sincos(double x);
 /// within 2 ulp of std::hypot (whose glibc kernel is CPU-dependent too); +inf if either argument
 /// is infinite, else NaN if either is NaN.
 double det_hypot(double x, double y);
+
+/// exp(x): x = k ln 2 + r (two-part ln 2), the Taylor series of exp(r) to r^16, times 2^k
+/// exactly; +inf above 709.8, 0 below -745.2, NaN for NaN. Within 2 ulp of libm where the result
+/// is normal (tests/core/det_math_test.cpp).
+double det_exp(double x);
+
+/// log(x): x = m 2^e with m in [sqrt(1/2), sqrt(2)), log m = 2 atanh((m - 1) / (m + 1)) by its
+/// series to the 23rd power (fdlibm's arrangement), plus e ln 2 (two-part); -inf at 0, NaN below 0 or for NaN, +inf at
+/// +inf. Within 2 ulp of libm (tests/core/det_math_test.cpp).
+double det_log(double x);
 
 }  // namespace igm
