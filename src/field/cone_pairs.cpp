@@ -227,33 +227,32 @@ void clean_cones(const TriMesh& mesh, const std::vector<Vec3d>& p, const System&
       const bool split6 = options.split_valence6 && val == 6 && !field.on_boundary[v];
       if (!raise && !split2 && !split6) continue;
       // Candidates within 8 mean edges; ties by vertex id (sorted by (distance, id)). Paths avoid
-      // the other singular vertices; a cone walled in by them (a spike of three tiny faces whose
-      // neighbours are all cones) is given paths through them (a vertex inside a path keeps its
-      // valence).
-      int partner = -1;
-      for (int pass = 0; pass < 2 && partner < 0; ++pass) {
-      dijkstra(mesh, p, {v}, 8 * mean, true, -1, pass == 0 ? &singular : nullptr, dist, via, touched);
-      std::vector<int> near(touched);
-      std::sort(near.begin(), near.end(), [&](int a, int b) { return dist[a] != dist[b] ? dist[a] < dist[b] : a < b; });
-      if (raise)  // the nearest interior cone of valence >= 5, else the nearest regular vertex
-        for (int pass = 0; pass < 2 && partner < 0; ++pass)
+      // the other singular vertices (`blocked`); a cone walled in by them (a spike of three tiny
+      // faces whose neighbours are all cones) is given paths through them (a vertex inside a path
+      // keeps its valence). Returns the partner (-1: none) with dist set for it.
+      auto find_partner = [&](const std::vector<char>* blocked) {
+        dijkstra(mesh, p, {v}, 8 * mean, true, -1, blocked, dist, via, touched);
+        std::vector<int> near(touched);
+        std::sort(near.begin(), near.end(), [&](int a, int b) { return dist[a] != dist[b] ? dist[a] < dist[b] : a < b; });
+        if (raise)  // the nearest interior cone of valence >= 5, else the nearest regular vertex
+          for (int kind = 0; kind < 2; ++kind)
+            for (int w : near)
+              if (w != v && !field.on_boundary[w] && (kind == 0 ? field.valence[w] >= 5 : regular(w))) return w;
+        if (split2 || split6)  // the nearest regular interior vertex at least split_distance away
           for (int w : near)
-            if (w != v && !field.on_boundary[w] && (pass == 0 ? field.valence[w] >= 5 : regular(w))) {
-              partner = w;
-              break;
-            }
-      if (split2 || split6)  // the nearest regular interior vertex at least split_distance away
-        for (int w : near)
-          if (w != v && !field.on_boundary[w] && regular(w) && dist[w] >= options.split_distance * mean) {
-            partner = w;
-            break;
-          }
+            if (w != v && !field.on_boundary[w] && regular(w) && dist[w] >= options.split_distance * mean) return w;
+        return -1;
+      };
+      int partner = find_partner(&singular);
+      if (partner < 0) {
+        reset(dist, via, touched);
+        partner = find_partner(nullptr);
+      }
       if (partner >= 0) {
         const double d = dist[partner] / mean;
         moves.push_back(split6 ? Move{partner, v, d} : Move{v, partner, d});
       }
       reset(dist, via, touched);
-      }
     }
     std::vector<PairPlan> plans;
     std::vector<int> stamp(nf, -1);

@@ -112,23 +112,9 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
   const std::vector<Vec3d>& positions = *input.positions;
   FieldFeatures features = field_features(*input.mesh, input.features);
 
-  // The quad size the sizing aims at (for the tracing's snapping): from the area and the quad
-  // count, or the edge length; 0 with a resolution (then the tracing's own default).
-  double quad_size = 0;
-  {
-    double area = 0;
-    for (const auto& t : *input.triangles) {
-      const Vec3d &p0 = positions[t[0]], &p1 = positions[t[1]], &p2 = positions[t[2]];
-      const Vec3d u{p1.x - p0.x, p1.y - p0.y, p1.z - p0.z}, v{p2.x - p0.x, p2.y - p0.y, p2.z - p0.z};
-      const Vec3d n{u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x};
-      area += 0.5 * std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
-    }
-    if (options.resolution <= 0) {
-      if (options.edge_length > 0) quad_size = options.edge_length;
-      else quad_size = std::sqrt(area / static_cast<double>(options.quads > 0 ? options.quads : kDefaultQuads));
-    }
-    if (!std::isfinite(quad_size)) quad_size = 0;
-  }
+  // The quad size the sizing aims at (for the tracing's snapping); 0 with a resolution (then the
+  // tracing's own default).
+  const double quad_size = target_quad_size(options, surface_area(*input.mesh, positions));
 
   // --- field and trace, for each attempt's curvature alignment until a layout is built ---
   // The attempts: the options' own, then field_attempts (the same field computed once).

@@ -479,11 +479,23 @@ void map_disk(PipelineResult& result, CutDisk& cut, const PipelineOptions& optio
   smooth_extract_certify(result, options, stage, surface.input_positions, rectangles);
 }
 
-double feature_quad_size(const PipelineOptions& options, double area) {
-  if (options.features.quad_size > 0) return options.features.quad_size;
+double surface_area(const TriMesh& mesh, const std::vector<Vec3d>& positions) {
+  double area = 0;
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const auto fv = mesh.face_vertices(f);
+    const Vec3d &p0 = positions[fv[0]], &p1 = positions[fv[1]], &p2 = positions[fv[2]];
+    const Vec3d u{p1.x - p0.x, p1.y - p0.y, p1.z - p0.z}, v{p2.x - p0.x, p2.y - p0.y, p2.z - p0.z};
+    const Vec3d n{u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x};
+    area += 0.5 * std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+  }
+  return area;
+}
+
+double target_quad_size(const PipelineOptions& options, double area) {
   if (options.resolution > 0) return 0;
-  if (options.edge_length > 0) return options.edge_length;
-  const double h = std::sqrt(area / static_cast<double>(options.quads > 0 ? options.quads : kDefaultQuads));
+  const double h = options.edge_length > 0
+                       ? options.edge_length
+                       : std::sqrt(area / static_cast<double>(options.quads > 0 ? options.quads : kDefaultQuads));
   return std::isfinite(h) ? h : 0;
 }
 
@@ -491,7 +503,7 @@ FeatureEdges surface_features(const TriMesh& mesh, const std::vector<Vec3d>& pos
                               const std::vector<std::int64_t>& input_vertex, const PipelineOptions& options,
                               double quad_size, std::vector<std::uint8_t>& found) {
   FeatureOptions fo = options.features;
-  fo.quad_size = quad_size;
+  if (!(fo.quad_size > 0)) fo.quad_size = quad_size;
   return detect_features(mesh, positions, input_feature_edges(mesh, input_vertex, options.feature_edges, found), fo);
 }
 
@@ -516,16 +528,8 @@ FeatureQuality feature_quality(const std::vector<const FeatureEdges*>& features,
 PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& options) {
   PipelineResult result;
   std::vector<std::uint8_t> found;
-  double area = 0;
-  for (int f = 0; f < input.mesh.num_faces(); ++f) {
-    const auto fv = input.mesh.face_vertices(f);
-    const Vec3d &p0 = input.positions[fv[0]], &p1 = input.positions[fv[1]], &p2 = input.positions[fv[2]];
-    const Vec3d u{p1.x - p0.x, p1.y - p0.y, p1.z - p0.z}, v{p2.x - p0.x, p2.y - p0.y, p2.z - p0.z};
-    const Vec3d n{u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x};
-    area += 0.5 * std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
-  }
   FeatureEdges features = surface_features(input.mesh, input.positions, input.input_vertex, options,
-                                           feature_quad_size(options, area), found);
+                                           target_quad_size(options, surface_area(input.mesh, input.positions)), found);
   check_feature_edges_found(options.feature_edges, found);
   with_threads(options.threads, [&] {
     result = compute_igm_closed(input, options, &features);

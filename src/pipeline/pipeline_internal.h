@@ -30,14 +30,17 @@ struct StageReporter {
   void done(const char* name, Clock::time_point t0, std::string detail);
 };
 
-/// The target quad edge length for the features' resolution rule (FeatureOptions::quad_size):
-/// options.features.quad_size if set; else 0 with a resolution; the edge length if given; else
-/// sqrt(area / Q), Q = options.quads or kDefaultQuads, `area` the 3D area the quads cover (all
-/// surfaces: a shared quad count gives each surface the same H).
-double feature_quad_size(const PipelineOptions& options, double area);
+/// The sum of the faces' 3D areas (doubles, faces in order). O(F).
+double surface_area(const TriMesh& mesh, const std::vector<Vec3d>& positions);
 
-/// The features of one input surface (PipelineOptions::features with quad_size, and the user's
-/// pairs that are edges of this surface, marked in `found`).
+/// The quad edge length the sizing aims at (the field layout's snapping, the features' resolution
+/// rule): 0 with a resolution; the edge length if given; else sqrt(area / Q), Q = options.quads
+/// or kDefaultQuads, `area` the 3D area the quads cover (all surfaces: a shared quad count gives
+/// each surface the same H); 0 if that is not finite.
+double target_quad_size(const PipelineOptions& options, double area);
+
+/// The features of one input surface (PipelineOptions::features, its quad_size if set or else
+/// `quad_size`, and the user's pairs that are edges of this surface, marked in `found`).
 FeatureEdges surface_features(const TriMesh& mesh, const std::vector<Vec3d>& positions,
                               const std::vector<std::int64_t>& input_vertex, const PipelineOptions& options,
                               double quad_size, std::vector<std::uint8_t>& found);

@@ -62,7 +62,7 @@ SurfacesResult compute_igms_here(const SurfaceSet& set, const PipelineOptions& o
     for (const SurfaceComponent& comp : set.components) {
       const TriMesh mesh = TriMesh::from_triangles(static_cast<int>(comp.positions.size()), comp.triangles, true);
       features.push_back(
-          surface_features(mesh, comp.positions, comp.input_vertex, options, feature_quad_size(options, total_area), found));
+          surface_features(mesh, comp.positions, comp.input_vertex, options, target_quad_size(options, total_area), found));
     }
     check_feature_edges_found(options.feature_edges, found);
   }

@@ -120,8 +120,6 @@ GridMotion edge_transition(const TriMesh& m, const std::vector<std::array<Point2
           {std::min(u, w), std::max(u, w)});
 }
 
-// The integer isoline of boundary half-edge h (u or v constant and integer along it, in its
-// face's chart), or throws naming the edge's vertices.
 // The integer isoline through both ends of half-edge h, whose UVs in face(h)'s chart are a and b:
 // the same integer u (axis 0) or else the same integer v (axis 1); nothing if neither.
 std::optional<BoundaryIsoline> isoline_through(int h, const Point2q& a, const Point2q& b) {
@@ -130,6 +128,8 @@ std::optional<BoundaryIsoline> isoline_through(int h, const Point2q& a, const Po
   return std::nullopt;
 }
 
+// The integer isoline of boundary half-edge h (u or v constant and integer along it, in its
+// face's chart), or throws naming the edge's vertices.
 BoundaryIsoline boundary_isoline(const TriMesh& m, const std::vector<std::array<Point2q, 3>>& uv,
                                  int h) {
   if (auto e = isoline_through(h, uv[h / 3][h % 3], uv[h / 3][TriMesh::next(h) % 3])) return std::move(*e);
