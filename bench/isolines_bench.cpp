@@ -52,6 +52,7 @@ int main(int argc, char** argv) {
     g.faces = faces;
     const igm::ValidMesh mesh = igm::validate(igm::generate_closed_mesh(g));
     igm::PipelineOptions po;
+    po.layout = igm::LayoutKind::Spread;  // the topological pipeline (the field layout is the default)
     po.resolution = 3;
     auto t0 = Clock::now();
     const igm::PipelineResult r = igm::compute_igm(mesh, po);

@@ -46,23 +46,28 @@ std::vector<Config> configs(std::int64_t quads) {
     o.quads = quads;
     c.push_back({igm::to_string(kind), o});
   }
-  // Ablations of the default (spread): one choice changed each (docs/layouts.md).
-  igm::PipelineOptions o;
+  // Ablations of the spread layout (the topological default): one choice changed each (docs/layouts.md).
+  const auto spread = [] {
+    igm::PipelineOptions s;
+    s.layout = igm::LayoutKind::Spread;
+    return s;
+  };
+  igm::PipelineOptions o = spread();
   o.quads = quads;
   o.smooth = false;
   c.push_back({"s-nosm", o});  // the layout's map as it is, unsmoothed
-  o = igm::PipelineOptions{};
+  o = spread();
   o.quads = quads;
   o.disk_weights = igm::WeightKind::Uniform;
   o.disk_arc_length = false;
   c.push_back({"s-udisk", o});  // the disk's map with uniform weights and uniformly spaced sides
-  o = igm::PipelineOptions{};
+  o = spread();
   o.quads = quads;
   o.patch_weights = igm::WeightKind::Cotan;
   c.push_back({"s-cotan", o});
   o.patch_weights = igm::WeightKind::Uniform;
   c.push_back({"s-unif", o});
-  o = igm::PipelineOptions{};
+  o = spread();
   o.quads = quads;
   o.patch_map = igm::PatchMapKind::Affine;
   c.push_back({"s-affine", o});
@@ -70,7 +75,7 @@ std::vector<Config> configs(std::int64_t quads) {
   // s-dX stops after an iteration that lowers the energy by less than X of it, s-it100 runs the
   // 100 iterations (the stall rule and convergence stop all of them too).
   for (const char* x : {"1e-2", "3e-3", "1e-3", "3e-4", "1e-4"}) {
-    o = igm::PipelineOptions{};
+    o = spread();
     o.quads = quads;
     o.smooth_min_decrease = std::atof(x);
     c.push_back({std::string("s-d") + x, o});

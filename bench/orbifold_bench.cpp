@@ -64,6 +64,7 @@ void run(const std::string& name, const igm::ValidMesh& mesh, int forced) {
     if (forced <= 0) break;
   }
   igm::PipelineOptions o;
+  o.layout = igm::LayoutKind::Spread;  // the topological pipeline (the field layout is the default)
   o.resolution = 4;
   t0 = Clock::now();
   const igm::PipelineResult p = igm::compute_igm(mesh, o);

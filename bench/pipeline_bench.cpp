@@ -26,6 +26,7 @@ bool g_normal_form = false;
 
 void run(const std::string& name, const igm::ValidMesh& mesh) {
   igm::PipelineOptions o;
+  o.layout = igm::LayoutKind::Spread;  // the topological pipeline (the field layout is the default)
   o.resolution = 4;
   o.normal_form = g_normal_form;
   const igm::PipelineResult r = igm::compute_igm(mesh, o);

@@ -60,6 +60,7 @@ igm::PipelineResult load_igm(const std::string& path) {
 void run(const std::string& name, const igm::ValidMesh* mesh, const std::string& igm_path = "") {
   auto t0 = Clock::now();
   igm::PipelineOptions po;
+  po.layout = igm::LayoutKind::Spread;  // the topological pipeline (the field layout is the default)
   po.smooth = false;  // the layout's map, smoothed below
   po.threads = g_threads;
   igm::PipelineResult r;

@@ -4,7 +4,9 @@
 // 208, else open: genus 0..5 with 1..8 boundary loops; 4..2000 target faces (open: at least what
 // the generator needs for the holes), seed,
 // jitter, up to 15 edge and 15 face splits, a hostile geometry, permuted order), a root, a
-// resolution 3..5, the normal form on or off (flag bit 0x40), then up to 64 coordinate perturbations (collapse a vertex onto another, put it
+// resolution 3..5, the normal form on or off (flag bit 0x40), the field layout instead of the
+// topological one (flag bit 0x10: the default layout, falling back to the topological one; its
+// quad count is the quantization's, so only the certificates, genus and loops are checked), then up to 64 coordinate perturbations (collapse a vertex onto another, put it
 // on the segment of two others, scale it by 1e300 / 1e-300, send it to +-1e308, zero it). The
 // combinatorics stay those of a closed genus-g surface (or of genus g with b loops), so:
 //   validate() must accept it with genus g, and compute_igm must return an output that BOTH
@@ -76,6 +78,7 @@ int run_open(const igm::PolygonSoup& soup, const igm_test::RandomMeshSpec& s, st
   for (const auto& loop : c.boundary_loops)
     for (int v : loop) on_boundary[v] = 1;
   igm::PipelineOptions o;
+  o.layout = (flags & 0x10) != 0 ? igm::LayoutKind::Field : igm::LayoutKind::Spread;
   o.resolution = 0;
   o.quads = 200 + static_cast<std::int64_t>(flags % 3) * 300;
   o.root = -1;
@@ -120,6 +123,7 @@ int run_surfaces(const igm::PolygonSoup& soup, const igm_test::RandomSurfaces& m
   std::sort(found.begin(), found.end());
   if (found != expected) finding("wrong surfaces, genus or loops from validate_surfaces", none, m.description.c_str());
   igm::PipelineOptions o;
+  o.layout = (flags & 0x10) != 0 ? igm::LayoutKind::Field : igm::LayoutKind::Spread;
   o.quads = 200 + static_cast<std::int64_t>(flags % 3) * 400;
   o.max_witnesses = 3;
   o.quality = false;
@@ -208,15 +212,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   o.quality = false;
   o.smooth_iterations = 3;
   o.normal_form = (flags & 0x40) != 0;
+  const bool field = (flags & 0x10) != 0 && !o.normal_form;
+  o.layout = field ? igm::LayoutKind::Field : igm::LayoutKind::Spread;
   try {
     const igm::PipelineResult r = igm::compute_igm(mesh, o);
     if (s.genus == 0 && !kGenus0Certifies) finding("genus 0 accepted: set kGenus0Certifies = true", s, "");
     if (!r.igm_report.valid()) finding("IGM rejected by the certifier", s, igm::certify::summary(r.igm_report).c_str());
     if (!r.quad_report.valid()) finding("quads rejected by the certifier", s, igm::certify::summary(r.quad_report).c_str());
     // Layout quads: 2 for a sphere ([0,2] x [0,1]), else the default layout's.
-    const int layout = s.genus == 0 ? 2 : igm::layout_quad_count(o.layout, 4 * s.genus);
+    const int layout = s.genus == 0 ? 2 : igm::layout_quad_count(igm::LayoutKind::Spread, 4 * s.genus);
     if (r.igm_report.genus != s.genus || r.quad_report.genus != s.genus ||
-        static_cast<int>(r.quads.quads.size()) != layout * resolution * resolution)
+        (!field && static_cast<int>(r.quads.quads.size()) != layout * resolution * resolution))
       finding("wrong genus or quad count", s, "");
   } catch (const igm::Error& e) {
     if (s.genus == 0 && !kGenus0Certifies && e.kind() == igm::ErrorKind::Unsupported) return 0;

@@ -50,12 +50,14 @@ int cmd_extract(const Args& args) { return igm_cli::extract_command(args); }
 int cmd_batch(const Args& args) { return igm_cli::batch_command(args); }
 
 const Command kCommands[] = {
-    {"run", "igm run MESH [-o DIR] [--quads Q | --edge-length H | --resolution N] [--layout spread|kite|paper]\n"
+    {"run", "igm run MESH [-o DIR] [--quads Q | --edge-length H | --resolution N] [--layout field|spread|kite|paper]\n"
             "        [--map tutte|affine] [--no-smooth] [--smooth-iterations N] [--smooth-seconds S]\n"
             "        [--split-nonmanifold] [--root V] [--normal-form [--restarts K|auto]] [--cones A,B,C,D]\n"
             "        [--memory-limit-mb M]\n"
             "                                the whole pipeline: certified IGM, quad mesh, certificate, schema picture\n"
-            "                                (genus 0: four pi-cones, --cones picks them as 0-based vertex ids; open\n"
+            "                                (the field layout: cones from a cross field, the topological one where it\n"
+            "                                cannot finish; --layout spread, genus 0: four pi-cones, --cones picks them\n"
+            "                                as 0-based vertex ids; open\n"
             "                                surfaces: boundaries on integer isolines; several components: each its\n"
             "                                own IGM, one output; `igm run --help` for every option)\n"
             "                                (writes DIR/NAME.igm.obj .igm.exact .quad.obj .cert.json .schema.svg\n"

@@ -95,6 +95,23 @@ class Builder {
   // The rays whose curves made the layout fail: (start vertex, ray).
   const std::vector<std::pair<int, int>>& culprits() const { return culprits_; }
 
+  // The input vertices at the patch corners whose angle was not a quarter or a half turn (a
+  // refined vertex inside an input face or edge gives that element's vertices), ascending.
+  std::vector<int> bad_angle_vertices() const {
+    std::vector<int> out;
+    for (int v : bad_angle_nodes_) {
+      if (v < mesh_.num_vertices()) {
+        out.push_back(v);
+      } else if (static_cast<std::size_t>(v) < locations_.size()) {
+        for (int u : locations_[v].v)
+          if (u >= 0) out.push_back(u);
+      }
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+
   // Blames the curves that end on the boundary of one of `patches` (T-junctions and corners
   // made by a curve's end), the longest first, at most `limit` of them.
   void blame_patches(const SurfaceLayout& layout, const std::vector<int>& patches, int limit) {
@@ -755,7 +772,10 @@ class Builder {
         else if (aa.curve >= 0) blame(aa.curve);
       }
       if (q == 1) corners.push_back((k + 1) % nu);
-      else if (q != 2) return "C: an angle of " + str(q) + " quarter turns at vertex " + str(ea.node);
+      else if (q != 2) {
+        bad_angle_nodes_.push_back(ea.node);
+        return "C: an angle of " + str(q) + " quarter turns at vertex " + str(ea.node);
+      }
     }
     if (corners.size() != 4) return "C: " + str(static_cast<std::int64_t>(corners.size())) + " corners";
     for (int s = 0; s < 4; ++s) {
@@ -783,6 +803,7 @@ class Builder {
   std::vector<int> he_scratch_;          // patch_sides: per refined half-edge, a local index
   std::vector<FaceTriangulation>* cache_ = nullptr;
   std::vector<std::pair<int, int>> culprits_;
+  std::vector<int> bad_angle_nodes_;  // patch_sides: the nodes of wrong angles met
 };
 
 // The patches whose side equations cannot all hold with arc lengths >= `minimum`: the rows with
@@ -880,8 +901,11 @@ FieldLayoutResult build_field_layout(const TriMesh& mesh, const std::vector<Vec3
     std::vector<int> seeds;
     r.layout = SurfaceLayout{};
     r.stats.non_disk_patches = r.stats.bad_corner_patches = 0;
+    r.contradicting_vertices.clear();
+    r.bad_angle_vertices.clear();
     Builder b(mesh, positions, frames, r.graph, &triangulations);
     r.failure = b.build(r.layout, r.stats, seeds);
+    r.bad_angle_vertices = b.bad_angle_vertices();
     if (r.failure.empty()) {
       // Lengths >= the minima must be able to satisfy every patch; where they cannot (a strip of
       // patches that would have to be longer than itself: spiralling curves), the curves ending on
@@ -895,6 +919,14 @@ FieldLayoutResult build_field_layout(const TriMesh& mesh, const std::vector<Vec3
       r.failure = "the patches' side lengths contradict each other (" + std::to_string(bad.size()) + " patches, patch " +
                   std::to_string(bad.front()) + ")";
       b.blame_patches(r.layout, bad, 2);
+      for (int p : bad)
+        for (const auto& side : r.layout.patches[p].sides)
+          for (const ArcUse& u : side)
+            for (int v : r.layout.arcs[u.arc].vertices)
+              if (v < mesh.num_vertices()) r.contradicting_vertices.push_back(v);
+      std::sort(r.contradicting_vertices.begin(), r.contradicting_vertices.end());
+      r.contradicting_vertices.erase(std::unique(r.contradicting_vertices.begin(), r.contradicting_vertices.end()),
+                                     r.contradicting_vertices.end());
     }
     // Rays whose curves could not end well are left untraced, where their vertex keeps every
     // angle at most two quarter turns; then the graph is traced again.

@@ -134,10 +134,39 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
   std::vector<std::pair<CrossFieldOptions, CrossField>> fields;
   FieldLayoutResult traced;
   std::string first_failure;
+  std::vector<int> drop_walls;  // the walls run_attempts asks to leave out
+  // The walls through vertex v or one of its neighbours (the walls' chains are input vertices).
+  auto walls_near = [&](int v) {
+    std::vector<char> near(static_cast<std::size_t>(input.mesh->num_vertices()), 0);
+    near[v] = 1;
+    const int h0 = input.mesh->vertex_halfedge(v);
+    int h = h0;
+    for (int guard = 0; h >= 0 && guard <= input.mesh->num_halfedges(); ++guard) {  // bound: v's fan
+      near[input.mesh->target(h)] = 1;
+      h = input.mesh->next_around_origin(h);
+      if (h == h0) break;
+    }
+    std::vector<int> out;
+    for (std::size_t w = 0; w < features.walls.size(); ++w)
+      for (int u : features.walls[w])
+        if (near[u]) {
+          out.push_back(static_cast<int>(w));
+          break;
+        }
+    return out;
+  };
   // Every attempt in order until one gives a layout; true when it stopped at walls that could not
-  // be drawn and `may_drop` (the caller leaves them out and calls again).
+  // be drawn, or at a cone of valence <= 2 next to walls (the walls force it: the attempts'
+  // alignments do not move it), and `may_drop`; drop_walls then lists them (the caller leaves
+  // them out and calls again).
   auto run_attempts = [&](bool may_drop) {
-    for (std::size_t k = 0; k < attempts.size(); ++k) {
+    drop_walls.clear();
+    // With walls, the attempts after the first cost F each: as many as field_wall_work allows.
+    std::size_t with_walls = attempts.size();
+    if (!features.walls.empty() && options.field_wall_work > 0)
+      with_walls = static_cast<std::size_t>(std::clamp<std::int64_t>(
+          options.field_wall_work / std::max(1, input.mesh->num_faces()), 1, static_cast<std::int64_t>(attempts.size())));
+    for (std::size_t k = 0; k < with_walls; ++k) {
       const std::string attempt_name = attempts.size() > 1 ? " (attempt " + std::to_string(k + 1) + ")" : "";
       auto t0 = Clock::now();
       CrossFieldOptions fo = attempts[k].field;
@@ -168,6 +197,14 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
       if (bad_cone >= 0) {
         const std::string what = "a cone of valence " + std::to_string(std::max(bad_valence, 1)) + " at vertex " +
                                  std::to_string(bad_cone) + (bad_valence == 2 ? " (with the feature walls)" : "");
+        if (may_drop && !features.walls.empty()) {
+          drop_walls = walls_near(bad_cone);
+          if (!drop_walls.empty()) {
+            stage.done("field", t0, what + ": its " + std::to_string(drop_walls.size()) +
+                                        " feature walls left out, the field again" + attempt_name);
+            return true;
+          }
+        }
         stage.done("field", t0, what + attempt_name);
         if (first_failure.empty()) first_failure = "field: " + what;
         continue;
@@ -195,11 +232,42 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
         if (may_drop) {
           stage.done("trace", t0, std::to_string(traced.graph.stuck_walls.size()) +
                                       " feature walls could not be drawn: left out, the field again" + attempt_name);
+          drop_walls = traced.graph.stuck_walls;
           return true;
         }
         traced.ok = false;
         traced.failure = std::to_string(traced.graph.stuck_walls.size()) + " feature walls could not be drawn (wall " +
                          std::to_string(traced.graph.stuck_walls.front()) + ")";
+      }
+      // A patch corner of a wrong angle (three quarter turns: a concave corner) next to walls:
+      // those walls are left out and the field computed again.
+      if (!traced.ok && may_drop && !features.walls.empty() && !traced.bad_angle_vertices.empty()) {
+        for (int v : traced.bad_angle_vertices)
+          for (int w : walls_near(v)) drop_walls.push_back(w);
+        std::sort(drop_walls.begin(), drop_walls.end());
+        drop_walls.erase(std::unique(drop_walls.begin(), drop_walls.end()), drop_walls.end());
+        if (!drop_walls.empty()) {
+          stage.done("trace", t0, "no layout: " + traced.failure + ": " + std::to_string(drop_walls.size()) +
+                                      " feature walls next to it left out, the field again" + attempt_name);
+          return true;
+        }
+      }
+      // Contradicting side lengths with walls on the contradicting patches' sides: those walls are
+      // left out and the field computed again (the other attempts' alignments hardly move walls).
+      if (!traced.ok && may_drop && !traced.contradicting_vertices.empty()) {
+        std::vector<char> on(static_cast<std::size_t>(input.mesh->num_vertices()), 0);
+        for (int v : traced.contradicting_vertices) on[v] = 1;
+        for (std::size_t w = 0; w < features.walls.size(); ++w)
+          for (std::size_t i = 0; i + 1 < features.walls[w].size(); ++i)
+            if (on[features.walls[w][i]] && on[features.walls[w][i + 1]]) {
+              drop_walls.push_back(static_cast<int>(w));
+              break;
+            }
+        if (!drop_walls.empty()) {
+          stage.done("trace", t0, "no layout: " + traced.failure + ": " + std::to_string(drop_walls.size()) +
+                                      " feature walls on their sides left out, the field again" + attempt_name);
+          return true;
+        }
       }
       stage.done("trace", t0,
                  traced.ok ? std::to_string(traced.stats.trace.curves) + " curves, " + std::to_string(traced.stats.patches) +
@@ -213,8 +281,9 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
     }
     return false;
   };
-  // Feature walls that cannot be drawn (their field rays taken: a sharp turn of a crease) are
-  // left out with their constraints and the field computed again, at most kFeatureRounds times
+  // Feature walls that cannot be drawn (their field rays taken: a sharp turn of a crease), and
+  // those next to a cone of valence <= 2 (a quarter-turn corner of walls forcing a cone no patch
+  // layout has), are left out with their constraints and the field computed again, at most kFeatureRounds times
   // (each removes at least one wall); the rest of the walls then still hold. Where no attempt
   // gives a layout with the walls, every attempt is tried once more without any feature (the
   // features are then only measured): one more round, the last.
@@ -234,7 +303,7 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
     } else {
       // Leave out the stuck walls and their constraints.
       std::vector<char> drop(features.walls.size(), 0);
-      for (int w : traced.graph.stuck_walls) drop[w] = 1;
+      for (int w : drop_walls) drop[w] = 1;
       std::vector<std::vector<int>> kept;
       for (std::size_t w = 0; w < features.walls.size(); ++w) {
         if (!drop[w]) {

@@ -541,14 +541,16 @@ PipelineResult compute_igm(const ValidMesh& input, const PipelineOptions& option
 
 PipelineResult compute_igm_closed(const ValidMesh& input, const PipelineOptions& options, const FeatureEdges* features) {
   check_sizes(options);
-  if (options.layout == LayoutKind::Field && options.cones.empty()) {
+  if (options.layout == LayoutKind::Field) {
+    PipelineOptions topological = options;
+    topological.layout = LayoutKind::Spread;
+    // Cones or the normal form are requests for the topological layout (the field chooses its cones).
+    if (!options.cones.empty() || options.normal_form) return compute_igm_closed(input, topological, features);
     std::vector<std::array<int, 3>> triangles(input.mesh.num_faces());
     for (int f = 0; f < input.mesh.num_faces(); ++f) triangles[f] = input.mesh.face_vertices(f);
     FieldSurface surface{&input.mesh, &input.positions, &triangles, input.genus, 0, features};
     PipelineStats attempt;
     if (std::optional<PipelineResult> r = compute_igm_field(surface, options, attempt)) return std::move(*r);
-    PipelineOptions topological = options;
-    topological.layout = LayoutKind::Spread;
     return with_fallback(std::move(attempt), compute_igm_closed(input, topological));
   }
   if (input.genus == 0) return compute_igm_sphere(input, options);  // sphere_pipeline.cpp

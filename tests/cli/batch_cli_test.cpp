@@ -175,7 +175,7 @@ TEST_CASE("igm batch over a folder: a verdict per mesh, the summary's counts, --
   CHECK(inner.code == 0);
   CHECK(has(inner.err, "[batch] 9 meshes, 9 done already, 0 to run"));
   // The floor in a batch: the tetrahedron asked 1 quad gets the 2 of its 1 x 1 pillowcase, said.
-  const Proc floor = igm(cwd, {"batch", "in/tetrahedron.off", "-o", "floor", "--", "--quads", "1"});
+  const Proc floor = igm(cwd, {"batch", "in/tetrahedron.off", "-o", "floor", "--", "--quads", "1", "--layout", "spread"});
   CHECK(floor.code == 0);
   CHECK(has(contents(cwd / "floor/results.jsonl"), "\"verdict\": \"certified\""));
   CHECK(has(contents(cwd / "floor/results.jsonl"), "\"quads\": 2, \"raised_by_floor\": true"));
@@ -229,7 +229,7 @@ TEST_CASE("igm batch --timeout and the memory limits give timeout and out_of_mem
 
   // The run's own memory stop (igm run --memory-limit-mb after --) counts as out_of_memory.
   generate(cwd, "4", "2000", "3", "g4.obj");
-  const Proc m = igm(cwd, {"batch", "g4.obj", "-o", "mem", "--", "--memory-limit-mb", "1"});
+  const Proc m = igm(cwd, {"batch", "g4.obj", "-o", "mem", "--", "--memory-limit-mb", "1", "--layout", "spread"});
   CHECK(m.code == 0);
   const std::string mline = contents(cwd / "mem/results.jsonl");
   CAPTURE(mline);

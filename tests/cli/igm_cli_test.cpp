@@ -82,7 +82,11 @@ TEST_CASE("igm without arguments runs the pipeline on a generated genus-2 mesh, 
   CHECK(r.code == 0);
   CHECK(has(r.out, "built-in generated mesh"));
   CHECK(has(r.out, "genus 2"));
-  CHECK(has(r.out, "[topology]"));
+  // The default layout is the field one (docs/field.md): its stages, no topological one.
+  CHECK(has(r.out, "[field   ]"));
+  CHECK(has(r.out, "[trace   ]"));
+  CHECK(has(r.out, "[quantize]"));
+  CHECK(!has(r.out, "[topology]"));
   CHECK(has(r.out, "[certify ]"));
   CHECK(has(r.out, "certified: VALID"));
   const auto out = cwd / "out";
@@ -109,6 +113,8 @@ TEST_CASE("igm without arguments runs the pipeline on a generated genus-2 mesh, 
   const Run quads = in_folder(cwd, quote(IGM_CERTIFY_CLI_PATH) + " --quad --genus 2 out/default-genus2.quad.obj");
   CHECK(quads.code == 0);
   CHECK(has(slurp(out / "default-genus2.cert.json"), "\"certified\": true"));
+  CHECK(has(slurp(out / "default-genus2.cert.json"), "\"layout\": \"field\""));
+  CHECK(has(slurp(out / "default-genus2.cert.json"), "\"layout_fallback\": null"));
 }
 
 TEST_CASE("igm run: shared torus certified, invalid mesh and bad options exit 2") {
@@ -116,7 +122,7 @@ TEST_CASE("igm run: shared torus certified, invalid mesh and bad options exit 2"
   const auto cwd = tmp_dir() / "run";
   const std::string igm_cmd = quote(IGM_CLI_PATH);
   const Run ok = in_folder(cwd, igm_cmd + " run " + quote((data / "meshes/clean/pipe.off").string()) +
-                                    " -o res --resolution 5");
+                                    " -o res --resolution 5 --layout spread");
   CHECK(ok.code == 0);
   CHECK(has(ok.out, "certified: VALID"));
   const Run cert = in_folder(cwd, quote(IGM_CERTIFY_CLI_PATH) + " --quad --genus 1 res/pipe.quad.obj");
@@ -134,7 +140,7 @@ TEST_CASE("igm run: shared torus certified, invalid mesh and bad options exit 2"
   }
   // Below the torus's floor (3 along each side of its square: fewer would join its one vertex to
   // itself): raised to it, certified, said.
-  const Run floor = in_folder(cwd, igm_cmd + pipe + " -o low --resolution 2");
+  const Run floor = in_folder(cwd, igm_cmd + pipe + " -o low --resolution 2 --layout spread");
   CHECK(floor.code == 0);
   CHECK(has(floor.out, "9 quads at resolution 2"));
   CHECK(has(floor.out, "2 chords raised to the floor (9 quads at least)"));
@@ -143,7 +149,7 @@ TEST_CASE("igm run: shared torus certified, invalid mesh and bad options exit 2"
 TEST_CASE("igm run: a memory limit too small for the arrangement exits 2 in the arrange stage") {
   const auto cwd = folder_with_generated("memory", "--genus 4 --faces 2000 --seed 3 g4.obj");
   const std::string igm_cmd = quote(IGM_CLI_PATH);
-  const Run small = in_folder(cwd, igm_cmd + " run g4.obj -o res --memory-limit-mb 1");
+  const Run small = in_folder(cwd, igm_cmd + " run g4.obj -o res --memory-limit-mb 1 --layout spread");
   CHECK(small.code == 2);
   CHECK(has(small.err, "unsupported"));
   CHECK(has(small.err, "memory limit"));
@@ -151,7 +157,7 @@ TEST_CASE("igm run: a memory limit too small for the arrangement exits 2 in the 
   CHECK(!has(small.out, "[arrange "));  // the overlay stops at the limit
   CHECK(!has(small.out, "[igm "));
   CHECK(!std::filesystem::exists(cwd / "res" / "g4.igm.exact"));
-  const Run enough = in_folder(cwd, igm_cmd + " run g4.obj -o res --memory-limit-mb 4096");
+  const Run enough = in_folder(cwd, igm_cmd + " run g4.obj -o res --memory-limit-mb 4096 --layout spread");
   CHECK(enough.code == 0);
   CHECK(has(enough.out, "certified: VALID"));
   for (const char* a : {" run g4.obj --memory-limit-mb 0", " run g4.obj --memory-limit-mb x", " run g4.obj --memory-limit-mb"}) {
@@ -366,7 +372,7 @@ TEST_CASE("igm run on genus 0: the five files, certified by igm-certify, bad con
   const auto cwd = tmp_dir() / "run-sphere";
   const std::string igm_cmd = quote(IGM_CLI_PATH);
   const std::string cube = quote((data / "meshes/clean/cube.off").string());
-  const Run ok = in_folder(cwd, igm_cmd + " run " + cube + " -o res --resolution 2");
+  const Run ok = in_folder(cwd, igm_cmd + " run " + cube + " -o res --resolution 2 --layout spread");
   CHECK(ok.code == 0);
   CHECK(has(ok.out, "genus 0"));
   CHECK(has(ok.out, "certified: VALID"));
@@ -384,6 +390,13 @@ TEST_CASE("igm run on genus 0: the five files, certified by igm-certify, bad con
   CHECK(has(json, "\"certified\": true"));
   CHECK(has(json, "\"genus0\": {\"cones\": ["));
   CHECK(has(slurp(cwd / "res" / "cube.schema.svg"), "<circle"));
+  // The default layout (the field one): the cube's corners are its eight cones, of valence 3.
+  const Run field = in_folder(cwd, igm_cmd + " run " + cube + " -o resf --quads 600");
+  CHECK(field.code == 0);
+  CHECK(has(slurp(cwd / "resf" / "cube.cert.json"), "\"layout\": \"field\""));
+  const Run field_quads = in_folder(cwd, quote(IGM_CERTIFY_CLI_PATH) + " --quad --genus 0 resf/cube.quad.obj");
+  CHECK(field_quads.code == 0);
+  CHECK(has(field_quads.out, "\"bins\": {\"3\": 8, \"4\": "));
   // user cones, in path order, and at resolution 1 (2 quads, 4 vertices of valence 2)
   const Run user = in_folder(cwd, igm_cmd + " run " + cube + " -o res1 --resolution 1 --cones 7,0,3,5");
   CHECK(user.code == 0);
@@ -404,7 +417,7 @@ TEST_CASE("igm run on genus 0: the five files, certified by igm-certify, bad con
 TEST_CASE("igm run: layouts, sizes and maps from the command line, the quality report in the certificate and on the terminal") {
   const auto cwd = folder_with_generated("sizes", "--genus 2 --faces 1500 --seed 2 g2.obj");
   const std::string igm_cmd = quote(IGM_CLI_PATH);
-  const Run spread = in_folder(cwd, igm_cmd + " run g2.obj -o a --quads 2000");
+  const Run spread = in_folder(cwd, igm_cmd + " run g2.obj -o a --quads 2000 --layout spread");
   CHECK(spread.code == 0);
   CHECK(has(spread.out, "[quality ]"));
   CHECK(has(spread.out, "SJ median"));

@@ -461,6 +461,7 @@ namespace {
 // points; the extractor's vertices must be G, once each.
 void check_against_pipeline(const ValidMesh& mesh, int N) {
   PipelineOptions o;
+  o.layout = LayoutKind::Spread;  // the topological layout (the field one has its own tests)
   o.resolution = N;
   o.quality = false;
   o.smooth = false;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "certify/certify.h"
+#include "igm/io/read_mesh.h"
 #include "igm/mesh/generate.h"
 #include "igm/mesh/validate.h"
 #include "igm/mesh/validate_surfaces.h"
@@ -274,6 +275,7 @@ TEST_CASE("field pipeline: a layout that cannot be built falls back, and says wh
   // patches' side lengths contradict each other at first); with no such round it falls back.
   const ValidMesh mesh = igm_test::generated_mesh(1, 2000, 2);
   PipelineOptions o = field_options(800);
+  o.features.enabled = false;  // no wall to leave out instead (the next test)
   o.field.alignment = 0;
   o.field_attempts.clear();
   o.field_layout.max_seed_rounds = 0;
@@ -287,6 +289,80 @@ TEST_CASE("field pipeline: a layout that cannot be built falls back, and says wh
   const PipelineResult rounds = compute_igm(mesh, field_options(800));
   check_certified(rounds, 1);
   CHECK(rounds.stats.layout == "field");
+}
+
+TEST_CASE("field pipeline: walls next to a cone of valence 2 or on contradicting patches are left out, the others kept") {
+  // Generated genus 1 (seed 1) has creases of 35 degrees and more: with them as walls the field
+  // has valence-2 cones at wall corners, then the patches' side lengths contradict each other
+  // along walls. Only the walls next to the cone or on the contradicting patches' sides are left
+  // out (before: every attempt failed, then every wall was left out).
+  const ValidMesh mesh = igm_test::generated_mesh(1, 2000, 1);
+  const PipelineResult r = compute_igm(mesh, field_options(800));
+  check_certified(r, 1);
+  CHECK(r.stats.layout == "field");
+  CHECK(r.stats.features_dropped > 0);
+  CHECK(r.stats.feature_walls > 0);
+  CHECK(r.stats.features_failure.empty());
+  bool cone_rule = false, contradiction_rule = false;
+  for (const StageEvent& e : r.stats.stages) {
+    if (e.stage == "field" && e.detail.find("a cone of valence 2") != std::string::npos &&
+        e.detail.find("feature walls left out") != std::string::npos)
+      cone_rule = true;
+    if (e.stage == "trace" && e.detail.find("contradict") != std::string::npos &&
+        e.detail.find("feature walls on their sides left out") != std::string::npos)
+      contradiction_rule = true;
+  }
+  CHECK(cone_rule);
+  CHECK(contradiction_rule);
+  // The kept walls are on integer isolines: the certifier checked them.
+  REQUIRE(r.igm_report.features.has_value());
+  CHECK(r.igm_report.features->status == certify::Status::Pass);
+  CHECK(count_of(*r.igm_report.features, "edges_checked") > 0);
+}
+
+TEST_CASE("field pipeline: walls next to a patch corner of a wrong angle are left out") {
+  // The shared dino at 3000 quads: after the walls that cannot be drawn, a patch gets a corner of
+  // no quarter turn at a wall; the walls through it are left out, the rest kept.
+  IGM_REQUIRE_DATA(dir);
+  if (igm_test::kSanitized) return;  // Release only (8 s there)
+  const ValidMesh mesh = load_mesh(dir / "meshes/clean/dino.off");
+  const PipelineResult r = compute_igm(mesh, field_options(3000));
+  check_certified(r, 0);
+  CHECK(r.stats.layout == "field");
+  CHECK(r.stats.feature_walls > 0);
+  bool angle_rule = false;
+  for (const StageEvent& e : r.stats.stages)
+    if (e.stage == "trace" && e.detail.find("quarter turns at vertex") != std::string::npos &&
+        e.detail.find("feature walls next to it left out") != std::string::npos)
+      angle_rule = true;
+  CHECK(angle_rule);
+}
+
+TEST_CASE("field pipeline: field_wall_work bounds the attempts with feature walls") {
+  // The shared three_peaks (open): with its walls the first six attempts fail (3-corner patches)
+  // and the seventh gives the layout. With field_wall_work = 1 only the first runs with the walls,
+  // then every attempt without them.
+  IGM_REQUIRE_DATA(dir);
+  const SurfaceSet set = validate_surfaces(read_soup(dir / "meshes/open/three_peaks.off"));
+  REQUIRE(set.components.size() == 1);
+  PipelineOptions o = field_options(10000);
+  o.smooth_iterations = 3;
+  const PipelineResult all = compute_igms(set, o).components.at(0);
+  CHECK(all.certified());
+  CHECK(all.stats.layout == "field");
+  CHECK(all.stats.feature_walls > 0);
+  o.field_wall_work = 1;
+  const PipelineResult one = compute_igms(set, o).components.at(0);
+  CHECK(one.certified());
+  CHECK(one.stats.layout == "field");
+  CHECK(one.stats.feature_walls == 0);
+  bool walls_gone = false, later_attempt_with_walls = false;
+  for (const StageEvent& e : one.stats.stages) {
+    if (e.stage == "features" && e.detail.find("every attempt again without them") != std::string::npos) walls_gone = true;
+    if (!walls_gone && e.detail.find("(attempt 2)") != std::string::npos) later_attempt_with_walls = true;
+  }
+  CHECK(walls_gone);
+  CHECK_FALSE(later_attempt_with_walls);
 }
 
 TEST_CASE("field pipeline: the same input gives the same output") {

@@ -175,6 +175,7 @@ PipelineResult check_open_run(const SurfaceComponent& s, const PipelineOptions& 
 
 PipelineOptions unsmoothed(int resolution = 3) {
   PipelineOptions o;
+  o.layout = LayoutKind::Spread;  // the topological layout (the field one has its own tests)
   o.smooth = false;
   o.resolution = resolution;
   return o;
@@ -241,6 +242,7 @@ TEST_CASE("open meshes smoothed (the default): certified doubles, boundary still
   for (auto [g, b] : {std::pair{0, 1}, std::pair{1, 2}, std::pair{2, 3}}) {
     const SurfaceComponent s = generated_open(g, b, 3000, 11);
     PipelineOptions o;
+    o.layout = LayoutKind::Spread;  // the topological layout (the field one has its own tests)
     o.quads = 1500;
     o.smooth_iterations = igm_test::kSanitized ? 5 : 40;
     o.smooth_seconds = 0;  // iterations only: deterministic
@@ -291,6 +293,7 @@ TEST_CASE("several components: each certified, merged and certified in component
   const SurfaceSet set = validate_surfaces(soup);
   REQUIRE(set.components.size() == 3);
   PipelineOptions o;
+  o.layout = LayoutKind::Spread;  // the topological layout (the field one has its own tests)
   o.smooth = false;
   o.quads = 3000;
   const SurfacesResult r = compute_igms(set, o);
@@ -338,6 +341,7 @@ TEST_CASE("shared open meshes, meshes with several components, and non-manifold 
     so.split_nonmanifold = c.split;
     const SurfaceSet set = validate_surfaces(read_soup(std::filesystem::path(c.path)), so);
     PipelineOptions o;
+    o.layout = LayoutKind::Spread;  // the topological layout (the field one has its own tests)
     o.quads = 2000;
     o.smooth = !igm_test::kSanitized;
     o.smooth_iterations = 10;

@@ -109,10 +109,18 @@ PipelineStats check_run(const ValidMesh& mesh, PipelineOptions options, bool che
   return r.stats;
 }
 
+// The topological layouts are this file's subject (the field layout, the default, has
+// field_pipeline_test.cpp): spread, the orbifold for genus 0.
+PipelineOptions topological() {
+  PipelineOptions o;
+  o.layout = LayoutKind::Spread;
+  return o;
+}
+
 // The layout's own map (smoothing off: the subject of most tests here is the construction; the
 // smoothed pipeline has its own tests below, and the shared meshes run it with a short budget).
 PipelineOptions unsmoothed() {
-  PipelineOptions o;
+  PipelineOptions o = topological();
   o.smooth = false;
   return o;
 }
@@ -238,7 +246,7 @@ TEST_CASE("smoothing (the default): the same cones and quad count, a certified d
 
 TEST_CASE("smoothing stops by its rules, never by the clock unless asked, and gives the same IGM for any thread count") {
   const ValidMesh mesh = igm_test::generated_mesh(2, 2000, 5);
-  PipelineOptions o;
+  PipelineOptions o = topological();
   o.quads = 1000;
   o.smooth_iterations = 10;
   o.threads = 1;
@@ -275,7 +283,7 @@ TEST_CASE("smoothing stops by its rules, never by the clock unless asked, and gi
 
 TEST_CASE("smoothing's work cap: at most max(5, smooth_work / triangles) iterations, by size alone") {
   const ValidMesh mesh = igm_test::generated_mesh(2, 2000, 5);
-  PipelineOptions o;
+  PipelineOptions o = topological();
   o.quads = 1000;
   o.smooth_iterations = 12;
   o.smooth_min_decrease = 0;
@@ -316,7 +324,7 @@ TEST_CASE("both branches report every stage once, in order, through progress and
     CAPTURE(g);
     const ValidMesh mesh = igm_test::generated_mesh(g, 300, 5);
     std::vector<StageEvent> seen;
-    PipelineOptions options;
+    PipelineOptions options = topological();
     options.resolution = 3;
     options.smooth_iterations = 3;
     options.progress = [&](const StageEvent& e) { seen.push_back(e); };
@@ -349,7 +357,7 @@ TEST_CASE("both branches report every stage once, in order, through progress and
 
 TEST_CASE("bad options give typed errors") {
   const ValidMesh torus = igm_test::generated_mesh(1, 200, 5);
-  PipelineOptions o;
+  PipelineOptions o = topological();
   o.resolution = -1;
   CHECK_THROWS_AS(compute_igm(torus, o), Error);
   o.resolution = 0;
@@ -412,7 +420,7 @@ TEST_CASE("shared clean meshes of genus >= 1 are certified") {
   for (const char* name : {"mpi_triang.off", "pipe.off", "knot.off", "eight.off", "joint.off", "helmet.off",
                            "anchor.off", "elephant.off", "couplingdown.off"}) {
     INFO(std::string(name));
-    PipelineOptions o;  // the default pipeline, smoothing included, with a short budget
+    PipelineOptions o = topological();  // smoothing included, with a short budget
     o.smooth_iterations = 10;
     const PipelineStats st = check_run(load_mesh(dir / "meshes" / "clean" / name), o);
     CHECK(st.output_triangles <= 5 * st.input_faces);  // issue 6's size target for g <= 10
@@ -458,7 +466,7 @@ namespace {
 // Independent re-check of a genus-0 run, ending with the certifier on the written files.
 void check_sphere(const ValidMesh& mesh, int resolution, const std::vector<int>& cones = {}, bool reread = true,
                   bool check_areas = true, int smooth_iterations = 0) {
-  PipelineOptions options;
+  PipelineOptions options = topological();
   options.resolution = resolution;
   options.smooth = smooth_iterations > 0;
   options.smooth_iterations = smooth_iterations;
@@ -600,7 +608,7 @@ TEST_CASE("genus 0: bad cone lists are typed errors naming the entry") {
   const ValidMesh m = igm_test::generated_mesh(0, 300, 6);
   for (const std::vector<int>& cones : std::vector<std::vector<int>>{
            {1, 2, 3}, {4, 4, 5, 6}, {0, 1, 2, m.mesh.num_vertices()}, {-5, 1, 2, 3}}) {
-    PipelineOptions o;
+    PipelineOptions o = topological();
     o.cones = cones;
     try {
       compute_igm(m, o);
@@ -683,7 +691,7 @@ TEST_CASE("a valid IGM whose isolines are no manifold quad mesh: the certify sta
     for (int i = 0; i < 3; ++i) t[i] = {Rational(pillow.corner_uv[3 * f + i][0]), Rational(pillow.corner_uv[3 * f + i][1] / 2)};
     igm.corner_uv.push_back(t);
   }
-  PipelineOptions options;
+  PipelineOptions options = topological();
   options.smooth = false;
   result.stats.genus = 0;
   StageReporter stage{result.stats, options};
@@ -733,7 +741,7 @@ TEST_CASE("the floor: small surfaces of every kind at the smallest sizes certify
     const SurfaceSet set = validate_surfaces(c.soup);
     REQUIRE(set.components.size() == 1);
     for (int size = 0; size < 5; ++size) {
-      PipelineOptions o;
+      PipelineOptions o = topological();
       o.layout = c.layout;
       o.quality = false;
       o.smooth_iterations = 3;
@@ -754,7 +762,7 @@ TEST_CASE("the floor: small surfaces of every kind at the smallest sizes certify
 
 TEST_CASE("pipeline: features of a box are measured (12 curves, 8 corners), user edges checked, certified") {
   const PolygonSoup box = igm_test::box_soup();
-  PipelineOptions o;
+  PipelineOptions o = topological();
   o.quads = 300;
   const PipelineResult r = compute_igm(validate(box), o);
   CHECK(r.features.stats.curves == 12);

@@ -29,7 +29,7 @@ def square_torus(n):
 def test_compute_on_a_generated_torus():
     V, F = igm.generate(1, 200)
     assert V.shape[1] == 3 and F.shape[1] == 3
-    r = igm.compute(V, F, resolution=3)
+    r = igm.compute(V, F, resolution=3, layout="spread")  # the topological layout: one square
     assert r["certified"] is True
     st = r["stats"]
     assert st["genus"] == 1 and st["input_vertices"] == len(V) and st["input_faces"] == len(F)
@@ -66,7 +66,7 @@ def test_exact_uvs_are_the_rationals_the_doubles_round():
 
 def test_options_map_and_unknown_or_mistyped_ones_raise_type_error():
     V, F = igm.generate(1, 200)
-    assert igm.compute(V, F, resolution=5)["stats"]["quads"] == 25
+    assert igm.compute(V, F, resolution=5, layout="spread")["stats"]["quads"] == 25
     with pytest.raises(TypeError, match="unexpected keyword argument 'resolutoin'"):
         igm.compute(V, F, resolutoin=5)
     with pytest.raises(TypeError, match="option 'resolution'"):
@@ -191,7 +191,7 @@ def test_sizes_layouts_and_the_quality_report():
     k = igm.compute(V, F, layout="kite", map="affine", edge_length=1.0, quality=False)
     assert k["certified"] and k["quality"] is None and k["stats"]["layout_quads"] == 8
     assert st["layout"] == "spread" and st["layout_fallback"] is None
-    f = igm.compute(V, F, quads=800, layout="field")
+    f = igm.compute(V, F, quads=800)  # the default layout: the field one
     assert f["certified"] and f["stats"]["layout"] == "field" and f["stats"]["layout_fallback"] is None
     assert f["quality"]["quads"]["irregular_vertices"] >= 8  # a genus-2 field: at least 8 valence-5 cones
     with pytest.raises(igm.Error) as e:
@@ -233,7 +233,7 @@ def test_every_surface_gets_its_floor():
     Vb, Fb = igm.generate(0, 60, seed=5)
     V = np.vstack([Va, 0.01 * Vb + [10.0, 0, 0]])
     F = np.vstack([Fa, Fb + len(Va)])
-    r = igm.compute(V, F, quads=600, smooth_iterations=3, quality=False)
+    r = igm.compute(V, F, quads=600, smooth_iterations=3, quality=False, layout="spread")
     assert r["certified"] is True
     small = r["stats"]["surfaces"][1]
     assert small["genus"] == 0 and small["raised_by_floor"] and small["quads"] == small["floor_quads"] == 2
@@ -242,7 +242,7 @@ def test_every_surface_gets_its_floor():
     assert r["stats"]["quads"] == len(r["quads"]["quads"])
     # One surface: a resolution below the torus's floor (3 along its two sides) is raised to it.
     V, F = igm.generate(1, 300)
-    t = igm.compute(V, F, resolution=1, smooth_iterations=3, quality=False)
+    t = igm.compute(V, F, resolution=1, smooth_iterations=3, quality=False, layout="spread")
     assert t["certified"] and t["stats"]["quads"] == 9 and t["stats"]["raised_by_floor"]
     assert t["stats"]["quad_defects"] == ""
 

@@ -41,6 +41,7 @@ inline Outcome run_pipeline(const igm::PolygonSoup& soup, int expected_genus, in
   const igm::ValidMesh mesh = igm::validate(soup);  // the geometry never changes the combinatorics: must pass
   REQUIRE(mesh.genus == expected_genus);
   igm::PipelineOptions o;
+  o.layout = igm::LayoutKind::Spread;  // the topological layout (the field one has its own tests)
   o.resolution = resolution;
   o.quality = false;  // hundreds of meshes: the certificates are the subject here
   o.smooth_iterations = 3;  // every smoothed iterate is certified: a few are enough here
@@ -107,6 +108,7 @@ inline Outcome run_open_pipeline(const igm::PolygonSoup& soup, int expected_genu
   REQUIRE(s.genus == expected_genus);
   REQUIRE(static_cast<int>(s.boundary_loops.size()) == loops);
   igm::PipelineOptions o;
+  o.layout = igm::LayoutKind::Spread;  // the topological layout (the field one has its own tests)
   o.quads = 600;
   o.quality = false;
   o.smooth_iterations = 3;
@@ -168,6 +170,7 @@ inline Outcome run_surfaces(const igm::PolygonSoup& soup, const std::vector<std:
   for (const igm::SurfaceComponent& c : set.components) found.insert({c.genus, static_cast<int>(c.boundary_loops.size())});
   REQUIRE(found == expected);
   igm::PipelineOptions o;
+  o.layout = igm::LayoutKind::Spread;  // the topological layout (the field one has its own tests)
   o.quads = quads;
   o.quality = false;
   o.smooth_iterations = 3;

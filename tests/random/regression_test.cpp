@@ -78,6 +78,7 @@ TEST_CASE("regression (issue 47): the tetrahedron at 4..6 quads (a 2 x 1 grid: 4
   for (std::int64_t quads : {1, 4, 5, 6, 7}) {
     CAPTURE(quads);
     PipelineOptions o;
+    o.layout = LayoutKind::Spread;  // the topological layout (the field one has its own tests)
     o.quads = quads;
     o.quality = false;
     const PipelineResult r = compute_igm(tetra, o);
@@ -129,6 +130,7 @@ TEST_CASE("regression (issue 47): a genus-10 surface beside a 48-face box whose 
   REQUIRE(set.components[1].triangles.size() == 48);
   REQUIRE(set.components[1].genus == 0);
   PipelineOptions o;
+  o.layout = LayoutKind::Spread;  // the topological layout (the field one has its own tests)
   o.quality = false;
   o.smooth_iterations = 3;
   // The box's area share of the quad count: 4 quads.

@@ -42,6 +42,13 @@ struct FieldLayoutResult {
   std::string failure;   // why there is no layout (ok == false): a sentence naming the element
   SurfaceLayout layout;  // with ok
   TraceGraph graph;      // the last round's curves
+  /// Without a layout because side lengths contradict each other (the last round's failure): the
+  /// input vertices on the sides of the contradicting patches, ascending; empty otherwise.
+  std::vector<int> contradicting_vertices;
+  /// Without a layout: the input vertices at the last round's patch corners whose angle is not a
+  /// quarter or a half turn (for a corner inside an input face or edge, that element's vertices),
+  /// ascending; empty when there was none.
+  std::vector<int> bad_angle_vertices;
   FieldLayoutStats stats;
 };
 

@@ -64,15 +64,18 @@ struct PipelineOptions {
   int resolution = 0;
   double edge_length = 0;
   std::int64_t quads = 0;
-  /// The quad layout. Field: the field-driven layout (field/field_layout.h: cones from a cross
-  /// field, separatrices traced into patches, integer quantization), on every surface (closed of
-  /// any genus, open, each component); where a stage of it cannot finish (the field, the layout,
-  /// the quantization, the map, or the certifier rejecting its output) the surface falls back to
-  /// the topological layout (spread; genus 0: the orbifold) and PipelineStats::layout_fallback
-  /// says which stage and why. Paper, Kite, Spread: the layouts of the polygonal schema (genus
-  /// >= 1 and open surfaces; layout/quad_layout.h) and, for the spread layout, its inner grid's
-  /// rows (0: automatic).
-  LayoutKind layout = LayoutKind::Spread;
+  /// The quad layout. Field (the default): the field-driven layout (field/field_layout.h: cones
+  /// from a cross field, separatrices traced into patches, integer quantization), on every surface
+  /// (closed of any genus, open, each component); where a stage of it cannot finish (the field,
+  /// the layout, the quantization, the map, or the certifier rejecting its output) the surface
+  /// falls back to the topological layout (spread; genus 0: the orbifold) and
+  /// PipelineStats::layout_fallback says which stage and why. `cones` or `normal_form` ask for the
+  /// topological layout (the field chooses its own cones): with them a closed surface takes it
+  /// directly. Paper, Kite, Spread: the layouts of the polygonal schema (genus >= 1 and open
+  /// surfaces; layout/quad_layout.h; genus 0 takes the orbifold) and, for the spread layout, its
+  /// inner grid's rows (0: automatic). root, normal_form, restarts, memory_limit_bytes,
+  /// structured_extraction and layout_rows concern the topological layouts only (and a fallback).
+  LayoutKind layout = LayoutKind::Field;
   int layout_rows = 0;
   double layout_ring_depth = 1;  // LayoutOptions::ring_depth
   /// How each layout quad is mapped onto its rectangle (igm/patch_maps.h), with which weights.
@@ -112,6 +115,11 @@ struct PipelineOptions {
   /// others miss. Empty: one attempt only.
   std::vector<FieldAttempt> field_attempts{{0, true, 0.5}, {0, false, 0.5}, {0, true, 1.0}, {10, true, 0.5},
                                            {300, true, 0.5}, {1000, true, 0.5}};
+  /// With feature walls, at most max(1, field_wall_work / F) of the attempts for a surface of F
+  /// faces (0: all of them); without walls every attempt runs. Each costs a field and a tracing of
+  /// about F; on the shared meshes (F <= 100k) all of them run, on a 1M-face surface two (then, if
+  /// they fail, the attempts without the walls). Sizes, not the clock, decide.
+  std::int64_t field_wall_work = 2'000'000;
   /// Refinement bounds of the embedding (Tutte for g >= 1, orbifold Tutte for g = 0).
   TutteOptions tutte;
   std::size_t max_witnesses = 20;
