@@ -4,8 +4,8 @@
 #   2. AddressSanitizer + UndefinedBehaviorSanitizer build (-DIGM_SANITIZE=ON, RelWithDebInfo,
 #      no benchmarks) in ${IGM_ASAN_BUILD_DIR:-build-asan}: every test again (the 1M-face torus,
 #      cheese, the two normal forms of ~150k vertices and a generated genus 200 only in the
-#      Release run; the 1M-face sphere on 100k faces), with a tenth of the random meshes of
-#      tests/random (IGM_RANDOM_SCALE=0.1: ~10x slower under the sanitizers; the plain run does
+#      Release run; the 1M-face sphere on 100k faces), with a twentieth of the random meshes of
+#      tests/random (IGM_RANDOM_SCALE=0.05: ~10x slower under the sanitizers; the plain run does
 #      them all).
 #      IGM_TEST_ASAN=0 skips this part (for quick local runs; CI always runs it).
 #   Between them, the fuzz targets built with clang and run briefly (scripts/fuzz.sh smoke;
@@ -33,9 +33,9 @@ if [ "${IGM_TEST_ASAN:-1}" != 0 ]; then
     "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -g1 -DNDEBUG"
   # The slowest cases under the sanitizers (30-70 s each there; their code paths are run by the
   # smaller cases too) are left to the Release run.
-  ASAN_RELEASE_ONLY='normal form \(handle slides\)|--restarts: the restarts|generated genus 12, 25 and 50|sizing: --quads Q lands|ring bound: no cut|same bytes alone and under load|generated meshes of genus 1 to 200 are cut|the tightening keeps the root|restarts on shuffled vertex ids|from genus 30 on the crosses run alone|shared clean meshes of genus >= 1 are certified'
+  ASAN_RELEASE_ONLY='normal form \(handle slides\)|--restarts: the restarts|generated genus 12, 25 and 50|sizing: --quads Q lands|ring bound: no cut|same bytes alone and under load|generated meshes of genus 1 to 200 are cut|the tightening keeps the root|restarts on shuffled vertex ids|from genus 30 on the crosses run alone|shared clean meshes of genus >= 1 are certified|shared spheres \(tetrahedron \.\. armadillo|genus 2\.\.7 generated meshes, odd and even, every layout|shared open meshes, meshes with several components, and non-manifold'
   # Any report fails the test: UBSan is built with -fno-sanitize-recover, ASan aborts on error.
-  ASAN_OPTIONS="abort_on_error=1:detect_leaks=1" IGM_RANDOM_SCALE=0.1 \
+  ASAN_OPTIONS="abort_on_error=1:detect_leaks=1" IGM_RANDOM_SCALE=0.05 \
   UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
     ctest --test-dir "$ASAN_DIR" --output-on-failure -j "$(nproc)" -E "$ASAN_RELEASE_ONLY"
 fi

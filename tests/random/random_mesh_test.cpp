@@ -203,12 +203,12 @@ TEST_CASE("random spheres from the 4-face tetrahedron up with hostile geometry c
 }
 
 TEST_CASE("random closed and open meshes with hostile geometry through the field layout certify") {
-  // Count: 12 meshes (IGM_RANDOM_SCALE scales it; 2 under the sanitizers): genus 0..8, closed or with 1..6 boundary
+  // Count: 12 meshes (IGM_RANDOM_SCALE scales it; 1 under the sanitizers): genus 0..8, closed or with 1..6 boundary
   // loops, random refinements and geometry. Every output must certify, from the field layout or
   // its fallback; how many took the field layout is reported (docs/field.md).
   const std::uint64_t seed = base_seed() + 46;
   std::mt19937_64 rng(seed);
-  const int n = igm_test::kSanitized ? 2 : scaled(12);  // the sanitizers' run: two of them
+  const int n = igm_test::kSanitized ? 1 : scaled(12);  // the sanitizers' run: one (30 s there)
   int certified = 0, field = 0;
   for (int i = 0; i < n; ++i) {
     const int g = static_cast<int>(rng() % 9), b = rng() % 2 == 0 ? 0 : 1 + static_cast<int>(rng() % 6);
