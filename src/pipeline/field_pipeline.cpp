@@ -135,29 +135,39 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
   FieldLayoutResult traced;
   std::string first_failure;
   std::vector<int> drop_walls;  // the walls run_attempts asks to leave out
-  // The walls through vertex v or one of its neighbours (the walls' chains are input vertices).
-  auto walls_near = [&](int v) {
-    std::vector<char> near(static_cast<std::size_t>(input.mesh->num_vertices()), 0);
-    near[v] = 1;
-    const int h0 = input.mesh->vertex_halfedge(v);
-    int h = h0;
-    for (int guard = 0; h >= 0 && guard <= input.mesh->num_halfedges(); ++guard) {  // bound: v's fan
-      near[input.mesh->target(h)] = 1;
-      h = input.mesh->next_around_origin(h);
-      if (h == h0) break;
-    }
+  // The walls (ascending) with a vertex among `marked` input vertices, or with whole_edge an edge
+  // whose two ends are both marked (the walls' chains are input vertices).
+  auto walls_marked = [&](const std::vector<char>& marked, bool whole_edge) {
     std::vector<int> out;
-    for (std::size_t w = 0; w < features.walls.size(); ++w)
-      for (int u : features.walls[w])
-        if (near[u]) {
+    for (std::size_t w = 0; w < features.walls.size(); ++w) {
+      const std::vector<int>& chain = features.walls[w];
+      for (std::size_t i = 0; i < chain.size(); ++i)
+        if (marked[chain[i]] && (!whole_edge || (i + 1 < chain.size() && marked[chain[i + 1]]))) {
           out.push_back(static_cast<int>(w));
           break;
         }
+    }
     return out;
   };
-  // Every attempt in order until one gives a layout; true when it stopped at walls that could not
-  // be drawn, or at a cone of valence <= 2 next to walls (the walls force it: the attempts'
-  // alignments do not move it), and `may_drop`; drop_walls then lists them (the caller leaves
+  // The walls through one of `vertices` or a neighbour of one.
+  auto walls_near = [&](const std::vector<int>& vertices) {
+    std::vector<char> near(static_cast<std::size_t>(input.mesh->num_vertices()), 0);
+    for (int v : vertices) {
+      near[v] = 1;
+      const int h0 = input.mesh->vertex_halfedge(v);
+      int h = h0;
+      for (int guard = 0; h >= 0 && guard <= input.mesh->num_halfedges(); ++guard) {  // bound: v's fan
+        near[input.mesh->target(h)] = 1;
+        h = input.mesh->next_around_origin(h);
+        if (h == h0) break;
+      }
+    }
+    return walls_marked(near, false);
+  };
+  // Every attempt in order until one gives a layout; true when `may_drop` and it stopped at walls
+  // that could not be drawn, at a cone of valence <= 2 next to walls (the walls force it: the
+  // attempts' alignments do not move it), at a patch corner of a wrong angle next to walls, or at
+  // contradicting side lengths along walls; drop_walls then lists those walls (the caller leaves
   // them out and calls again).
   auto run_attempts = [&](bool may_drop) {
     drop_walls.clear();
@@ -198,7 +208,7 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
         const std::string what = "a cone of valence " + std::to_string(std::max(bad_valence, 1)) + " at vertex " +
                                  std::to_string(bad_cone) + (bad_valence == 2 ? " (with the feature walls)" : "");
         if (may_drop && !features.walls.empty()) {
-          drop_walls = walls_near(bad_cone);
+          drop_walls = walls_near({bad_cone});
           if (!drop_walls.empty()) {
             stage.done("field", t0, what + ": its " + std::to_string(drop_walls.size()) +
                                         " feature walls left out, the field again" + attempt_name);
@@ -242,10 +252,7 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
       // A patch corner of a wrong angle (three quarter turns: a concave corner) next to walls:
       // those walls are left out and the field computed again.
       if (!traced.ok && may_drop && !features.walls.empty() && !traced.bad_angle_vertices.empty()) {
-        for (int v : traced.bad_angle_vertices)
-          for (int w : walls_near(v)) drop_walls.push_back(w);
-        std::sort(drop_walls.begin(), drop_walls.end());
-        drop_walls.erase(std::unique(drop_walls.begin(), drop_walls.end()), drop_walls.end());
+        drop_walls = walls_near(traced.bad_angle_vertices);
         if (!drop_walls.empty()) {
           stage.done("trace", t0, "no layout: " + traced.failure + ": " + std::to_string(drop_walls.size()) +
                                       " feature walls next to it left out, the field again" + attempt_name);
@@ -257,12 +264,7 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
       if (!traced.ok && may_drop && !traced.contradicting_vertices.empty()) {
         std::vector<char> on(static_cast<std::size_t>(input.mesh->num_vertices()), 0);
         for (int v : traced.contradicting_vertices) on[v] = 1;
-        for (std::size_t w = 0; w < features.walls.size(); ++w)
-          for (std::size_t i = 0; i + 1 < features.walls[w].size(); ++i)
-            if (on[features.walls[w][i]] && on[features.walls[w][i + 1]]) {
-              drop_walls.push_back(static_cast<int>(w));
-              break;
-            }
+        drop_walls = walls_marked(on, true);
         if (!drop_walls.empty()) {
           stage.done("trace", t0, "no layout: " + traced.failure + ": " + std::to_string(drop_walls.size()) +
                                       " feature walls on their sides left out, the field again" + attempt_name);
@@ -282,8 +284,8 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
     return false;
   };
   // Feature walls that cannot be drawn (their field rays taken: a sharp turn of a crease), and
-  // those next to a cone of valence <= 2 (a quarter-turn corner of walls forcing a cone no patch
-  // layout has), are left out with their constraints and the field computed again, at most kFeatureRounds times
+  // those run_attempts blames (next to a cone of valence <= 2 or a corner of a wrong angle, on
+  // contradicting patches' sides), are left out with their constraints and the field computed again, at most kFeatureRounds times
   // (each removes at least one wall); the rest of the walls then still hold. Where no attempt
   // gives a layout with the walls, every attempt is tried once more without any feature (the
   // features are then only measured): one more round, the last.
@@ -301,7 +303,7 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
       first_failure.clear();
       without_features = true;
     } else {
-      // Leave out the stuck walls and their constraints.
+      // Leave out the walls run_attempts named and their constraints.
       std::vector<char> drop(features.walls.size(), 0);
       for (int w : drop_walls) drop[w] = 1;
       std::vector<std::vector<int>> kept;
