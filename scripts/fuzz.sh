@@ -10,7 +10,7 @@
 #   test. Targets: pipeline read_obj read_off read_ply read_stl certify predicates; default all,
 #   pipeline first.
 #
-# Smoke run (CI, scripts/test.sh): bash scripts/fuzz.sh smoke
+# Smoke run (scripts/test.sh with IGM_TEST_FUZZ=1): bash scripts/fuzz.sh smoke
 #   builds only the fuzz targets, the cheapest way (-O1, no debug info: ~330 s of CPU against ~480 s
 #   for RelWithDebInfo) in ${IGM_FUZZ_SMOKE_DIR:-build-fuzz-smoke}, then runs each for
 #   ${IGM_FUZZ_SMOKE_SECONDS:-5} s from its corpus (pipeline: from its five quickest entries; CTest
