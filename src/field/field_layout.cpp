@@ -17,6 +17,7 @@
 #include "igm/core/error.h"
 #include "igm/core/union_find.h"
 #include "igm/exact/intersect.h"
+#include "igm/layout/polygon_pattern.h"
 #include "igm/layout/quantize.h"
 #include "igm/mesh/scale.h"
 #include "motorcycle_internal.h"
@@ -69,8 +70,8 @@ class Builder {
  public:
   // `cache` (may be null): per input face, the last triangulation made (FaceTriangulation).
   Builder(const TriMesh& mesh, const std::vector<Vec3d>& positions, const FieldFrames& frames, const TraceGraph& g,
-          std::vector<FaceTriangulation>* cache = nullptr)
-      : mesh_(mesh), positions_(positions), frames_(frames), g_(g), cache_(cache) {}
+          std::vector<FaceTriangulation>* cache = nullptr, bool polygon_patterns = true)
+      : mesh_(mesh), positions_(positions), frames_(frames), g_(g), cache_(cache), polygon_patterns_(polygon_patterns) {}
 
   // Builds everything; "" or the reason it failed. non_disk: a seed vertex per patch that is not
   // a disk (when that is the only problem).
@@ -588,9 +589,14 @@ class Builder {
     std::vector<LayoutPatch> patches(np);
     std::string first_problem;
     int non_disk = 0, bad_corners = 0;
+    std::vector<PolygonPatch> polygons;  // disks with 3, 5 or 6 corners: the k-quad pattern
     for (int p = 0; p < np; ++p) {
       std::string problem = patch_sides(p, tris[p], patch, on_arc, patches[p]);
       if (problem.empty()) continue;
+      if (problem[0] == 'K') {
+        polygons.push_back({p, std::move(polygon_sides_)});
+        continue;
+      }
       if (problem[0] == 'N') {
         ++non_disk;
         // A seed: the smallest input vertex inside the patch, away from every arc.
@@ -637,6 +643,24 @@ class Builder {
       out.arcs.push_back(std::move(la));
     }
     out.patches = std::move(patches);
+    if (!polygons.empty() && polygon_patterns_) {
+      PolygonPatternStats ps;
+      const std::string e = fill_polygon_patches(out, polygons, {}, &ps);
+      stats.pattern_patches = ps.patterns;
+      stats.pattern_vertices = ps.added_vertices;
+      stats.patches = static_cast<int>(out.patches.size());
+      stats.refined_vertices = static_cast<int>(out.locations.size());
+      stats.refined_triangles = static_cast<int>(out.triangles.size());
+      if (!e.empty()) {
+        stats.bad_corner_patches = static_cast<int>(polygons.size());
+        return e + " (the pattern of a patch with " + str(static_cast<std::int64_t>(polygons.front().sides.size())) +
+               " corners)";
+      }
+    } else if (!polygons.empty()) {
+      stats.bad_corner_patches = static_cast<int>(polygons.size());
+      return "patch " + str(polygons.front().patch) + ": " + str(static_cast<std::int64_t>(polygons.front().sides.size())) +
+             " corners";
+    }
     int tj = 0;
     for (std::size_t p = 0; p < g_.points.size(); ++p)
       if (g_.points[p].kind != TracePoint::Kind::Vertex && is_node_[point_vertex_[p]]) ++tj;
@@ -777,7 +801,15 @@ class Builder {
         return "C: an angle of " + str(q) + " quarter turns at vertex " + str(ea.node);
       }
     }
-    if (corners.size() != 4) return "C: " + str(static_cast<std::int64_t>(corners.size())) + " corners";
+    if (corners.size() != 4) {
+      const int k = static_cast<int>(corners.size());
+      if (k < 3 || k > 6) return "C: " + str(k) + " corners";
+      // A k-gon: its sides for the pattern (layout/polygon_pattern.h), filled once every patch is known.
+      polygon_sides_.assign(static_cast<std::size_t>(k), {});
+      for (int s = 0; s < k; ++s)
+        for (int i = corners[s]; i != corners[(s + 1) % k]; i = (i + 1) % nu) polygon_sides_[s].push_back(uses[i]);
+      return "K: " + str(k) + " corners";
+    }
     for (int s = 0; s < 4; ++s) {
       out.sides[s].clear();
       for (int k = corners[s]; k != corners[(s + 1) % 4]; k = (k + 1) % nu) out.sides[s].push_back(uses[k]);
@@ -798,10 +830,12 @@ class Builder {
   std::vector<int> node_rays_;
   std::vector<char> node_cyclic_, is_node_;
   std::vector<Arc> arcs_;
+  std::vector<std::vector<ArcUse>> polygon_sides_;  // patch_sides' answer for a disk of 3, 5 or 6 corners
   std::vector<int> arc_of_he_;           // per refined half-edge: the arc on its edge, or -1
   std::vector<int> out_start_, out_;     // the refined half-edges leaving each vertex (CSR)
   std::vector<int> he_scratch_;          // patch_sides: per refined half-edge, a local index
   std::vector<FaceTriangulation>* cache_ = nullptr;
+  bool polygon_patterns_ = true;
   std::vector<std::pair<int, int>> culprits_;
   std::vector<int> bad_angle_nodes_;  // patch_sides: the nodes of wrong angles met
 };
@@ -903,7 +937,7 @@ FieldLayoutResult build_field_layout(const TriMesh& mesh, const std::vector<Vec3
     r.stats.non_disk_patches = r.stats.bad_corner_patches = 0;
     r.contradicting_vertices.clear();
     r.bad_angle_vertices.clear();
-    Builder b(mesh, positions, frames, r.graph, &triangulations);
+    Builder b(mesh, positions, frames, r.graph, &triangulations, options.polygon_patterns);
     r.failure = b.build(r.layout, r.stats, seeds);
     r.bad_angle_vertices = b.bad_angle_vertices();
     if (r.failure.empty()) {

@@ -274,6 +274,9 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
       stage.done("trace", t0,
                  traced.ok ? std::to_string(traced.stats.trace.curves) + " curves, " + std::to_string(traced.stats.patches) +
                                  " patches, " + std::to_string(traced.stats.t_junctions) + " T-junctions, " +
+                                 (traced.stats.pattern_patches > 0
+                                      ? std::to_string(traced.stats.pattern_patches) + " with 3, 5 or 6 corners filled by a pattern, "
+                                      : std::string()) +
                                  std::to_string(traced.stats.rounds) + " rounds" +
                                  (features.walls.empty() ? std::string()
                                                          : ", " + std::to_string(features.walls.size()) + " feature walls")

@@ -339,15 +339,16 @@ TEST_CASE("field pipeline: walls next to a patch corner of a wrong angle are lef
 }
 
 TEST_CASE("field pipeline: field_wall_work bounds the attempts with feature walls") {
-  // The shared three_peaks (open): with its walls the first six attempts fail (3-corner patches)
-  // and the seventh gives the layout. With field_wall_work = 1 only the first runs with the walls,
-  // then every attempt without them.
+  // The shared three_peaks (open) without the k-quad patterns: with its walls the first six
+  // attempts fail (3-corner patches) and the seventh gives the layout. With field_wall_work = 1
+  // only the first runs with the walls, then every attempt without them.
   IGM_REQUIRE_DATA(dir);
   if (igm_test::kSanitized) return;  // Release only (9 s there; the rule's code runs in every field test)
   const SurfaceSet set = validate_surfaces(read_soup(dir / "meshes/open/three_peaks.off"));
   REQUIRE(set.components.size() == 1);
   PipelineOptions o = field_options(10000);
   o.smooth_iterations = 3;
+  o.field_layout.polygon_patterns = false;
   const PipelineResult all = compute_igms(set, o).components.at(0);
   CHECK(all.certified());
   CHECK(all.stats.layout == "field");
@@ -364,6 +365,35 @@ TEST_CASE("field pipeline: field_wall_work bounds the attempts with feature wall
   }
   CHECK(walls_gone);
   CHECK_FALSE(later_attempt_with_walls);
+}
+
+TEST_CASE("field pipeline: a patch with three corners gets the k-quad pattern instead of failing the attempt") {
+  // The shared three_peaks (open) at 10k quads: the first attempt's layout (with its feature
+  // walls) has a patch of three corners. With the pattern (the default) that attempt gives the
+  // layout, walls kept; without it, the attempt fails naming the patch's three corners.
+  IGM_REQUIRE_DATA(dir);
+  const SurfaceSet set = validate_surfaces(read_soup(dir / "meshes/open/three_peaks.off"));
+  REQUIRE(set.components.size() == 1);
+  PipelineOptions o = field_options(10000);
+  o.smooth_iterations = 3;
+  const PipelineResult with = compute_igms(set, o).components.at(0);
+  CHECK(with.certified());
+  CHECK(with.stats.layout == "field");
+  CHECK(with.stats.field_layout.pattern_patches >= 1);
+  CHECK(with.stats.feature_walls > 0);
+  bool attempt_failed = false;
+  for (const StageEvent& e : with.stats.stages)
+    if (e.stage == "trace" && e.detail.find("no layout") != std::string::npos) attempt_failed = true;
+  CHECK_FALSE(attempt_failed);
+  if (igm_test::kSanitized) return;  // the second run in the Release build only
+  o.field_layout.polygon_patterns = false;
+  const PipelineResult without = compute_igms(set, o).components.at(0);
+  CHECK(without.certified());
+  CHECK(without.stats.field_layout.pattern_patches == 0);
+  bool three_corners = false;
+  for (const StageEvent& e : without.stats.stages)
+    if (e.stage == "trace" && e.detail.find("3 corners") != std::string::npos) three_corners = true;
+  CHECK(three_corners);
 }
 
 TEST_CASE("field pipeline: the same input gives the same output") {

@@ -2,7 +2,8 @@
 // The field-driven quad layout (docs/field.md): the motorcycle graph of a cross field's
 // separatrices (field/motorcycle.h) inserted exactly into the input mesh, cut into arcs at its
 // nodes, and the patches it bounds, each checked to be a topological disk with four corners (the
-// points where its boundary turns a quarter in the field), as a SurfaceLayout for the back end
+// points where its boundary turns a quarter in the field; a disk of 3, 5 or 6 corners gets the
+// k-quad pattern, layout/polygon_pattern.h), as a SurfaceLayout for the back end
 // (layout/surface_layout.h). A patch that is not a disk gets a seed vertex inside it whose four
 // field directions are traced too, and the graph is traced again, a bounded number of rounds.
 #include <string>
@@ -21,6 +22,10 @@ struct FieldLayoutOptions {
   /// Rounds of leaving out the rays of curves that could not end well (each round traces the whole
   /// graph again), as long as every vertex keeps its angles at most two quarter turns.
   int max_ban_rounds = 8;
+  /// A patch that is a disk with 3, 5 or 6 corners (every angle a quarter or a half turn) is filled
+  /// with the k-quad pattern (layout/polygon_pattern.h: a node of valence k inside it) instead of
+  /// failing the layout.
+  bool polygon_patterns = true;
 };
 
 struct FieldLayoutStats {
@@ -32,6 +37,8 @@ struct FieldLayoutStats {
   int t_junctions = 0;      // arc ends inside another patch's side
   int non_disk_patches = 0;       // in the last round
   int bad_corner_patches = 0;     // disks whose corners are not four quarter turns (last round)
+  int pattern_patches = 0;        // disks of 3, 5 or 6 corners filled with the k-quad pattern
+  int pattern_vertices = 0;       // vertices the patterns added (side midpoints, refinement)
   int contradicting_patches = 0;  // patches whose side lengths cannot all be equal (last failed round)
   int refined_vertices = 0, refined_triangles = 0;
   double seconds = 0;

@@ -1,0 +1,545 @@
+#include "igm/layout/polygon_pattern.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <deque>
+#include <limits>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "igm/mesh/surface_point.h"
+
+namespace igm {
+
+namespace {
+
+std::string str(std::int64_t x) { return std::to_string(x); }
+
+std::uint64_t dkey(int a, int b) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+}
+std::uint64_t ukey(int a, int b) { return a < b ? dkey(a, b) : dkey(b, a); }
+
+int use_end(const SurfaceLayout& L, const ArcUse& u) {
+  const auto& vs = L.arcs[u.arc].vertices;
+  return u.forward ? vs.back() : vs.front();
+}
+
+// A run of arc uses walked in order: its vertices (joints once) and, per edge, the arc and the
+// smaller of its two positions in the arc's vertex list.
+struct Walk {
+  std::vector<int> vertices;
+  std::vector<int> edge_arc;
+  std::vector<std::size_t> edge_low;
+};
+
+Walk walk(const SurfaceLayout& L, const std::vector<ArcUse>& uses) {
+  Walk w;
+  for (const ArcUse& u : uses) {
+    const auto& vs = L.arcs[u.arc].vertices;
+    const std::size_t n = vs.size();
+    if (w.vertices.empty()) w.vertices.push_back(u.forward ? vs.front() : vs.back());
+    for (std::size_t i = 1; i < n; ++i) {
+      w.vertices.push_back(u.forward ? vs[i] : vs[n - 1 - i]);
+      w.edge_arc.push_back(u.arc);
+      w.edge_low.push_back(u.forward ? i - 1 : n - 1 - i);
+    }
+  }
+  return w;
+}
+
+double distance(const Vec3d& a, const Vec3d& b) {
+  const double x = a.x - b.x, y = a.y - b.y, z = a.z - b.z;
+  return std::sqrt(x * x + y * y + z * z);
+}
+
+// Unit-capacity max flow by breadth-first augmenting paths (Edmonds-Karp).
+class UnitFlow {
+ public:
+  explicit UnitFlow(int n) : g_(static_cast<std::size_t>(n)) {}
+  void add(int u, int v) {
+    g_[u].push_back({v, 1, static_cast<int>(g_[v].size()), true});
+    g_[v].push_back({u, 0, static_cast<int>(g_[u].size()) - 1, false});
+  }
+  // One augmenting path from s to t; false when there is none. O(nodes + edges).
+  bool augment(int s, int t) {
+    const std::size_t n = g_.size();
+    std::vector<std::pair<int, int>> parent(n, {-1, -1});
+    std::deque<int> queue{s};
+    parent[s] = {s, -1};
+    while (!queue.empty() && parent[t].first < 0) {
+      const int u = queue.front();
+      queue.pop_front();
+      for (int e = 0; e < static_cast<int>(g_[u].size()); ++e) {
+        const Edge& ed = g_[u][e];
+        if (ed.cap > 0 && parent[ed.to].first < 0) parent[ed.to] = {u, e}, queue.push_back(ed.to);
+      }
+    }
+    if (parent[t].first < 0) return false;
+    for (int v = t; v != s;) {
+      const auto [u, e] = parent[v];
+      Edge& ed = g_[u][e];
+      --ed.cap;
+      ++g_[v][ed.rev].cap;
+      v = u;
+    }
+    return true;
+  }
+  // The next node along a saturated original edge out of u, or -1.
+  int flow_next(int u) const {
+    for (const Edge& ed : g_[u])
+      if (ed.original && ed.cap == 0) return ed.to;
+    return -1;
+  }
+  // Every node u's saturated original edges, for following several paths out of the source.
+  std::vector<int> flow_all(int u) const {
+    std::vector<int> out;
+    for (const Edge& ed : g_[u])
+      if (ed.original && ed.cap == 0) out.push_back(ed.to);
+    return out;
+  }
+
+ private:
+  struct Edge {
+    int to, cap, rev;
+    bool original;
+  };
+  std::vector<std::vector<Edge>> g_;
+};
+
+class Filler {
+ public:
+  Filler(SurfaceLayout& L, std::vector<PolygonPatch>& polys, const PolygonPatternOptions& o, PolygonPatternStats& st)
+      : L_(L), polys_(polys), opt_(o), st_(st),
+        input_positions_(L.positions.begin(), L.positions.begin() + std::min<std::size_t>(L.positions.size(), L.num_input_vertices)) {}
+
+  std::string fill(std::size_t index) {
+    const int p = polys_[index].patch;
+    const std::string name = "patch " + str(p);
+    const int k = static_cast<int>(polys_[index].sides.size());
+    if (k < 3 || k > 6) return name + ": " + str(k) + " sides (the pattern takes 3 to 6)";
+    for (const auto& side : polys_[index].sides)
+      if (side.empty()) return name + ": an empty side";
+    // 1. A node in the middle of every side.
+    std::vector<int> mid(k, -1);
+    for (int s = 0; s < k; ++s)
+      if (std::string e = middle_node(index, s, mid[s]); !e.empty()) return name + ": " + e;
+    // 2. Room for k disjoint paths from a centre, refining the patch's triangles where needed.
+    std::vector<std::vector<int>> paths;
+    for (int round = 0;; ++round) {
+      const std::string e = find_paths(index, mid, paths);
+      if (e.empty()) break;
+      if (round >= opt_.max_refine_rounds)
+        return name + ": " + e + " after " + str(round) + " refinement rounds";
+      refine(p, polys_[index]);
+      ++st_.refine_rounds;
+    }
+    // 3. The k patches.
+    const PolygonPatch& poly = polys_[index];
+    std::vector<std::vector<ArcUse>> first(k), second(k);
+    for (int s = 0; s < k; ++s) {
+      const auto& side = poly.sides[s];
+      std::size_t cut = side.size();
+      for (std::size_t i = 0; i + 1 < side.size() && cut == side.size(); ++i)
+        if (use_end(L_, side[i]) == mid[s]) cut = i + 1;
+      if (cut == side.size()) return name + ": side " + str(s) + " has no arc end at its middle node";
+      first[s].assign(side.begin(), side.begin() + static_cast<std::ptrdiff_t>(cut));
+      second[s].assign(side.begin() + static_cast<std::ptrdiff_t>(cut), side.end());
+    }
+    std::vector<int> path_arc(k);
+    for (int s = 0; s < k; ++s) {
+      path_arc[s] = static_cast<int>(L_.arcs.size());
+      LayoutArc a;
+      a.vertices = paths[s];
+      L_.arcs.push_back(std::move(a));
+    }
+    std::vector<int> ids(k, p);
+    for (int j = 1; j < k; ++j) {
+      ids[j] = static_cast<int>(L_.patches.size());
+      L_.patches.emplace_back();
+    }
+    // Triangles: flood fill from each pattern patch's first side, across edges on no arc.
+    std::unordered_set<std::uint64_t> barrier;
+    std::vector<int> touched_arcs = path_arc;
+    for (const auto& side : poly.sides)
+      for (const ArcUse& u : side) touched_arcs.push_back(u.arc);
+    std::sort(touched_arcs.begin(), touched_arcs.end());
+    touched_arcs.erase(std::unique(touched_arcs.begin(), touched_arcs.end()), touched_arcs.end());
+    for (int a : touched_arcs) {
+      const auto& vs = L_.arcs[a].vertices;
+      for (std::size_t i = 0; i + 1 < vs.size(); ++i) barrier.insert(ukey(vs[i], vs[i + 1]));
+    }
+    std::vector<int> tris;
+    for (int t = 0; t < static_cast<int>(L_.triangles.size()); ++t)
+      if (L_.triangle_patch[t] == p) tris.push_back(t);
+    std::unordered_map<std::uint64_t, int> by_edge;
+    for (int t : tris)
+      for (int c = 0; c < 3; ++c) by_edge[dkey(L_.triangles[t][c], L_.triangles[t][(c + 1) % 3])] = t;
+    std::unordered_map<int, int> sub;  // triangle -> pattern patch j
+    for (int j = 0; j < k; ++j) {
+      const Walk w = walk(L_, first[j]);
+      const auto it = by_edge.find(dkey(w.vertices[0], w.vertices[1]));
+      if (it == by_edge.end()) return name + ": corner " + str(j) + "'s side has no triangle of the patch on its left";
+      if (sub.count(it->second)) return name + ": the pattern's paths do not separate corner " + str(j);
+      std::vector<int> stack{it->second};
+      sub[it->second] = j;
+      while (!stack.empty()) {
+        const int t = stack.back();
+        stack.pop_back();
+        for (int c = 0; c < 3; ++c) {
+          const int u = L_.triangles[t][c], v = L_.triangles[t][(c + 1) % 3];
+          if (barrier.count(ukey(u, v))) continue;
+          const auto nb = by_edge.find(dkey(v, u));
+          if (nb == by_edge.end()) continue;
+          const auto seen = sub.find(nb->second);
+          if (seen == sub.end()) {
+            sub[nb->second] = j;
+            stack.push_back(nb->second);
+          } else if (seen->second != j) {
+            return name + ": the pattern's paths do not separate corners " + str(seen->second) + " and " + str(j);
+          }
+        }
+      }
+    }
+    if (sub.size() != tris.size())
+      return name + ": " + str(static_cast<std::int64_t>(tris.size() - sub.size())) + " triangles off the pattern";
+    for (int t : tris) L_.triangle_patch[t] = ids[sub[t]];
+    for (int j = 0; j < k; ++j) {
+      const int prev = (j + k - 1) % k;
+      LayoutPatch& P = L_.patches[ids[j]];
+      P.sides[0] = first[j];
+      P.sides[1] = {ArcUse{path_arc[j], false}};
+      P.sides[2] = {ArcUse{path_arc[prev], true}};
+      P.sides[3] = second[prev];
+    }
+    // The arcs' patches on each side, from the triangles along them.
+    for (int a : touched_arcs) {
+      LayoutArc& A = L_.arcs[a];
+      const auto f = by_edge.find(dkey(A.vertices[0], A.vertices[1]));
+      if (f != by_edge.end()) A.patch[0] = L_.triangle_patch[f->second];
+      const auto b = by_edge.find(dkey(A.vertices[1], A.vertices[0]));
+      if (b != by_edge.end()) A.patch[1] = L_.triangle_patch[b->second];
+    }
+    ++st_.patterns;
+    return "";
+  }
+
+ private:
+  int add_vertex(SurfacePoint p) {
+    L_.positions.push_back(evaluate(p, input_positions_));
+    L_.locations.push_back(std::move(p));
+    ++st_.added_vertices;
+    return static_cast<int>(L_.locations.size()) - 1;
+  }
+
+  void add_triangle(const std::array<int, 3>& t, int patch) {
+    L_.triangles.push_back(t);
+    L_.triangle_patch.push_back(patch);
+  }
+
+  // Cuts arc a in two at its vertex `at` (0 < at < size - 1); every use of a in every patch and
+  // polygon becomes the two pieces in walking order.
+  void split_arc(int a, std::size_t at) {
+    LayoutArc b;
+    b.vertices.assign(L_.arcs[a].vertices.begin() + static_cast<std::ptrdiff_t>(at), L_.arcs[a].vertices.end());
+    b.patch = L_.arcs[a].patch;
+    L_.arcs[a].vertices.resize(at + 1);
+    const int nb = static_cast<int>(L_.arcs.size());
+    L_.arcs.push_back(std::move(b));
+    auto fix = [&](std::vector<ArcUse>& side) {
+      std::vector<ArcUse> out;
+      out.reserve(side.size() + 1);
+      for (const ArcUse& u : side) {
+        if (u.arc != a) {
+          out.push_back(u);
+        } else if (u.forward) {
+          out.push_back({a, true});
+          out.push_back({nb, true});
+        } else {
+          out.push_back({nb, false});
+          out.push_back({a, false});
+        }
+      }
+      side = std::move(out);
+    };
+    for (LayoutPatch& P : L_.patches)
+      for (auto& side : P.sides) fix(side);
+    for (PolygonPatch& poly : polys_)
+      for (auto& side : poly.sides) fix(side);
+    ++st_.split_arcs;
+  }
+
+  // Splits the surface edge between positions low and low + 1 of arc a at its exact midpoint, in
+  // both triangles beside it; the new vertex enters the arc. Returns it.
+  int split_edge(int a, std::size_t low) {
+    const int x = L_.arcs[a].vertices[low], y = L_.arcs[a].vertices[low + 1];
+    const int m = add_vertex(lerp(L_.locations[x], L_.locations[y], Rational(1, 2)));
+    const std::size_t nt = L_.triangles.size();
+    for (std::size_t t = 0; t < nt; ++t) {
+      const std::array<int, 3> tri = L_.triangles[t];
+      for (int c = 0; c < 3; ++c) {
+        const int u = tri[c], v = tri[(c + 1) % 3], w = tri[(c + 2) % 3];
+        if ((u == x && v == y) || (u == y && v == x)) {
+          L_.triangles[t] = {u, m, w};
+          add_triangle({m, v, w}, L_.triangle_patch[t]);
+          break;
+        }
+      }
+    }
+    L_.arcs[a].vertices.insert(L_.arcs[a].vertices.begin() + static_cast<std::ptrdiff_t>(low + 1), m);
+    ++st_.split_edges;
+    return m;
+  }
+
+  // Makes a node near the middle of side s of polygon `index`; sets m.
+  std::string middle_node(std::size_t index, int s, int& m) {
+    const int p = polys_[index].patch;
+    std::unordered_map<int, int> count;  // how often each vertex is met walking the boundary
+    for (const auto& side : polys_[index].sides) {
+      const Walk w = walk(L_, side);
+      for (std::size_t i = 0; i + 1 < w.vertices.size(); ++i) ++count[w.vertices[i]];
+    }
+    const Walk w = walk(L_, polys_[index].sides[s]);
+    const std::size_t n = w.vertices.size();
+    std::vector<double> acc(n, 0.0);
+    for (std::size_t i = 1; i < n; ++i)
+      acc[i] = acc[i - 1] + distance(L_.positions[w.vertices[i - 1]], L_.positions[w.vertices[i]]);
+    const double half = acc[n - 1] / 2;
+    std::size_t best = 0;
+    double best_d = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 1; i + 1 < n; ++i)
+      if (count[w.vertices[i]] == 1 && std::abs(acc[i] - half) < best_d) best_d = std::abs(acc[i] - half), best = i;
+    int arc = -1;
+    std::size_t at = 0;
+    if (best == 0) {
+      // No such vertex: split the edge whose midpoint is nearest the middle (not a slit: the patch
+      // on one side only).
+      std::size_t e_best = n;
+      for (std::size_t e = 0; e + 1 < n; ++e) {
+        const LayoutArc& A = L_.arcs[w.edge_arc[e]];
+        if (A.patch[0] == p && A.patch[1] == p) continue;
+        const double d = std::abs((acc[e] + acc[e + 1]) / 2 - half);
+        if (e_best == n || d < best_d) best_d = d, e_best = e;
+      }
+      if (e_best == n) return "side " + str(s) + " runs along slits only";
+      arc = w.edge_arc[e_best];
+      split_edge(arc, w.edge_low[e_best]);
+      at = w.edge_low[e_best] + 1;
+      m = L_.arcs[arc].vertices[at];
+    } else {
+      m = w.vertices[best];
+      // The arc through it: the one of the edge before it, unless m ends that arc.
+      arc = w.edge_arc[best - 1];
+      const auto& vs = L_.arcs[arc].vertices;
+      if (vs.front() == m || vs.back() == m) return "";  // already a node
+      at = static_cast<std::size_t>(std::find(vs.begin() + 1, vs.end() - 1, m) - vs.begin());
+    }
+    split_arc(arc, at);
+    return "";
+  }
+
+  // The patch's triangles, boundary vertices (on its sides' arcs) and interior edges.
+  struct Region {
+    std::vector<int> tris;
+    std::vector<int> local;                  // local id -> vertex
+    std::unordered_map<int, int> id;         // vertex -> local id
+    std::vector<char> boundary;              // per local id
+    std::vector<std::vector<int>> adjacent;  // per local id, across interior edges (local ids)
+    std::vector<std::array<int, 2>> interior_edges;  // vertex pairs, in order of first meeting
+  };
+
+  Region region(const PolygonPatch& poly) const {
+    Region R;
+    std::unordered_set<std::uint64_t> arc_edges;
+    std::unordered_set<int> on_boundary;
+    for (const auto& side : poly.sides)
+      for (const ArcUse& u : side) {
+        const auto& vs = L_.arcs[u.arc].vertices;
+        for (std::size_t i = 0; i < vs.size(); ++i) {
+          on_boundary.insert(vs[i]);
+          if (i + 1 < vs.size()) arc_edges.insert(ukey(vs[i], vs[i + 1]));
+        }
+      }
+    for (int t = 0; t < static_cast<int>(L_.triangles.size()); ++t) {
+      if (L_.triangle_patch[t] != poly.patch) continue;
+      R.tris.push_back(t);
+      for (int v : L_.triangles[t])
+        if (R.id.emplace(v, static_cast<int>(R.local.size())).second) {
+          R.local.push_back(v);
+          R.boundary.push_back(on_boundary.count(v) ? 1 : 0);
+        }
+    }
+    R.adjacent.resize(R.local.size());
+    std::unordered_set<std::uint64_t> seen;
+    for (int t : R.tris)
+      for (int c = 0; c < 3; ++c) {
+        const int u = L_.triangles[t][c], v = L_.triangles[t][(c + 1) % 3];
+        const std::uint64_t key = ukey(u, v);
+        if (arc_edges.count(key) || !seen.insert(key).second) continue;
+        R.interior_edges.push_back({u, v});
+        R.adjacent[R.id[u]].push_back(R.id[v]);
+        R.adjacent[R.id[v]].push_back(R.id[u]);
+      }
+    return R;
+  }
+
+  // k disjoint paths from a centre to the middle nodes, through interior vertices; "" or why not.
+  std::string find_paths(std::size_t index, const std::vector<int>& mid, std::vector<std::vector<int>>& paths) const {
+    const PolygonPatch& poly = polys_[index];
+    const Region R = region(poly);
+    const int k = static_cast<int>(mid.size());
+    const int n = static_cast<int>(R.local.size());
+    std::vector<int> sink_of(n, -1), mid_local(k);
+    for (int s = 0; s < k; ++s) {
+      const auto it = R.id.find(mid[s]);
+      if (it == R.id.end()) return "side " + str(s) + "'s middle node is off the patch";
+      mid_local[s] = it->second;
+      sink_of[it->second] = s;
+    }
+    // Hop distances from every middle node through interior vertices.
+    constexpr int kFar = std::numeric_limits<int>::max();
+    std::vector<std::vector<int>> dist(k, std::vector<int>(n, kFar));
+    for (int s = 0; s < k; ++s) {
+      std::deque<int> queue;
+      dist[s][mid_local[s]] = 0;
+      queue.push_back(mid_local[s]);
+      while (!queue.empty()) {
+        const int u = queue.front();
+        queue.pop_front();
+        for (int v : R.adjacent[u])
+          if (!R.boundary[v] && dist[s][v] == kFar) dist[s][v] = dist[s][u] + 1, queue.push_back(v);
+      }
+    }
+    int centre = -1;
+    std::int64_t best_max = 0, best_sum = 0;
+    for (int v = 0; v < n; ++v) {
+      if (R.boundary[v]) continue;
+      std::int64_t mx = 0, sum = 0;
+      bool all = true;
+      for (int s = 0; s < k && all; ++s) {
+        if (dist[s][v] == kFar) all = false;
+        else mx = std::max<std::int64_t>(mx, dist[s][v]), sum += dist[s][v];
+      }
+      if (!all) continue;
+      if (centre < 0 || mx < best_max || (mx == best_max && (sum < best_sum || (sum == best_sum && R.local[v] < R.local[centre]))))
+        centre = v, best_max = mx, best_sum = sum;
+    }
+    if (centre < 0) return "no interior vertex reaches every side's middle";
+    // Nodes: interior vertex v -> in 2v, out 2v + 1; middle node s -> 2n + s; sink 2n + k.
+    UnitFlow flow(2 * n + k + 1);
+    const int sink = 2 * n + k;
+    for (int v = 0; v < n; ++v)
+      if (!R.boundary[v] && v != centre) flow.add(2 * v, 2 * v + 1);
+    for (const auto& [a, b] : R.interior_edges) {
+      const int u = R.id.at(a), v = R.id.at(b);
+      for (const auto& [x, y] : {std::pair<int, int>{u, v}, std::pair<int, int>{v, u}}) {
+        if (R.boundary[x]) continue;
+        if (!R.boundary[y]) {
+          if (y != centre) flow.add(2 * x + 1, 2 * y);
+        } else if (sink_of[y] >= 0) {
+          flow.add(2 * x + 1, 2 * n + sink_of[y]);
+        }
+      }
+    }
+    for (int s = 0; s < k; ++s) flow.add(2 * n + s, sink);
+    int found = 0;
+    while (found < k && flow.augment(2 * centre + 1, sink)) ++found;
+    if (found < k) return "room for " + str(found) + " of " + str(k) + " disjoint paths";
+    paths.assign(k, {});
+    for (int first : flow.flow_all(2 * centre + 1)) {
+      std::vector<int> path{R.local[centre]};
+      int x = first;
+      for (int guard = 0; guard <= 2 * n + k && x < 2 * n; ++guard) {
+        path.push_back(R.local[x / 2]);
+        x = flow.flow_next(2 * (x / 2) + 1);
+        if (x < 0) return "a path of the flow breaks off";
+      }
+      if (x < 2 * n || x >= 2 * n + k) return "a path of the flow does not end at a middle node";
+      const int s = x - 2 * n;
+      path.push_back(mid[s]);
+      paths[s] = std::move(path);
+    }
+    for (int s = 0; s < k; ++s)
+      if (paths[s].empty()) return "no path to side " + str(s);
+    return "";
+  }
+
+  // One refinement round of the polygon's triangles: centroid splits where it has no interior
+  // vertex, else the exact midpoint of every interior edge (red-green: 2, 3 or 4 triangles per
+  // triangle with 1, 2 or 3 split edges). Only the patch's triangles change.
+  void refine(int p, const PolygonPatch& poly) {
+    const Region R = region(poly);
+    const bool any_interior = std::find(R.boundary.begin(), R.boundary.end(), 0) != R.boundary.end();
+    if (!any_interior || R.interior_edges.empty()) {
+      for (int t : R.tris) {
+        const std::array<int, 3> tri = L_.triangles[t];
+        const Rational third(1, 3);
+        const int g = add_vertex(barycentric_point(L_.locations[tri[0]], L_.locations[tri[1]], L_.locations[tri[2]],
+                                                   {third, third, third}));
+        L_.triangles[t] = {tri[0], tri[1], g};
+        add_triangle({tri[1], tri[2], g}, p);
+        add_triangle({tri[2], tri[0], g}, p);
+      }
+      return;
+    }
+    std::unordered_map<std::uint64_t, int> midpoint;
+    for (const auto& [a, b] : R.interior_edges)
+      midpoint[ukey(a, b)] = add_vertex(lerp(L_.locations[a], L_.locations[b], Rational(1, 2)));
+    for (int t : R.tris) {
+      const std::array<int, 3> v = L_.triangles[t];
+      std::array<int, 3> m{-1, -1, -1};  // m[i] on edge v[i] v[i+1]
+      int splits = 0;
+      for (int i = 0; i < 3; ++i) {
+        const auto it = midpoint.find(ukey(v[i], v[(i + 1) % 3]));
+        if (it != midpoint.end()) m[i] = it->second, ++splits;
+      }
+      if (splits == 1) {
+        const int i = m[0] >= 0 ? 0 : (m[1] >= 0 ? 1 : 2);
+        L_.triangles[t] = {v[i], m[i], v[(i + 2) % 3]};
+        add_triangle({m[i], v[(i + 1) % 3], v[(i + 2) % 3]}, p);
+      } else if (splits == 2) {
+        const int i = m[0] < 0 ? 0 : (m[1] < 0 ? 1 : 2);  // the edge left whole
+        const int a = v[(i + 1) % 3], b = v[(i + 2) % 3], c = v[i];
+        const int m1 = m[(i + 1) % 3], m2 = m[(i + 2) % 3];  // on a-b and b-c
+        L_.triangles[t] = {m1, b, m2};
+        add_triangle({a, m1, m2}, p);
+        add_triangle({a, m2, c}, p);
+      } else if (splits == 3) {
+        L_.triangles[t] = {v[0], m[0], m[2]};
+        add_triangle({m[0], v[1], m[1]}, p);
+        add_triangle({m[2], m[1], v[2]}, p);
+        add_triangle({m[0], m[1], m[2]}, p);
+      }
+    }
+  }
+
+  SurfaceLayout& L_;
+  std::vector<PolygonPatch>& polys_;
+  const PolygonPatternOptions& opt_;
+  PolygonPatternStats& st_;
+  std::vector<Vec3d> input_positions_;
+};
+
+}  // namespace
+
+std::string fill_polygon_patches(SurfaceLayout& layout, const std::vector<PolygonPatch>& polygons,
+                                 const PolygonPatternOptions& options, PolygonPatternStats* stats) {
+  PolygonPatternStats local;
+  PolygonPatternStats& st = stats ? *stats : local;
+  if (layout.positions.size() != layout.locations.size() ||
+      layout.triangle_patch.size() != layout.triangles.size())
+    return "the layout's positions or triangle patches do not match its sizes";
+  std::vector<PolygonPatch> polys = polygons;
+  for (const PolygonPatch& poly : polys)
+    if (poly.patch < 0 || poly.patch >= static_cast<int>(layout.patches.size()))
+      return "polygon patch " + str(poly.patch) + " is not a patch of the layout";
+  Filler filler(layout, polys, options, st);
+  for (std::size_t i = 0; i < polys.size(); ++i)
+    if (std::string e = filler.fill(i); !e.empty()) return e;
+  if (std::string e = check_surface_layout(layout); !e.empty()) return "the pattern broke the layout: " + e;
+  return "";
+}
+
+}  // namespace igm
