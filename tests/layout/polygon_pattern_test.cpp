@@ -147,7 +147,7 @@ TEST_CASE("polygon pattern: a patch of two triangles has no room until refined, 
   }
 }
 
-TEST_CASE("polygon pattern: on a closed cube, neighbours get T-junctions; a degenerate polygon's lengths are infeasible") {
+TEST_CASE("polygon pattern: on a closed cube, neighbours get T-junctions, and a degenerate polygon's lengths are infeasible") {
   // A cube face whose corner is made straight is a triangle with sides a + b, a, b: the pattern is
   // a valid layout, but its paths would need length (a + b - (a + b)) / 2 = 0, which the
   // quantization proves infeasible (the field layout then treats the patch as contradicting).
