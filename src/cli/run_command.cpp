@@ -155,7 +155,7 @@ std::string field_json(const igm::PipelineStats& st) {
   v += "}";
   const igm::FieldLayoutStats& l = st.field_layout;
   return "{\"cone_valences\": " + v + ", \"curves\": " + std::to_string(l.trace.curves) + ", \"patches\": " +
-         std::to_string(l.patches) + ", \"t_junctions\": " + std::to_string(l.t_junctions) + ", \"pattern_patches\": " + std::to_string(l.pattern_patches) + ", \"rounds\": " +
+         std::to_string(l.patches) + ", \"t_junctions\": " + std::to_string(l.t_junctions) + ", \"pattern_patches\": " + std::to_string(l.pattern_patches) + ", \"reflex_cuts\": " + std::to_string(l.reflex_cuts) + ", \"rounds\": " +
          std::to_string(l.rounds) + ", \"banned_rays\": " + std::to_string(l.banned_rays) + ", \"seeds\": " +
          std::to_string(l.seeds) + ", \"feature_walls\": " + std::to_string(st.feature_walls) +
          ", \"features_dropped\": " + std::to_string(st.features_dropped) + ", \"features_failure\": " +

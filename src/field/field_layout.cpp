@@ -594,7 +594,7 @@ class Builder {
       std::string problem = patch_sides(p, tris[p], patch, on_arc, patches[p]);
       if (problem.empty()) continue;
       if (problem[0] == 'K') {
-        polygons.push_back({p, std::move(polygon_sides_)});
+        polygons.push_back({p, std::move(polygon_sides_), std::move(polygon_turns_)});
         continue;
       }
       if (problem[0] == 'N') {
@@ -647,14 +647,16 @@ class Builder {
       PolygonPatternStats ps;
       const std::string e = fill_polygon_patches(out, polygons, {}, &ps);
       stats.pattern_patches = ps.patterns;
+      stats.reflex_cuts = ps.reflex_cuts;
       stats.pattern_vertices = ps.added_vertices;
       stats.patches = static_cast<int>(out.patches.size());
       stats.refined_vertices = static_cast<int>(out.locations.size());
       stats.refined_triangles = static_cast<int>(out.triangles.size());
       if (!e.empty()) {
         stats.bad_corner_patches = static_cast<int>(polygons.size());
-        return e + " (the pattern of a patch with " + str(static_cast<std::int64_t>(polygons.front().sides.size())) +
-               " corners)";
+        bad_angle_nodes_.insert(bad_angle_nodes_.end(), polygon_reflex_.begin(), polygon_reflex_.end());
+        return e + " (the pattern or cut of a patch with " +
+               str(static_cast<std::int64_t>(polygons.front().sides.size())) + " corners)";
       }
     } else if (!polygons.empty()) {
       stats.bad_corner_patches = static_cast<int>(polygons.size());
@@ -771,7 +773,7 @@ class Builder {
     }
     // Quarter turns at each node between consecutive uses.
     const int nu = static_cast<int>(uses.size());
-    std::vector<int> corners;
+    std::vector<int> corners, turns, reflex_nodes;
     for (int k = 0; k < nu; ++k) {
       const ArcUse& in = uses[k];
       const ArcUse& outu = uses[(k + 1) % nu];
@@ -795,19 +797,30 @@ class Builder {
         else if (b_arrives && ab.curve >= 0) blame(ab.curve);
         else if (aa.curve >= 0) blame(aa.curve);
       }
-      if (q == 1) corners.push_back((k + 1) % nu);
-      else if (q != 2) {
+      if (q == 1 || (q == 3 && polygon_patterns_)) {
+        corners.push_back((k + 1) % nu);
+        turns.push_back(q);
+        if (q == 3) reflex_nodes.push_back(ea.node);
+      } else if (q != 2) {
         bad_angle_nodes_.push_back(ea.node);
         return "C: an angle of " + str(q) + " quarter turns at vertex " + str(ea.node);
       }
     }
-    if (corners.size() != 4) {
+    if (reflex_nodes.size() > 1) {
+      bad_angle_nodes_.insert(bad_angle_nodes_.end(), reflex_nodes.begin(), reflex_nodes.end());
+      return "C: an angle of 3 quarter turns at vertex " + str(reflex_nodes.front()) + " (and " +
+             str(static_cast<std::int64_t>(reflex_nodes.size()) - 1) + " more)";
+    }
+    if (corners.size() != 4 || !reflex_nodes.empty()) {
       const int k = static_cast<int>(corners.size());
-      if (k < 3 || k > 6) return "C: " + str(k) + " corners";
-      // A k-gon: its sides for the pattern (layout/polygon_pattern.h), filled once every patch is known.
+      if (reflex_nodes.empty() && (k < 3 || k > 6)) return "C: " + str(k) + " corners";
+      // A k-gon, or a polygon with one reflex corner: its sides for the pattern or the cut
+      // (layout/polygon_pattern.h), made once every patch is known.
       polygon_sides_.assign(static_cast<std::size_t>(k), {});
       for (int s = 0; s < k; ++s)
         for (int i = corners[s]; i != corners[(s + 1) % k]; i = (i + 1) % nu) polygon_sides_[s].push_back(uses[i]);
+      polygon_turns_ = turns;
+      polygon_reflex_.insert(polygon_reflex_.end(), reflex_nodes.begin(), reflex_nodes.end());
       return "K: " + str(k) + " corners";
     }
     for (int s = 0; s < 4; ++s) {
@@ -830,7 +843,11 @@ class Builder {
   std::vector<int> node_rays_;
   std::vector<char> node_cyclic_, is_node_;
   std::vector<Arc> arcs_;
-  std::vector<std::vector<ArcUse>> polygon_sides_;  // patch_sides' answer for a disk of 3, 5 or 6 corners
+  // patch_sides' answer for a disk of 3, 5 or 6 corners or with one reflex corner: its sides, the
+  // turns at their first corners; and every such disk's reflex corner.
+  std::vector<std::vector<ArcUse>> polygon_sides_;
+  std::vector<int> polygon_turns_;
+  std::vector<int> polygon_reflex_;
   std::vector<int> arc_of_he_;           // per refined half-edge: the arc on its edge, or -1
   std::vector<int> out_start_, out_;     // the refined half-edges leaving each vertex (CSR)
   std::vector<int> he_scratch_;          // patch_sides: per refined half-edge, a local index

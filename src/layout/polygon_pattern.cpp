@@ -22,6 +22,10 @@ std::uint64_t dkey(int a, int b) {
 }
 std::uint64_t ukey(int a, int b) { return a < b ? dkey(a, b) : dkey(b, a); }
 
+int use_start(const SurfaceLayout& L, const ArcUse& u) {
+  const auto& vs = L.arcs[u.arc].vertices;
+  return u.forward ? vs.front() : vs.back();
+}
 int use_end(const SurfaceLayout& L, const ArcUse& u) {
   const auto& vs = L.arcs[u.arc].vertices;
   return u.forward ? vs.back() : vs.front();
@@ -110,6 +114,15 @@ class UnitFlow {
 };
 
 class Filler {
+  // The patch's triangles, boundary vertices (on its sides' arcs) and interior edges.
+  struct Region {
+    std::vector<int> tris;
+    std::vector<int> local;                  // local id -> vertex
+    std::unordered_map<int, int> id;         // vertex -> local id
+    std::vector<char> boundary;              // per local id
+    std::vector<std::vector<int>> adjacent;  // per local id, across interior edges (local ids)
+    std::vector<std::array<int, 2>> interior_edges;  // vertex pairs, in order of first meeting
+  };
  public:
   Filler(SurfaceLayout& L, std::vector<PolygonPatch>& polys, const PolygonPatternOptions& o, PolygonPatternStats& st)
       : L_(L), polys_(polys), opt_(o), st_(st),
@@ -160,52 +173,15 @@ class Filler {
       ids[j] = static_cast<int>(L_.patches.size());
       L_.patches.emplace_back();
     }
-    // Triangles: flood fill from each pattern patch's first side, across edges on no arc.
-    std::unordered_set<std::uint64_t> barrier;
-    std::vector<int> touched_arcs = path_arc;
+    std::vector<int> barrier_arcs = path_arc;
     for (const auto& side : poly.sides)
-      for (const ArcUse& u : side) touched_arcs.push_back(u.arc);
-    std::sort(touched_arcs.begin(), touched_arcs.end());
-    touched_arcs.erase(std::unique(touched_arcs.begin(), touched_arcs.end()), touched_arcs.end());
-    for (int a : touched_arcs) {
-      const auto& vs = L_.arcs[a].vertices;
-      for (std::size_t i = 0; i + 1 < vs.size(); ++i) barrier.insert(ukey(vs[i], vs[i + 1]));
-    }
-    std::vector<int> tris;
-    for (int t = 0; t < static_cast<int>(L_.triangles.size()); ++t)
-      if (L_.triangle_patch[t] == p) tris.push_back(t);
-    std::unordered_map<std::uint64_t, int> by_edge;
-    for (int t : tris)
-      for (int c = 0; c < 3; ++c) by_edge[dkey(L_.triangles[t][c], L_.triangles[t][(c + 1) % 3])] = t;
-    std::unordered_map<int, int> sub;  // triangle -> pattern patch j
+      for (const ArcUse& u : side) barrier_arcs.push_back(u.arc);
+    std::vector<std::array<int, 2>> seeds;
     for (int j = 0; j < k; ++j) {
       const Walk w = walk(L_, first[j]);
-      const auto it = by_edge.find(dkey(w.vertices[0], w.vertices[1]));
-      if (it == by_edge.end()) return name + ": corner " + str(j) + "'s side has no triangle of the patch on its left";
-      if (sub.count(it->second)) return name + ": the pattern's paths do not separate corner " + str(j);
-      std::vector<int> stack{it->second};
-      sub[it->second] = j;
-      while (!stack.empty()) {
-        const int t = stack.back();
-        stack.pop_back();
-        for (int c = 0; c < 3; ++c) {
-          const int u = L_.triangles[t][c], v = L_.triangles[t][(c + 1) % 3];
-          if (barrier.count(ukey(u, v))) continue;
-          const auto nb = by_edge.find(dkey(v, u));
-          if (nb == by_edge.end()) continue;
-          const auto seen = sub.find(nb->second);
-          if (seen == sub.end()) {
-            sub[nb->second] = j;
-            stack.push_back(nb->second);
-          } else if (seen->second != j) {
-            return name + ": the pattern's paths do not separate corners " + str(seen->second) + " and " + str(j);
-          }
-        }
-      }
+      seeds.push_back({w.vertices[0], w.vertices[1]});
     }
-    if (sub.size() != tris.size())
-      return name + ": " + str(static_cast<std::int64_t>(tris.size() - sub.size())) + " triangles off the pattern";
-    for (int t : tris) L_.triangle_patch[t] = ids[sub[t]];
+    if (std::string e = assign_parts(p, seeds, ids, barrier_arcs); !e.empty()) return name + ": " + e;
     for (int j = 0; j < k; ++j) {
       const int prev = (j + k - 1) % k;
       LayoutPatch& P = L_.patches[ids[j]];
@@ -214,15 +190,121 @@ class Filler {
       P.sides[2] = {ArcUse{path_arc[prev], true}};
       P.sides[3] = second[prev];
     }
-    // The arcs' patches on each side, from the triangles along them.
-    for (int a : touched_arcs) {
-      LayoutArc& A = L_.arcs[a];
-      const auto f = by_edge.find(dkey(A.vertices[0], A.vertices[1]));
-      if (f != by_edge.end()) A.patch[0] = L_.triangle_patch[f->second];
-      const auto b = by_edge.find(dkey(A.vertices[1], A.vertices[0]));
-      if (b != by_edge.end()) A.patch[1] = L_.triangle_patch[b->second];
-    }
     ++st_.patterns;
+    return "";
+  }
+
+  // Cuts polygon `index`, which has one reflex corner, by a path from it to the middle of a side
+  // (fill_polygon_patches' contract); each part becomes a four-sided patch or a new polygon.
+  std::string split_reflex(std::size_t index) {
+    const int p = polys_[index].patch;
+    const std::string name = "patch " + str(p);
+    const int k = static_cast<int>(polys_[index].sides.size());
+    if (static_cast<int>(polys_[index].turns.size()) != k) return name + ": " + str(k) + " sides but " +
+        str(static_cast<std::int64_t>(polys_[index].turns.size())) + " corner turns";
+    int r = -1, reflex = 0;
+    for (int s = 0; s < k; ++s) {
+      if (polys_[index].sides[s].empty()) return name + ": an empty side";
+      const int t = polys_[index].turns[s];
+      if (t == 3) ++reflex, r = s;
+      else if (t != 1) return name + ": a corner of " + str(t) + " quarter turns";
+    }
+    if (reflex != 1) return name + ": " + str(reflex) + " reflex corners (a cut takes one)";
+    {
+      PolygonPatch& P = polys_[index];
+      std::rotate(P.sides.begin(), P.sides.begin() + r, P.sides.end());
+      std::rotate(P.turns.begin(), P.turns.begin() + r, P.turns.end());
+    }
+    const int rv = use_start(L_, polys_[index].sides[0].front());
+    // The side to cut to and which part keeps r as a corner (x = 1: the part before the side).
+    int best_s = -1, best_x = 0, best_score = 0;
+    double best_d = 0;
+    for (int s = 2; s <= k - 2; ++s) {
+      const Walk w = walk(L_, polys_[index].sides[s]);
+      double len = 0;
+      std::vector<double> acc(w.vertices.size(), 0.0);
+      for (std::size_t i = 1; i < w.vertices.size(); ++i)
+        acc[i] = len += distance(L_.positions[w.vertices[i - 1]], L_.positions[w.vertices[i]]);
+      std::size_t mid_i = 0;
+      for (std::size_t i = 0; i < w.vertices.size(); ++i)
+        if (std::abs(acc[i] - len / 2) < std::abs(acc[mid_i] - len / 2)) mid_i = i;
+      const double d = distance(L_.positions[rv], L_.positions[w.vertices[mid_i]]);
+      for (int x = 1; x <= 2; ++x) {
+        const int na = s + 1 + (x == 1), nb = k - s + (x == 2);
+        if (na < 3 || na > 6 || nb < 3 || nb > 6) continue;
+        const int score = (na != 4) + (nb != 4);
+        if (best_s < 0 || score < best_score || (score == best_score && d < best_d))
+          best_s = s, best_x = x, best_score = score, best_d = d;
+      }
+    }
+    if (best_s < 0) return name + ": no side to cut to from its reflex corner (" + str(k) + " sides)";
+    const int s = best_s, x = best_x;
+    int m = -1;
+    if (std::string e = middle_node(index, s, m); !e.empty()) return name + ": " + e;
+    std::vector<int> path;
+    for (int round = 0;; ++round) {
+      const Region R = region(polys_[index]);
+      if (const auto it = R.id.find(rv); it == R.id.end()) return name + ": its reflex corner is off the patch";
+      int met = 0;
+      for (const auto& side : polys_[index].sides) {
+        const Walk w = walk(L_, side);
+        for (std::size_t i = 0; i + 1 < w.vertices.size(); ++i) met += w.vertices[i] == rv;
+      }
+      if (met != 1) return name + ": its reflex corner is met " + str(met) + " times on its boundary";
+      path = interior_path(R, rv, m);
+      if (!path.empty()) break;
+      if (round >= opt_.max_refine_rounds)
+        return name + ": no path from its reflex corner to side " + str(s) + " after " + str(round) + " refinement rounds";
+      refine(p, polys_[index]);
+      ++st_.refine_rounds;
+    }
+    const PolygonPatch& P = polys_[index];
+    std::vector<ArcUse> first, second;
+    {
+      const auto& side = P.sides[s];
+      std::size_t cut = side.size();
+      for (std::size_t i = 0; i + 1 < side.size() && cut == side.size(); ++i)
+        if (use_end(L_, side[i]) == m) cut = i + 1;
+      if (cut == side.size()) return name + ": side " + str(s) + " has no arc end at its middle node";
+      first.assign(side.begin(), side.begin() + static_cast<std::ptrdiff_t>(cut));
+      second.assign(side.begin() + static_cast<std::ptrdiff_t>(cut), side.end());
+    }
+    const int pa = static_cast<int>(L_.arcs.size());
+    {
+      LayoutArc a;
+      a.vertices = path;
+      L_.arcs.push_back(std::move(a));
+    }
+    // The two parts as runs of arc uses, each flagged when it starts at a corner of the part.
+    std::vector<std::vector<ArcUse>> runs_a, runs_b;
+    std::vector<char> corner_a, corner_b;
+    for (int i = 0; i < s; ++i) runs_a.push_back(P.sides[i]), corner_a.push_back(i == 0 ? x == 1 : 1);
+    runs_a.push_back(first), corner_a.push_back(1);
+    runs_a.push_back({ArcUse{pa, false}}), corner_a.push_back(1);
+    runs_b.push_back(second), corner_b.push_back(1);
+    for (int i = s + 1; i < k; ++i) runs_b.push_back(P.sides[i]), corner_b.push_back(1);
+    runs_b.push_back({ArcUse{pa, true}}), corner_b.push_back(x == 2);
+    const std::vector<std::vector<ArcUse>> sides_a = sides_from_runs(runs_a, corner_a), sides_b = sides_from_runs(runs_b, corner_b);
+    std::vector<int> barrier_arcs{pa};
+    for (const auto& side : P.sides)
+      for (const ArcUse& u : side) barrier_arcs.push_back(u.arc);
+    const Walk wa = walk(L_, P.sides[0]), wb = walk(L_, second);
+    const int id_b = static_cast<int>(L_.patches.size());
+    L_.patches.emplace_back();
+    if (std::string e = assign_parts(p, {{{wa.vertices[0], wa.vertices[1]}, {wb.vertices[0], wb.vertices[1]}}}, {p, id_b},
+                                     barrier_arcs);
+        !e.empty())
+      return name + ": " + e;
+    std::vector<PolygonPatch> more;
+    for (const auto& [id, sides] : {std::pair{p, sides_a}, std::pair{id_b, sides_b}}) {
+      if (sides.size() == 4) {
+        for (int i = 0; i < 4; ++i) L_.patches[id].sides[i] = sides[i];
+      } else {
+        more.push_back({id, sides, {}});
+      }
+    }
+    ++st_.reflex_cuts;
+    for (PolygonPatch& q : more) polys_.push_back(std::move(q));
     return "";
   }
 
@@ -293,6 +375,101 @@ class Filler {
     return m;
   }
 
+  // Sides of a part: consecutive runs joined from each run flagged as starting at a corner.
+  static std::vector<std::vector<ArcUse>> sides_from_runs(const std::vector<std::vector<ArcUse>>& runs,
+                                                           const std::vector<char>& corner) {
+    std::vector<std::vector<ArcUse>> sides;
+    const std::size_t n = runs.size();
+    std::size_t start = n;
+    for (std::size_t i = 0; i < n && start == n; ++i)
+      if (corner[i]) start = i;
+    if (start == n) return sides;
+    for (std::size_t j = 0; j < n; ++j) {
+      const std::size_t i = (start + j) % n;
+      if (corner[i]) sides.emplace_back();
+      sides.back().insert(sides.back().end(), runs[i].begin(), runs[i].end());
+    }
+    return sides;
+  }
+
+  // The triangles of patch p flood-filled into parts across edges on none of `barrier_arcs`,
+  // part j from the triangle left of directed edge seeds[j] and given patch ids[j]; then the
+  // barrier arcs' patches on each side from the triangles along them. "" or why the parts do
+  // not tile the patch.
+  std::string assign_parts(int p, const std::vector<std::array<int, 2>>& seeds, const std::vector<int>& ids,
+                           const std::vector<int>& barrier_arcs) {
+    std::unordered_set<std::uint64_t> barrier;
+    for (int a : barrier_arcs) {
+      const auto& vs = L_.arcs[a].vertices;
+      for (std::size_t i = 0; i + 1 < vs.size(); ++i) barrier.insert(ukey(vs[i], vs[i + 1]));
+    }
+    std::vector<int> tris;
+    for (int t = 0; t < static_cast<int>(L_.triangles.size()); ++t)
+      if (L_.triangle_patch[t] == p) tris.push_back(t);
+    std::unordered_map<std::uint64_t, int> by_edge;
+    for (int t : tris)
+      for (int c = 0; c < 3; ++c) by_edge[dkey(L_.triangles[t][c], L_.triangles[t][(c + 1) % 3])] = t;
+    std::unordered_map<int, int> part;  // triangle -> j
+    for (std::size_t j = 0; j < seeds.size(); ++j) {
+      const auto it = by_edge.find(dkey(seeds[j][0], seeds[j][1]));
+      if (it == by_edge.end()) return "part " + str(static_cast<std::int64_t>(j)) + "'s first side has no triangle of the patch on its left";
+      if (part.count(it->second)) return "the cut does not separate part " + str(static_cast<std::int64_t>(j));
+      std::vector<int> stack{it->second};
+      part[it->second] = static_cast<int>(j);
+      while (!stack.empty()) {
+        const int t = stack.back();
+        stack.pop_back();
+        for (int c = 0; c < 3; ++c) {
+          const int u = L_.triangles[t][c], v = L_.triangles[t][(c + 1) % 3];
+          if (barrier.count(ukey(u, v))) continue;
+          const auto nb = by_edge.find(dkey(v, u));
+          if (nb == by_edge.end()) continue;
+          const auto seen = part.find(nb->second);
+          if (seen == part.end()) {
+            part[nb->second] = static_cast<int>(j);
+            stack.push_back(nb->second);
+          } else if (seen->second != static_cast<int>(j)) {
+            return "the cut does not separate parts " + str(seen->second) + " and " + str(static_cast<std::int64_t>(j));
+          }
+        }
+      }
+    }
+    if (part.size() != tris.size())
+      return str(static_cast<std::int64_t>(tris.size() - part.size())) + " triangles in no part";
+    for (int t : tris) L_.triangle_patch[t] = ids[part[t]];
+    for (int a : barrier_arcs) {
+      LayoutArc& A = L_.arcs[a];
+      const auto f = by_edge.find(dkey(A.vertices[0], A.vertices[1]));
+      if (f != by_edge.end()) A.patch[0] = L_.triangle_patch[f->second];
+      const auto b = by_edge.find(dkey(A.vertices[1], A.vertices[0]));
+      if (b != by_edge.end()) A.patch[1] = L_.triangle_patch[b->second];
+    }
+    return "";
+  }
+
+  // A shortest path (hops) from boundary vertex `from` to boundary vertex `to` across the region's
+  // interior edges through interior vertices only; empty if none. O(region).
+  static std::vector<int> interior_path(const Region& R, int from, int to) {
+    const auto fi = R.id.find(from), ti = R.id.find(to);
+    if (fi == R.id.end() || ti == R.id.end()) return {};
+    const int s = fi->second, t = ti->second;
+    std::vector<int> parent(R.local.size(), -1);
+    std::deque<int> queue{s};
+    parent[s] = s;
+    while (!queue.empty() && parent[t] < 0) {
+      const int u = queue.front();
+      queue.pop_front();
+      for (int v : R.adjacent[u])
+        if (parent[v] < 0 && (v == t || !R.boundary[v])) parent[v] = u, queue.push_back(v);
+    }
+    if (parent[t] < 0) return {};
+    std::vector<int> path;
+    for (int v = t; v != s; v = parent[v]) path.push_back(R.local[v]);
+    path.push_back(R.local[s]);
+    std::reverse(path.begin(), path.end());
+    return path;
+  }
+
   // Makes a node near the middle of side s of polygon `index`; sets m.
   std::string middle_node(std::size_t index, int s, int& m) {
     const int p = polys_[index].patch;
@@ -340,15 +517,7 @@ class Filler {
     return "";
   }
 
-  // The patch's triangles, boundary vertices (on its sides' arcs) and interior edges.
-  struct Region {
-    std::vector<int> tris;
-    std::vector<int> local;                  // local id -> vertex
-    std::unordered_map<int, int> id;         // vertex -> local id
-    std::vector<char> boundary;              // per local id
-    std::vector<std::vector<int>> adjacent;  // per local id, across interior edges (local ids)
-    std::vector<std::array<int, 2>> interior_edges;  // vertex pairs, in order of first meeting
-  };
+
 
   Region region(const PolygonPatch& poly) const {
     Region R;
@@ -536,8 +705,11 @@ std::string fill_polygon_patches(SurfaceLayout& layout, const std::vector<Polygo
     if (poly.patch < 0 || poly.patch >= static_cast<int>(layout.patches.size()))
       return "polygon patch " + str(poly.patch) + " is not a patch of the layout";
   Filler filler(layout, polys, options, st);
-  for (std::size_t i = 0; i < polys.size(); ++i)
-    if (std::string e = filler.fill(i); !e.empty()) return e;
+  // A cut polygon may append its parts (without reflex corners): at most twice the input's count.
+  for (std::size_t i = 0; i < polys.size(); ++i) {
+    const bool reflex = std::find(polys[i].turns.begin(), polys[i].turns.end(), 3) != polys[i].turns.end();
+    if (std::string e = reflex ? filler.split_reflex(i) : filler.fill(i); !e.empty()) return e;
+  }
   if (std::string e = check_surface_layout(layout); !e.empty()) return "the pattern broke the layout: " + e;
   return "";
 }

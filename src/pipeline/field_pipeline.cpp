@@ -277,6 +277,9 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
                                  (traced.stats.pattern_patches > 0
                                       ? std::to_string(traced.stats.pattern_patches) + " with 3, 5 or 6 corners filled by a pattern, "
                                       : std::string()) +
+                                 (traced.stats.reflex_cuts > 0
+                                      ? std::to_string(traced.stats.reflex_cuts) + " with a reflex corner cut, "
+                                      : std::string()) +
                                  std::to_string(traced.stats.rounds) + " rounds" +
                                  (features.walls.empty() ? std::string()
                                                          : ", " + std::to_string(features.walls.size()) + " feature walls")

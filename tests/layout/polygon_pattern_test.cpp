@@ -29,7 +29,7 @@ std::map<int, int> node_degrees(const SurfaceLayout& L) {
 
 // Patch p of L as a polygon whose sides 0 and 1 are one side (their corner made straight): 3 sides.
 PolygonPatch merged_corner(const SurfaceLayout& L, int p) {
-  PolygonPatch poly{p, {}};
+  PolygonPatch poly{p, {}, {}};
   const LayoutPatch& P = L.patches[p];
   std::vector<ArcUse> s01 = P.sides[0];
   s01.insert(s01.end(), P.sides[1].begin(), P.sides[1].end());
@@ -60,7 +60,7 @@ PolygonPatch cut_side(SurfaceLayout& L, int p) {
           break;
         }
   const LayoutPatch& P = L.patches[p];
-  PolygonPatch poly{p, {{P.sides[0][0]}, {P.sides[0][1]}, P.sides[1], P.sides[2], P.sides[3]}};
+  PolygonPatch poly{p, {{P.sides[0][0]}, {P.sides[0][1]}, P.sides[1], P.sides[2], P.sides[3]}, {}};
   return poly;
 }
 
@@ -179,12 +179,12 @@ TEST_CASE("polygon pattern: two neighbouring polygons, and bad polygons named") 
   SUBCASE("seven sides") {
     SurfaceLayout L = build_layout(cube_spec(4, false));
     PolygonPatch poly{1, {L.patches[1].sides[0], L.patches[1].sides[1], L.patches[1].sides[2], L.patches[1].sides[3], {},
-                          {}, {}}};
+                          {}, {}}, {}};
     CHECK(contains(fill_polygon_patches(L, {poly}), "patch 1: 7 sides"));
   }
   SUBCASE("a patch the layout does not have") {
     SurfaceLayout L = build_layout(cube_spec(4, false));
-    CHECK(contains(fill_polygon_patches(L, {PolygonPatch{9, {}}}), "not a patch"));
+    CHECK(contains(fill_polygon_patches(L, {PolygonPatch{9, {}, {}}}), "not a patch"));
   }
 }
 
@@ -196,4 +196,61 @@ TEST_CASE("polygon pattern: the same layout twice") {
   CHECK(A.triangle_patch == B.triangle_patch);
   REQUIRE(A.arcs.size() == B.arcs.size());
   for (std::size_t a = 0; a < A.arcs.size(); ++a) CHECK(A.arcs[a].vertices == B.arcs[a].vertices);
+}
+
+namespace {
+
+// An open 6 x 6 square in two patches: the 3 x 3 square at the top right, and the L around it as a
+// four-sided patch (corners (0,0), (6,0), (6,3), (0,6); its side 2 runs (6,3) -> (3,3) -> (3,6) ->
+// (0,6)). Returns the layout and the L as a polygon with its real corners: (3,3) reflex.
+std::pair<SurfaceLayout, PolygonPatch> l_shape() {
+  LayoutSpec spec = grid_spec(6, 6, false, false, {Rect{0, 0, 6, 6}, Rect{3, 3, 6, 6}}, bumpy);
+  auto id = [](int i, int j) { return i + 7 * j; };
+  spec.corners[0] = {std::pair{id(0, 0), id(1, 0)}, std::pair{id(6, 0), id(6, 1)}, std::pair{id(6, 3), id(5, 3)},
+                     std::pair{id(0, 6), id(0, 5)}};
+  SurfaceLayout L = build_layout(spec);
+  REQUIRE(check_surface_layout(L) == "");
+  const LayoutPatch& P = L.patches[0];
+  REQUIRE(P.sides[2].size() == 3);
+  PolygonPatch poly{0, {P.sides[0], P.sides[1], {P.sides[2][0]}, {P.sides[2][1]}, {P.sides[2][2]}, P.sides[3]}, {1, 1, 1, 3, 1, 1}};
+  return {L, poly};
+}
+
+}  // namespace
+
+TEST_CASE("polygon pattern: an L-shaped patch (one reflex corner) is cut into two quads, certified") {
+  auto [L, poly] = l_shape();
+  const std::size_t arcs_before = L.arcs.size();
+  PolygonPatternStats st;
+  REQUIRE(fill_polygon_patches(L, {poly}, {}, &st) == "");
+  CHECK(check_surface_layout(L) == "");
+  CHECK(st.reflex_cuts == 1);
+  CHECK(st.patterns == 0);  // both parts have four corners
+  CHECK(L.patches.size() == 3);
+  CHECK(L.arcs.size() == arcs_before + 1 + static_cast<std::size_t>(st.split_arcs));
+  // The cut runs from the reflex corner (3,3) to the middle of a side three edges away.
+  const LayoutArc& cut = L.arcs.back();
+  CHECK((cut.vertices.front() == 3 + 7 * 3 || cut.vertices.back() == 3 + 7 * 3));
+  CHECK(cut.vertices.size() == 4);
+  quantize_map_certify(L, 0.5, true);
+}
+
+TEST_CASE("polygon pattern: a reflex corner with five convex ones: the cut, then the pattern on a part") {
+  auto [L, poly] = l_shape();
+  // (6,0) made straight: sides 0 and 1 one side; the polygon holds a quarter turn of field inside.
+  PolygonPatch five{0, {poly.sides[0], poly.sides[2], poly.sides[3], poly.sides[4], poly.sides[5]}, {1, 1, 3, 1, 1}};
+  five.sides[0].insert(five.sides[0].end(), poly.sides[1].begin(), poly.sides[1].end());
+  PolygonPatternStats st;
+  REQUIRE(fill_polygon_patches(L, {five}, {}, &st) == "");
+  CHECK(check_surface_layout(L) == "");
+  CHECK(st.reflex_cuts == 1);
+  CHECK(st.patterns == 1);  // the part with three corners
+  CHECK(L.patches.size() == 1 + 2 + 2);
+  quantize_map_certify(L, 0.5, true);
+
+  SUBCASE("two reflex corners are refused, naming the patch") {
+    auto [M, p] = l_shape();
+    p.turns[0] = 3;
+    CHECK(contains(fill_polygon_patches(M, {p}), "patch 0: 2 reflex corners"));
+  }
 }

@@ -23,8 +23,8 @@ struct FieldLayoutOptions {
   /// graph again), as long as every vertex keeps its angles at most two quarter turns.
   int max_ban_rounds = 8;
   /// A patch that is a disk with 3, 5 or 6 corners (every angle a quarter or a half turn) is filled
-  /// with the k-quad pattern (layout/polygon_pattern.h: a node of valence k inside it) instead of
-  /// failing the layout.
+  /// with the k-quad pattern (layout/polygon_pattern.h: a node of valence k inside it), and a disk
+  /// with one corner of three quarter turns is cut in two from it, instead of failing the layout.
   bool polygon_patterns = true;
 };
 
@@ -38,6 +38,7 @@ struct FieldLayoutStats {
   int non_disk_patches = 0;       // in the last round
   int bad_corner_patches = 0;     // disks whose corners are not four quarter turns (last round)
   int pattern_patches = 0;        // disks of 3, 5 or 6 corners filled with the k-quad pattern
+  int reflex_cuts = 0;            // disks with one corner of three quarter turns cut in two
   int pattern_vertices = 0;       // vertices the patterns added (side midpoints, refinement)
   int contradicting_patches = 0;  // patches whose side lengths cannot all be equal (last failed round)
   int refined_vertices = 0, refined_triangles = 0;

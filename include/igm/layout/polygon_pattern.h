@@ -12,10 +12,12 @@ namespace igm {
 
 /// A patch of a SurfaceLayout with k corners: its triangles are those with triangle_patch ==
 /// patch; `sides` is its boundary, counter-clockwise (the patch on the left), as k sides from
-/// corner to corner, each a non-empty list of arc uses.
+/// corner to corner, each a non-empty list of arc uses. `turns`: per side, the patch's angle at
+/// the corner it starts from, in quarter turns: 1 (convex) or 3 (reflex); empty = all 1.
 struct PolygonPatch {
   int patch = -1;
   std::vector<std::vector<ArcUse>> sides;
+  std::vector<int> turns;
 };
 
 struct PolygonPatternOptions {
@@ -28,6 +30,7 @@ struct PolygonPatternStats {
   int patterns = 0;       // patches filled
   int split_edges = 0;    // side edges split at their midpoint (a side of one edge)
   int split_arcs = 0;     // arcs cut in two at a side's middle node
+  int reflex_cuts = 0;    // polygons with a reflex corner cut in two
   int refine_rounds = 0;  // summed over the patches
   int added_vertices = 0;
 };
@@ -44,6 +47,11 @@ struct PolygonPatternStats {
 /// - patch j of the pattern: corner j, m_j, c, m_{j-1}, a four-sided LayoutPatch. The first keeps
 ///   the polygon's patch id, the others are appended. c is a node of valence k (a cone for k != 4),
 ///   each m_s a T-junction for the neighbouring patch.
+/// A polygon with one reflex corner r (three quarter turns; then 5 convex corners for a disk
+/// without a cone inside) is first cut by one path from r through its interior to the middle node
+/// of a side that leaves four corners on each part (r keeps one quarter turn on one part, two on
+/// the other; of the two such sides the one whose middle is nearer r in 3D); a part with 3, 5 or 6
+/// corners then gets the pattern. Two or more reflex corners are refused.
 /// Where a patch's interior has no room (fewer than k disjoint paths), its triangles are refined
 /// (centroid splits where it has no interior vertex, else midpoint splits of its interior edges,
 /// red-green), at most options.max_refine_rounds rounds. New vertices are exact midpoints and
