@@ -949,6 +949,11 @@ FieldLayoutResult build_field_layout(const TriMesh& mesh, const std::vector<Vec3
     r.graph = trace_motorcycles_reusing(mesh, positions, face_direction, trace, frames, reuse);
     r.stats.trace = r.graph.stats;
     r.stats.rounds = round + 1;
+    if (trace.stop_at_stuck_wall && !r.graph.stuck_walls.empty()) {
+      r.failure = std::to_string(r.graph.stuck_walls.size()) + " feature walls could not be drawn (wall " +
+                  std::to_string(r.graph.stuck_walls.front()) + ")";
+      break;
+    }
     std::vector<int> seeds;
     r.layout = SurfaceLayout{};
     r.stats.non_disk_patches = r.stats.bad_corner_patches = 0;

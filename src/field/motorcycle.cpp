@@ -372,6 +372,7 @@ class Tracer {
       seed[s] = 1;
     }
     for (int i = 0; i < static_cast<int>(options_.walls.size()); ++i) draw_wall(i, options_.walls[i], seed);
+    if (options_.stop_at_stuck_wall && !g.stuck_walls.empty()) return finish(t0);
     auto wall_ray = [&](int v, int k) { return vertex_point_[v] >= 0 && used_ray(vertex_point_[v], k, -1); };
     // The starting rays: every ray of a cone or seed, the interior rays of a boundary corner.
     std::vector<std::pair<int, int>> starts;
@@ -497,8 +498,13 @@ class Tracer {
       finished_elsewhere_.clear();
     }
     apply_hits();
-    // Drop curves that never left their start (a ray taken by a curve that arrived first) and
-    // the points cut away with merged curves.
+    return finish(t0);
+  }
+
+  // Drops curves that never left their start (a ray taken by a curve that arrived first) and the
+  // points cut away with merged curves; the statistics; hands the rays to the reuse.
+  TraceGraph finish(std::chrono::steady_clock::time_point t0) {
+    TraceGraph& g = graph_;
     std::vector<TraceCurve> kept;
     for (TraceCurve& c : g.curves)
       if (c.points.size() >= 2) kept.push_back(std::move(c));

@@ -228,6 +228,8 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
       for (int f = 0; f < input.mesh->num_faces(); ++f) direction[f] = field_direction(field, f, 0);
       FieldLayoutOptions lo = options.field_layout;
       lo.trace.walls = features.walls;
+      // Where walls that cannot be drawn are left out (may_drop), nothing after them is needed.
+      lo.trace.stop_at_stuck_wall = may_drop;
       if (attempts[k].snap > 0 && quad_size > 0) lo.trace.snap_length = attempts[k].snap * quad_size;
       try {
         traced = build_field_layout(*input.mesh, positions, direction, lo);

@@ -263,6 +263,44 @@ TEST_CASE("field layout: walls (issue 45 feature curves) are drawn whole and bou
   CHECK_THROWS_AS(trace_motorcycles(s.mesh, s.positions, d, t), Error);
 }
 
+TEST_CASE("field layout: stop_at_stuck_wall returns after the walls when one cannot be drawn") {
+  // On the subdivided cube (its field along the grid), a two-edge wall that turns by 45 degrees on
+  // the top face: the edge it leaves by is as near the ray it came in by as any other, so some such
+  // wall is stuck (the first found, in vertex order, is used).
+  const Surface s = igm_test::subdivided_cube(4);
+  const std::vector<Vec3d> d = directions(s);
+  std::vector<int> stuck;
+  for (int a = 0; a < s.mesh.num_vertices() && stuck.empty(); ++a) {
+    if (s.positions[a].z != 1) continue;
+    for (int b = 0; b < s.mesh.num_vertices() && stuck.empty(); ++b) {
+      if (b == a || s.positions[b].z != 1 || s.mesh.find_halfedge(a, b) < 0) continue;
+      for (int c = 0; c < s.mesh.num_vertices() && stuck.empty(); ++c) {
+        if (c == a || c == b || s.positions[c].z != 1 || s.mesh.find_halfedge(b, c) < 0) continue;
+        TraceOptions t;
+        t.walls = {{a, b, c}};
+        if (!trace_motorcycles(s.mesh, s.positions, d, t).stuck_walls.empty()) stuck = {a, b, c};
+      }
+    }
+  }
+  REQUIRE(stuck.size() == 3);
+  TraceOptions t;
+  t.walls = {stuck};
+  const TraceGraph all = trace_motorcycles(s.mesh, s.positions, d, t);
+  t.stop_at_stuck_wall = true;
+  const TraceGraph early = trace_motorcycles(s.mesh, s.positions, d, t);
+  CHECK(early.stuck_walls == all.stuck_walls);
+  CHECK(early.stats.walls == 1);
+  CHECK(early.curves.size() <= 1);  // the wall's own curve, as far as it got
+  CHECK(all.curves.size() > 8);     // the cube's separatrices too
+  FieldLayoutOptions o;
+  o.trace = t;
+  const FieldLayoutResult r = build_field_layout(s.mesh, s.positions, d, o);
+  CHECK_FALSE(r.ok);
+  CHECK(r.stats.rounds == 1);
+  CHECK(r.failure.find("could not be drawn") != std::string::npos);
+  CHECK(r.graph.stuck_walls.size() == 1);
+}
+
 TEST_CASE("field layout: the rounds' reuse (frames, rays, solo pre-pass) traces the same graph as a fresh trace") {
   // build_field_layout's rounds trace with one TraceReuse; each round's graph must be the one a
   // fresh trace_motorcycles gives for its options: bans alone keep the solo results, a seed

@@ -66,7 +66,8 @@ struct FieldLayoutResult {
 /// meet, the cells of each face, patch connectivity, corners) is exact; the result passes the
 /// independent check_surface_layout. Never throws for a layout it cannot build: returns ok ==
 /// false with the reason (a curve that ends dangling, a patch that stays a non-disk or whose
-/// corners are not four quarter turns, a vertex whose rays are undefined). Throws
+/// corners are not four quarter turns, a vertex whose rays are undefined; with
+/// options.trace.stop_at_stuck_wall, a wall that could not be drawn, right after the walls). Throws
 /// igm::Error(InvalidArgument) for sizes that do not match. Cost: rounds x (tracing + O(F)
 /// insertion + O(k^3) per face with k points on it).
 FieldLayoutResult build_field_layout(const TriMesh& mesh, const std::vector<Vec3d>& positions,

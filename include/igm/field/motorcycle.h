@@ -91,6 +91,9 @@ struct TraceOptions {
   /// seeds (their free rays). A wall whose ray at a vertex is missing or already taken ends there
   /// (CurveEnd::Stuck: the layout is then unusable and says so).
   std::vector<std::vector<int>> walls;
+  /// Return right after drawing the walls when one could not be drawn whole (stuck_walls set, no
+  /// other curve traced): for a caller that then leaves those walls out and starts again.
+  bool stop_at_stuck_wall = false;
 };
 
 struct TraceStats {
