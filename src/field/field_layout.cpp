@@ -643,7 +643,7 @@ class Builder {
       out.arcs.push_back(std::move(la));
     }
     out.patches = std::move(patches);
-    if (!polygons.empty() && polygon_patterns_) {
+    if (!polygons.empty()) {  // only with polygon_patterns_ (patch_sides)
       PolygonPatternStats ps;
       const std::string e = fill_polygon_patches(out, polygons, {}, &ps);
       stats.pattern_patches = ps.patterns;
@@ -655,13 +655,8 @@ class Builder {
       if (!e.empty()) {
         stats.bad_corner_patches = static_cast<int>(polygons.size());
         bad_angle_nodes_.insert(bad_angle_nodes_.end(), polygon_reflex_.begin(), polygon_reflex_.end());
-        return e + " (the pattern or cut of a patch with " +
-               str(static_cast<std::int64_t>(polygons.front().sides.size())) + " corners)";
+        return "the k-quad pattern or reflex cut: " + e;
       }
-    } else if (!polygons.empty()) {
-      stats.bad_corner_patches = static_cast<int>(polygons.size());
-      return "patch " + str(polygons.front().patch) + ": " + str(static_cast<std::int64_t>(polygons.front().sides.size())) +
-             " corners";
     }
     int tj = 0;
     for (std::size_t p = 0; p < g_.points.size(); ++p)
@@ -813,7 +808,7 @@ class Builder {
     }
     if (corners.size() != 4 || !reflex_nodes.empty()) {
       const int k = static_cast<int>(corners.size());
-      if (reflex_nodes.empty() && (k < 3 || k > 6)) return "C: " + str(k) + " corners";
+      if (!polygon_patterns_ || (reflex_nodes.empty() && (k < 3 || k > 6))) return "C: " + str(k) + " corners";
       // A k-gon, or a polygon with one reflex corner: its sides for the pattern or the cut
       // (layout/polygon_pattern.h), made once every patch is known.
       polygon_sides_.assign(static_cast<std::size_t>(k), {});

@@ -59,6 +59,28 @@ double distance(const Vec3d& a, const Vec3d& b) {
   return std::sqrt(x * x + y * y + z * z);
 }
 
+// Per vertex of a walk, the 3D length along it from its start (doubles: only the choice of a
+// middle depends on them).
+std::vector<double> lengths_along(const SurfaceLayout& L, const Walk& w) {
+  std::vector<double> acc(w.vertices.size(), 0.0);
+  for (std::size_t i = 1; i < w.vertices.size(); ++i)
+    acc[i] = acc[i - 1] + distance(L.positions[w.vertices[i - 1]], L.positions[w.vertices[i]]);
+  return acc;
+}
+
+// A side's arc uses cut where a use ends at node m (not its last use): before and after m. False
+// when no use ends there.
+bool cut_side_at(const SurfaceLayout& L, const std::vector<ArcUse>& side, int m, std::vector<ArcUse>& before,
+                 std::vector<ArcUse>& after) {
+  for (std::size_t i = 0; i + 1 < side.size(); ++i)
+    if (use_end(L, side[i]) == m) {
+      before.assign(side.begin(), side.begin() + static_cast<std::ptrdiff_t>(i + 1));
+      after.assign(side.begin() + static_cast<std::ptrdiff_t>(i + 1), side.end());
+      return true;
+    }
+  return false;
+}
+
 // Unit-capacity max flow by breadth-first augmenting paths (Edmonds-Karp).
 class UnitFlow {
  public:
@@ -142,25 +164,20 @@ class Filler {
     // 2. Room for k disjoint paths from a centre, refining the patch's triangles where needed.
     std::vector<std::vector<int>> paths;
     for (int round = 0;; ++round) {
-      const std::string e = find_paths(index, mid, paths);
+      const Region R = region(polys_[index]);
+      const std::string e = find_paths(R, mid, paths);
       if (e.empty()) break;
       if (round >= opt_.max_refine_rounds)
         return name + ": " + e + " after " + str(round) + " refinement rounds";
-      refine(p, polys_[index]);
+      refine(p, R);
       ++st_.refine_rounds;
     }
     // 3. The k patches.
     const PolygonPatch& poly = polys_[index];
     std::vector<std::vector<ArcUse>> first(k), second(k);
-    for (int s = 0; s < k; ++s) {
-      const auto& side = poly.sides[s];
-      std::size_t cut = side.size();
-      for (std::size_t i = 0; i + 1 < side.size() && cut == side.size(); ++i)
-        if (use_end(L_, side[i]) == mid[s]) cut = i + 1;
-      if (cut == side.size()) return name + ": side " + str(s) + " has no arc end at its middle node";
-      first[s].assign(side.begin(), side.begin() + static_cast<std::ptrdiff_t>(cut));
-      second[s].assign(side.begin() + static_cast<std::ptrdiff_t>(cut), side.end());
-    }
+    for (int s = 0; s < k; ++s)
+      if (!cut_side_at(L_, poly.sides[s], mid[s], first[s], second[s]))
+        return name + ": side " + str(s) + " has no arc end at its middle node";
     std::vector<int> path_arc(k);
     for (int s = 0; s < k; ++s) {
       path_arc[s] = static_cast<int>(L_.arcs.size());
@@ -221,10 +238,8 @@ class Filler {
     double best_d = 0;
     for (int s = 2; s <= k - 2; ++s) {
       const Walk w = walk(L_, polys_[index].sides[s]);
-      double len = 0;
-      std::vector<double> acc(w.vertices.size(), 0.0);
-      for (std::size_t i = 1; i < w.vertices.size(); ++i)
-        acc[i] = len += distance(L_.positions[w.vertices[i - 1]], L_.positions[w.vertices[i]]);
+      const std::vector<double> acc = lengths_along(L_, w);
+      const double len = acc.back();
       std::size_t mid_i = 0;
       for (std::size_t i = 0; i < w.vertices.size(); ++i)
         if (std::abs(acc[i] - len / 2) < std::abs(acc[mid_i] - len / 2)) mid_i = i;
@@ -255,20 +270,13 @@ class Filler {
       if (!path.empty()) break;
       if (round >= opt_.max_refine_rounds)
         return name + ": no path from its reflex corner to side " + str(s) + " after " + str(round) + " refinement rounds";
-      refine(p, polys_[index]);
+      refine(p, R);
       ++st_.refine_rounds;
     }
     const PolygonPatch& P = polys_[index];
     std::vector<ArcUse> first, second;
-    {
-      const auto& side = P.sides[s];
-      std::size_t cut = side.size();
-      for (std::size_t i = 0; i + 1 < side.size() && cut == side.size(); ++i)
-        if (use_end(L_, side[i]) == m) cut = i + 1;
-      if (cut == side.size()) return name + ": side " + str(s) + " has no arc end at its middle node";
-      first.assign(side.begin(), side.begin() + static_cast<std::ptrdiff_t>(cut));
-      second.assign(side.begin() + static_cast<std::ptrdiff_t>(cut), side.end());
-    }
+    if (!cut_side_at(L_, P.sides[s], m, first, second))
+      return name + ": side " + str(s) + " has no arc end at its middle node";
     const int pa = static_cast<int>(L_.arcs.size());
     {
       LayoutArc a;
@@ -480,9 +488,7 @@ class Filler {
     }
     const Walk w = walk(L_, polys_[index].sides[s]);
     const std::size_t n = w.vertices.size();
-    std::vector<double> acc(n, 0.0);
-    for (std::size_t i = 1; i < n; ++i)
-      acc[i] = acc[i - 1] + distance(L_.positions[w.vertices[i - 1]], L_.positions[w.vertices[i]]);
+    const std::vector<double> acc = lengths_along(L_, w);
     const double half = acc[n - 1] / 2;
     std::size_t best = 0;
     double best_d = std::numeric_limits<double>::infinity();
@@ -516,8 +522,6 @@ class Filler {
     split_arc(arc, at);
     return "";
   }
-
-
 
   Region region(const PolygonPatch& poly) const {
     Region R;
@@ -555,9 +559,7 @@ class Filler {
   }
 
   // k disjoint paths from a centre to the middle nodes, through interior vertices; "" or why not.
-  std::string find_paths(std::size_t index, const std::vector<int>& mid, std::vector<std::vector<int>>& paths) const {
-    const PolygonPatch& poly = polys_[index];
-    const Region R = region(poly);
+  std::string find_paths(const Region& R, const std::vector<int>& mid, std::vector<std::vector<int>>& paths) const {
     const int k = static_cast<int>(mid.size());
     const int n = static_cast<int>(R.local.size());
     std::vector<int> sink_of(n, -1), mid_local(k);
@@ -635,11 +637,10 @@ class Filler {
     return "";
   }
 
-  // One refinement round of the polygon's triangles: centroid splits where it has no interior
+  // One refinement round of patch p's triangles (R: its region, as region() gives it): centroid splits where it has no interior
   // vertex, else the exact midpoint of every interior edge (red-green: 2, 3 or 4 triangles per
   // triangle with 1, 2 or 3 split edges). Only the patch's triangles change.
-  void refine(int p, const PolygonPatch& poly) {
-    const Region R = region(poly);
+  void refine(int p, const Region& R) {
     const bool any_interior = std::find(R.boundary.begin(), R.boundary.end(), 0) != R.boundary.end();
     if (!any_interior || R.interior_edges.empty()) {
       for (int t : R.tris) {
