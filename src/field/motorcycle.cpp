@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -366,10 +365,12 @@ class Tracer {
     const int nv = mesh_.num_vertices();
     g.valence.assign(nv, -1);
     for (int v = 0; v < nv; ++v) g.valence[v] = rays(v).valence;
-    std::vector<char> seed(nv, 0);
+    // Per vertex, the rays to trace from it as a seed (bit k: ray k): every ray of a seed the
+    // caller gives, the rays draw_wall asks for at a wall's end or turn.
+    std::vector<unsigned char> seed(nv, 0);
     for (int s : seeds) {
       if (s < 0 || s >= nv) throw Error(ErrorKind::InvalidArgument, "trace seed out of range", {s});
-      seed[s] = 1;
+      seed[s] = 0xFF;
     }
     for (int i = 0; i < static_cast<int>(options_.walls.size()); ++i) draw_wall(i, options_.walls[i], seed);
     if (options_.stop_at_stuck_wall && !g.stuck_walls.empty()) return finish(t0);
@@ -385,8 +386,12 @@ class Tracer {
       if (r.boundary) ++g.stats.boundary_corners;
       else if (corner) ++g.stats.cones;
       const int first = r.boundary ? 1 : 0, last = r.valence - 1;
+      // A wall's end or turn whose continuing ray is banned (an earlier round) or taken by another
+      // wall traces its other free rays.
+      bool any = corner;
+      for (int k = first; k <= last && !any; ++k) any = !banned_.count({v, k}) && !wall_ray(v, k) && ((seed[v] >> k) & 1);
       for (int k = first; k <= last; ++k)
-        if (!banned_.count({v, k}) && !wall_ray(v, k)) starts.push_back({v, k});
+        if (!banned_.count({v, k}) && !wall_ray(v, k) && (!any || corner || ((seed[v] >> k) & 1))) starts.push_back({v, k});
     }
     // Vertices with traced rays, hashed by position for the steering.
     steer_length_ = options_.snap_length > 0 ? options_.snap_length : options_.snap_distance * mean_edge_;
@@ -1062,7 +1067,7 @@ class Tracer {
 
   // Wall `index` (TraceOptions::walls): a curve along its edges, drawn whole before any other.
   // Its ends and turns become seeds (`seed`).
-  void draw_wall(int index, const std::vector<int>& w, std::vector<char>& seed) {
+  void draw_wall(int index, const std::vector<int>& w, std::vector<unsigned char>& seed) {
     const int n = static_cast<int>(w.size()), nv = mesh_.num_vertices();
     const std::string name = "trace wall " + std::to_string(index);
     if (n < 2) throw Error(ErrorKind::InvalidArgument, name + " has fewer than two vertices");
@@ -1090,6 +1095,10 @@ class Tracer {
       return nearest_ray(w[i], TriMesh::face(t), frames_.edge_vector(t));
     };
     auto regular = [&](int v) { return !rays(v).boundary && rays(v).valence == 4; };
+    // Vertex x's rays to trace: the one opposite ray r (continuing the wall), or every one.
+    auto seed_from = [&](int x, int r) {
+      seed[x] |= options_.wall_side_rays ? static_cast<unsigned char>(0xFF) : static_cast<unsigned char>(1u << ((r + 2) % 4));
+    };
     const int out0 = out_ray(0);
     const int c = start_curve(w[0], out0);
     runners_[c].state = State::Done;
@@ -1114,15 +1123,14 @@ class Tracer {
         if (out < 0 || out == ra || used_ray(px, out, c)) return stuck();
         graph_.curves[c].ray_forward.back() = out;
         use_ray(px, out, c);
-        if (regular(x) && out != (ra + 2) % 4) seed[x] = 1;
+        if (regular(x) && out != (ra + 2) % 4) seed_from(x, ra);
       } else if (closed) {
-        if (regular(x) && out0 != (ra + 2) % 4) seed[x] = 1;
+        if (regular(x) && out0 != (ra + 2) % 4) seed_from(x, ra);
+      } else if (regular(x)) {
+        seed_from(x, ra);  // the last vertex: the wall ends
       }
     }
-    if (!closed) {
-      if (regular(w.front())) seed[w.front()] = 1;
-      if (regular(w.back())) seed[w.back()] = 1;
-    }
+    if (!closed && regular(w.front())) seed_from(w.front(), out0);
     const int last = w.back();
     finish(c, !regular(last) || seed[last] ? CurveEnd::Cone : CurveEnd::Curve);
   }

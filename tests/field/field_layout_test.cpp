@@ -344,3 +344,68 @@ TEST_CASE("field layout: the rounds' reuse (frames, rays, solo pre-pass) traces 
   }
   CHECK(checked == 4);
 }
+
+TEST_CASE("field layout: a wall's end traces only the ray continuing it, unless that ray is banned") {
+  // On the subdivided cube, a two-edge wall x = 0, y in [-0.5, 0.5] inside the top face: both
+  // ends at regular vertices. By default each end continues the wall (one curve each); with
+  // wall_side_rays each end also traces its two side rays (four curves more), which run beside
+  // the wall. Where the continuing ray is banned, the end traces its side rays instead.
+  const Surface s = igm_test::subdivided_cube(4);
+  std::vector<int> wall;
+  for (double y : {-0.5, 0.0, 0.5})
+    for (int v = 0; v < s.mesh.num_vertices(); ++v)
+      if (s.positions[v].x == 0 && s.positions[v].y == y && s.positions[v].z == 1) wall.push_back(v);
+  REQUIRE(wall.size() == 3);
+  CrossFieldOptions fo;
+  fo.constrained_edges.assign(s.mesh.num_halfedges(), 0);
+  for (std::size_t i = 0; i + 1 < wall.size(); ++i) {
+    const int h = s.mesh.find_halfedge(wall[i], wall[i + 1]);
+    fo.constrained_edges[h] = fo.constrained_edges[s.mesh.twin(h)] = 1;
+  }
+  const std::vector<Vec3d> d = directions(s, fo);
+  TraceOptions t;
+  t.walls = {wall};
+  const TraceGraph plain = trace_motorcycles(s.mesh, s.positions, d, t);
+  CHECK(check_trace_graph(s.mesh, plain) == "");
+  CHECK(plain.stats.cones == 8);
+  // Curves other than the wall (drawn first: curve 0) that start at vertex v.
+  auto starting_at = [](const TraceGraph& g, int v) {
+    int n = 0;
+    for (std::size_t c = 1; c < g.curves.size(); ++c) {
+      const TracePoint& p = g.points[g.curves[c].points.front()];
+      n += p.kind == TracePoint::Kind::Vertex && p.element == v;
+    }
+    return n;
+  };
+  CHECK(starting_at(plain, wall.front()) == 1);
+  CHECK(starting_at(plain, wall.back()) == 1);
+  CHECK(starting_at(plain, wall[1]) == 0);
+  t.wall_side_rays = true;
+  const TraceGraph sides = trace_motorcycles(s.mesh, s.positions, d, t);
+  CHECK(check_trace_graph(s.mesh, sides) == "");
+  CHECK(starting_at(sides, wall.front()) == 3);
+  CHECK(starting_at(sides, wall.back()) == 3);
+  t.wall_side_rays = false;
+  // Banning each ray of the first end in turn: only banning the continuing one changes what starts
+  // there (its side rays instead); the wall's own ray is never traced from it.
+  int changed = 0;
+  for (int k = 0; k < 4; ++k) {
+    t.banned_rays = {{wall.front(), k}};
+    const TraceGraph g = trace_motorcycles(s.mesh, s.positions, d, t);
+    CHECK(check_trace_graph(s.mesh, g) == "");
+    if (starting_at(g, wall.front()) != 1) {
+      CHECK(starting_at(g, wall.front()) >= 2);
+      ++changed;
+    }
+  }
+  CHECK(changed == 1);
+  // Both layouts are valid; continuing the wall alone makes fewer patches.
+  FieldLayoutOptions o;
+  o.trace.walls = {wall};
+  const FieldLayoutResult a = build_field_layout(s.mesh, s.positions, d, o);
+  check_layout(a, "cube with a wall inside a face");
+  o.trace.wall_side_rays = true;
+  const FieldLayoutResult b = build_field_layout(s.mesh, s.positions, d, o);
+  check_layout(b, "cube with a wall inside a face, side rays");
+  CHECK(a.layout.patches.size() < b.layout.patches.size());
+}

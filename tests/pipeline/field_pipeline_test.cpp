@@ -295,9 +295,13 @@ TEST_CASE("field pipeline: walls next to a cone of valence 2 or on contradicting
   // Generated genus 1 (seed 1) has creases of 35 degrees and more: with them as walls the field
   // has valence-2 cones at wall corners, then the patches' side lengths contradict each other
   // along walls. Only the walls next to the cone or on the contradicting patches' sides are left
-  // out (before: every attempt failed, then every wall was left out).
+  // out (before: every attempt failed, then every wall was left out). The contradiction comes
+  // from the side rays of the walls' ends, so they are traced here (wall_side_rays: without them
+  // this surface's patches do not contradict each other).
   const ValidMesh mesh = igm_test::generated_mesh(1, 2000, 1);
-  const PipelineResult r = compute_igm(mesh, field_options(800));
+  PipelineOptions o = field_options(800);
+  o.field_layout.trace.wall_side_rays = true;
+  const PipelineResult r = compute_igm(mesh, o);
   check_certified(r, 1);
   CHECK(r.stats.layout == "field");
   CHECK(r.stats.features_dropped > 0);
@@ -314,6 +318,11 @@ TEST_CASE("field pipeline: walls next to a cone of valence 2 or on contradicting
   }
   CHECK(cone_rule);
   CHECK(contradiction_rule);
+  // By default (each wall end traces only the ray continuing it) the field layout keeps walls too.
+  const PipelineResult d = compute_igm(mesh, field_options(800));
+  check_certified(d, 1);
+  CHECK(d.stats.layout == "field");
+  CHECK(d.stats.feature_walls > 0);
   // The kept walls are on integer isolines: the certifier checked them.
   REQUIRE(r.igm_report.features.has_value());
   CHECK(r.igm_report.features->status == certify::Status::Pass);

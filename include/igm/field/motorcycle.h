@@ -88,9 +88,15 @@ struct TraceOptions {
   /// first, whole, as curves along their edges (each vertex left and entered by its ray nearest
   /// to the edge), and every other curve ends on them. A wall's ends and the vertices where it
   /// turns in the field (not leaving by the ray opposite to the one it came in by) are traced like
-  /// seeds (their free rays). A wall whose ray at a vertex is missing or already taken ends there
-  /// (CurveEnd::Stuck: the layout is then unusable and says so).
+  /// seeds. A wall whose ray at a vertex is missing or already taken ends there (CurveEnd::Stuck:
+  /// the layout is then unusable and says so).
   std::vector<std::vector<int>> walls;
+  /// Which free rays of a wall's end or turn are traced. false: only the one continuing the wall
+  /// (at an end: the ray opposite the wall's; at a turn: the one opposite the ray it came in by),
+  /// which is all a patch needs there (no angle of three quarter turns, no curve ending inside a
+  /// patch); true: every free ray (the two side rays too, which run beside the wall and cut thin
+  /// strips; bench/README.md "stop 54").
+  bool wall_side_rays = false;
   /// Return right after drawing the walls when one could not be drawn whole (stuck_walls set, no
   /// other curve traced): for a caller that then leaves those walls out and starts again.
   bool stop_at_stuck_wall = false;
