@@ -331,11 +331,14 @@ TEST_CASE("field pipeline: walls next to a cone of valence 2 or on contradicting
 
 TEST_CASE("field pipeline: walls next to a patch corner of a wrong angle are left out") {
   // The shared dino at 3000 quads: after the walls that cannot be drawn, a patch gets a corner of
-  // no quarter turn at a wall; the walls through it are left out, the rest kept.
+  // no quarter turn at a wall; the walls through it are left out, the rest kept. That corner comes
+  // with the side rays of the walls' ends, so they are traced here (wall_side_rays).
   IGM_REQUIRE_DATA(dir);
   if (igm_test::kSanitized) return;  // Release only (8 s there)
   const ValidMesh mesh = load_mesh(dir / "meshes/clean/dino.off");
-  const PipelineResult r = compute_igm(mesh, field_options(3000));
+  PipelineOptions o = field_options(3000);
+  o.field_layout.trace.wall_side_rays = true;
+  const PipelineResult r = compute_igm(mesh, o);
   check_certified(r, 0);
   CHECK(r.stats.layout == "field");
   CHECK(r.stats.feature_walls > 0);
