@@ -201,14 +201,17 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
       // constraints kept from being split) is refused too: the walls are then left out rather
       // than bought with a valence-2 vertex.
       int bad_cone = -1, bad_valence = 0;
+      std::vector<int> bad_cones;
       const int lowest = features.constrained.empty() ? 1 : 2;
       for (const Cone& cone : field.cones)
-        if (cone.valence <= lowest) bad_cone = cone.vertex, bad_valence = cone.valence;
+        if (cone.valence <= lowest) bad_cone = cone.vertex, bad_valence = cone.valence, bad_cones.push_back(cone.vertex);
       if (bad_cone >= 0) {
         const std::string what = "a cone of valence " + std::to_string(std::max(bad_valence, 1)) + " at vertex " +
-                                 std::to_string(bad_cone) + (bad_valence == 2 ? " (with the feature walls)" : "");
+                                 std::to_string(bad_cone) + (bad_valence == 2 ? " (with the feature walls)" : "") +
+                                 (bad_cones.size() > 1 ? " and " + std::to_string(bad_cones.size() - 1) + " more" : "");
         if (may_drop && !features.walls.empty()) {
-          drop_walls = walls_near({bad_cone});
+          // The walls next to every such cone at once (one round, not one a cone).
+          drop_walls = walls_near(bad_cones);
           if (!drop_walls.empty()) {
             stage.done("field", t0, what + ": its " + std::to_string(drop_walls.size()) +
                                         " feature walls left out, the field again" + attempt_name);
