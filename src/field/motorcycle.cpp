@@ -386,12 +386,16 @@ class Tracer {
       if (r.boundary) ++g.stats.boundary_corners;
       else if (corner) ++g.stats.cones;
       const int first = r.boundary ? 1 : 0, last = r.valence - 1;
-      // A wall's end or turn whose continuing ray is banned (an earlier round) or taken by another
-      // wall traces its other free rays.
-      bool any = corner;
-      for (int k = first; k <= last && !any; ++k) any = !banned_.count({v, k}) && !wall_ray(v, k) && ((seed[v] >> k) & 1);
+      // The free rays; of a seed, those it asks for (`seed`), or every free one where none of
+      // those is free (a wall's end whose continuing ray is banned by an earlier round or taken by
+      // another wall).
+      std::vector<int> free, asked;
       for (int k = first; k <= last; ++k)
-        if (!banned_.count({v, k}) && !wall_ray(v, k) && (!any || corner || ((seed[v] >> k) & 1))) starts.push_back({v, k});
+        if (!banned_.count({v, k}) && !wall_ray(v, k)) {
+          free.push_back(k);
+          if (corner || ((seed[v] >> k) & 1)) asked.push_back(k);
+        }
+      for (int k : asked.empty() ? free : asked) starts.push_back({v, k});
     }
     // Vertices with traced rays, hashed by position for the steering.
     steer_length_ = options_.snap_length > 0 ? options_.snap_length : options_.snap_distance * mean_edge_;

@@ -200,14 +200,14 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
       // would close on itself around it. With feature walls, a cone of valence 2 (which the
       // constraints kept from being split) is refused too: the walls are then left out rather
       // than bought with a valence-2 vertex.
-      int bad_cone = -1, bad_valence = 0;
+      int bad_valence = 0;  // the last such cone's, the one named
       std::vector<int> bad_cones;
       const int lowest = features.constrained.empty() ? 1 : 2;
       for (const Cone& cone : field.cones)
-        if (cone.valence <= lowest) bad_cone = cone.vertex, bad_valence = cone.valence, bad_cones.push_back(cone.vertex);
-      if (bad_cone >= 0) {
+        if (cone.valence <= lowest) bad_valence = cone.valence, bad_cones.push_back(cone.vertex);
+      if (!bad_cones.empty()) {
         const std::string what = "a cone of valence " + std::to_string(std::max(bad_valence, 1)) + " at vertex " +
-                                 std::to_string(bad_cone) + (bad_valence == 2 ? " (with the feature walls)" : "") +
+                                 std::to_string(bad_cones.back()) + (bad_valence == 2 ? " (with the feature walls)" : "") +
                                  (bad_cones.size() > 1 ? " and " + std::to_string(bad_cones.size() - 1) + " more" : "");
         if (may_drop && !features.walls.empty()) {
           // The walls next to every such cone at once (one round, not one a cone).

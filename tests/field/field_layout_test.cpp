@@ -37,6 +37,26 @@ std::vector<Vec3d> directions(const Surface& s, const CrossFieldOptions& o = {})
   return d;
 }
 
+// The vertices x = 0, z = 1 (the top face's middle line) of a subdivided cube at the given y, in
+// order, and the field with the edges between consecutive ones as constraints (a wall's).
+std::vector<int> top_line(const Surface& s, const std::vector<double>& ys) {
+  std::vector<int> line;
+  for (double y : ys)
+    for (int v = 0; v < s.mesh.num_vertices(); ++v)
+      if (s.positions[v].x == 0 && s.positions[v].y == y && s.positions[v].z == 1) line.push_back(v);
+  return line;
+}
+
+std::vector<Vec3d> directions_along(const Surface& s, const std::vector<int>& wall) {
+  CrossFieldOptions fo;
+  fo.constrained_edges.assign(s.mesh.num_halfedges(), 0);
+  for (std::size_t i = 0; i + 1 < wall.size(); ++i) {
+    const int h = s.mesh.find_halfedge(wall[i], wall[i + 1]);
+    fo.constrained_edges[h] = fo.constrained_edges[s.mesh.twin(h)] = 1;
+  }
+  return directions(s, fo);
+}
+
 // The snap length the pipeline uses for `quads` quads: half a quad's side.
 double snap_for(const Surface& s, double quads) {
   double area = 0;
@@ -216,20 +236,9 @@ TEST_CASE("field layout: walls (issue 45 feature curves) are drawn whole and bou
   const Surface s = igm_test::subdivided_cube(4);
   // The wall: x = 0 across the top face z = 1, from one crease to the other (no separatrix runs
   // there: without it no arc does).
-  std::vector<int> wall;
-  for (int j = 0; j <= 4; ++j) {
-    const double y = -1 + 0.5 * j;
-    for (int v = 0; v < s.mesh.num_vertices(); ++v)
-      if (s.positions[v].x == 0 && s.positions[v].y == y && s.positions[v].z == 1) wall.push_back(v);
-  }
+  const std::vector<int> wall = top_line(s, {-1.0, -0.5, 0.0, 0.5, 1.0});
   REQUIRE(wall.size() == 5);
-  CrossFieldOptions fo;
-  fo.constrained_edges.assign(s.mesh.num_halfedges(), 0);
-  for (std::size_t i = 0; i + 1 < wall.size(); ++i) {
-    const int h = s.mesh.find_halfedge(wall[i], wall[i + 1]);
-    fo.constrained_edges[h] = fo.constrained_edges[s.mesh.twin(h)] = 1;
-  }
-  const std::vector<Vec3d> d = directions(s, fo);
+  const std::vector<Vec3d> d = directions_along(s, wall);
   // Every wall edge a pair of consecutive vertices of one arc.
   auto wall_on_arcs = [&](const FieldLayoutResult& r) {
     std::set<std::pair<int, int>> arc_edges;
@@ -351,18 +360,9 @@ TEST_CASE("field layout: a wall's end traces only the ray continuing it, unless 
   // wall_side_rays each end also traces its two side rays (four curves more), which run beside
   // the wall. Where the continuing ray is banned, the end traces its side rays instead.
   const Surface s = igm_test::subdivided_cube(4);
-  std::vector<int> wall;
-  for (double y : {-0.5, 0.0, 0.5})
-    for (int v = 0; v < s.mesh.num_vertices(); ++v)
-      if (s.positions[v].x == 0 && s.positions[v].y == y && s.positions[v].z == 1) wall.push_back(v);
+  const std::vector<int> wall = top_line(s, {-0.5, 0.0, 0.5});
   REQUIRE(wall.size() == 3);
-  CrossFieldOptions fo;
-  fo.constrained_edges.assign(s.mesh.num_halfedges(), 0);
-  for (std::size_t i = 0; i + 1 < wall.size(); ++i) {
-    const int h = s.mesh.find_halfedge(wall[i], wall[i + 1]);
-    fo.constrained_edges[h] = fo.constrained_edges[s.mesh.twin(h)] = 1;
-  }
-  const std::vector<Vec3d> d = directions(s, fo);
+  const std::vector<Vec3d> d = directions_along(s, wall);
   TraceOptions t;
   t.walls = {wall};
   const TraceGraph plain = trace_motorcycles(s.mesh, s.positions, d, t);
