@@ -2,7 +2,10 @@
 // factorization), iterations, energy, the interior cones by valence (3/5/2/6/other), boundary
 // corners (k = 1 / 3 / 0 / other), close +-pairs, Poincare-Hopf.
 // usage: igm_bench_field [--alignment W] [--lanczos] [--iterations N] [--tolerance T] [--no-cleanup] [--split6]
-//                        [--pair-distance D] [--cones] [--generated FACES] [--no-shared] [--hostile N] [MESH ...]
+//                        [--pair-distance D] [--cones] [--generated FACES] [--no-shared] [--hostile N]
+//                        [--real-form-above F] [--again] [MESH ...]
+// --real-form-above F: CrossFieldOptions::real_form_above; --again: each field a second time with
+// the first one's CrossFieldCache (its analysis kept), its time printed.
 // Default: every mesh of $IGM_DATA_DIR/meshes/clean and /open (or ../shared), then a generated
 // genus-20 mesh of about 1M faces (--generated 0 skips it). --cones prints every cone's vertex,
 // valence and position. --hostile N: instead, N random small meshes (tests/support/random_mesh.h:
@@ -34,15 +37,22 @@ namespace {
 
 igm::CrossFieldOptions g_options;
 bool g_print_cones = false;
+bool g_again = false;
 
 void run(const std::string& name, const igm::SurfaceComponent& c) {
   const igm::TriMesh mesh =
       igm::TriMesh::from_triangles(static_cast<int>(c.positions.size()), c.triangles, !c.boundary_loops.empty());
   timespec c0, c1;
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c0);
-  const igm::CrossField f = igm::compute_cross_field(mesh, c.positions, g_options);
+  igm::CrossFieldCache cache;
+  const igm::CrossField f = igm::compute_cross_field(mesh, c.positions, g_options, &cache);
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c1);
   const double cpu = (c1.tv_sec - c0.tv_sec) + 1e-9 * (c1.tv_nsec - c0.tv_nsec);
+  if (g_again) {  // the same field again with the analysis kept (the pipeline's later rounds)
+    const igm::CrossField again = igm::compute_cross_field(mesh, c.positions, g_options, &cache);
+    std::printf("%-24s again with the cache: wall %7.3fs (factor %.3fs), analyses %d, same theta %s\n", name.c_str(),
+                again.stats.seconds, again.stats.factor_seconds, cache.analyses(), again.theta == f.theta ? "yes" : "NO");
+  }
   const igm::CrossFieldStats& s = f.stats;
   const auto& v = s.valence_count;
   const auto& b = s.boundary_count;
@@ -180,6 +190,10 @@ int main(int argc, char** argv) {
         g_options.close_pair_distance = std::atof(argv[++i]);
       else if (a == "--cones")
         g_print_cones = true;
+      else if (a == "--real-form-above" && i + 1 < argc)
+        g_options.real_form_above = std::atoi(argv[++i]);
+      else if (a == "--again")
+        g_again = true;
       else if (a == "--generated" && i + 1 < argc)
         generated = std::atoll(argv[++i]);
       else if (a == "--no-shared")

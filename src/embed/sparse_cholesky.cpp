@@ -719,6 +719,12 @@ void SparseCholesky::factorize(const std::vector<int>& xadj, const std::vector<i
     throw Error(ErrorKind::Internal, "SparseCholesky: matrix not numerically positive definite");
 }
 
+void SparseCholesky::release_numeric() {
+  if (!impl_ || !impl_->supernodal) return;
+  impl_->factorized = false;
+  std::vector<double>().swap(impl_->Lx);
+}
+
 void SparseCholesky::solve(Eigen::MatrixXd& b) const {
   if (!impl_ || !impl_->factorized) throw Error(ErrorKind::InvalidArgument, "SparseCholesky::solve without a factorization");
   const Impl& I = *impl_;

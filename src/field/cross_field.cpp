@@ -27,7 +27,44 @@ const char* to_string(FieldSolver solver) {
 namespace {
 
 using namespace field_internal;
-using ComplexFactor = Factor<Complex>;
+
+// The field's system on the free faces (slot: face -> free index, or -1) plus shift M: CHOLMOD's
+// simplicial factorization of restricted(), or above real_form_above faces the real form on
+// every face (LargeFactor, its analysis kept in `large`). solve() takes and returns vectors over
+// the free faces.
+class ComplexFactor {
+ public:
+  ComplexFactor(const System& s, const std::vector<int>& free_faces, const std::vector<int>& slot, double shift,
+                int real_form_above, LargeFactor& large, double& seconds)
+      : free_(free_faces), n_(static_cast<int>(s.mass.size())) {
+    if (n_ > real_form_above) {
+      large_ = &large;
+      large.factorize(s, slot, shift, seconds);
+    } else {
+      small_.compute(restricted(s, free_faces, slot, shift), seconds);
+    }
+  }
+  ~ComplexFactor() {
+    if (large_) large_->release();
+  }
+  ComplexFactor(const ComplexFactor&) = delete;
+  ComplexFactor& operator=(const ComplexFactor&) = delete;
+  Vec solve(const Vec& b) const {
+    if (!large_) return small_.solve(b);
+    Vec full = Vec::Zero(n_);
+    for (std::size_t i = 0; i < free_.size(); ++i) full[free_[i]] = b[static_cast<Eigen::Index>(i)];
+    const Vec x = large_->solve(full);
+    Vec r(static_cast<Eigen::Index>(free_.size()));
+    for (std::size_t i = 0; i < free_.size(); ++i) r[static_cast<Eigen::Index>(i)] = x[free_[i]];
+    return r;
+  }
+
+ private:
+  const std::vector<int>& free_;
+  int n_;
+  Factor<Complex> small_;
+  LargeFactor* large_ = nullptr;
+};
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kQuarter = kPi / 2;
@@ -40,10 +77,10 @@ void check_input(const TriMesh& mesh, const std::vector<Vec3d>& positions, const
   if (!(o.alignment >= 0) || !std::isfinite(o.alignment))
     throw Error(ErrorKind::InvalidArgument, "cross field: alignment must be finite and >= 0");
   if (o.max_iterations < 1 || !(o.tolerance >= 0) || !(o.close_pair_distance >= 0) || o.cleanup_rounds < 0 ||
-      !(o.split_distance >= 0 && o.split_distance <= 8))
+      !(o.split_distance >= 0 && o.split_distance <= 8) || o.real_form_above < 0)
     throw Error(ErrorKind::InvalidArgument,
                 "cross field: max_iterations >= 1, tolerance >= 0, close_pair_distance >= 0, cleanup_rounds >= 0, "
-                "split_distance in [0, 8]");
+                "split_distance in [0, 8], real_form_above >= 0");
   const int nv = mesh.num_vertices(), nf = mesh.num_faces(), nh = mesh.num_halfedges();
   if (!o.constrained_edges.empty()) {
     if (static_cast<int>(o.constrained_edges.size()) != nh)
@@ -154,15 +191,14 @@ double unit_energy(const System& sys, const std::vector<double>& theta) {
 // The smoothest field of a closed surface: the eigenvector of A u = lambda M u of the smallest
 // eigenvalue. A may be singular (a parallel field exists, e.g. on a cube), so A + eps M with eps
 // 1e-10 of the mean diagonal of M^-1 A is factorized; this moves no eigenvector.
-Vec smallest_eigenvector(const System& s, const CrossFieldOptions& o, CrossFieldStats& st) {
+Vec smallest_eigenvector(const System& s, const CrossFieldOptions& o, LargeFactor& large, CrossFieldStats& st) {
   const int n = static_cast<int>(s.mass.size());
   std::vector<int> all(n), slot(n);
   for (int i = 0; i < n; ++i) all[i] = slot[i] = i;
   double scale = 0;
   for (int f = 0; f < n; ++f) scale += s.A.coeff(f, f).real() / s.mass[f];
   const double eps = 1e-10 * scale / n;
-  ComplexFactor factor;
-  factor.compute(restricted(s, all, slot, eps), st.factor_seconds);
+  const ComplexFactor factor(s, all, slot, eps, o.real_form_above, large, st.factor_seconds);
   Vec mvec(n);
   for (int f = 0; f < n; ++f) mvec[f] = s.mass[f];
   if (o.solver == FieldSolver::InverseIteration) {
@@ -236,7 +272,7 @@ Vec smallest_eigenvector(const System& s, const CrossFieldOptions& o, CrossField
 // The field minimizing E(u) + c |u - q|^2_M with u fixed on the faces where fixed_value is set:
 // (A_II + c M_II) u_I = c M_II q_I - A_IB u_B.
 Vec linear_field(const System& s, const std::vector<Complex>& q, double c, const std::vector<char>& fixed,
-                 const Vec& fixed_value, CrossFieldStats& st) {
+                 const Vec& fixed_value, int real_form_above, LargeFactor& large, CrossFieldStats& st) {
   const int n = static_cast<int>(s.mass.size());
   std::vector<int> free_faces, slot(n, -1);
   for (int f = 0; f < n; ++f)
@@ -254,8 +290,7 @@ Vec linear_field(const System& s, const std::vector<Complex>& q, double c, const
       if (fixed[it.row()]) r -= std::conj(it.value()) * fixed_value[it.row()];
     b[static_cast<Eigen::Index>(i)] = r;
   }
-  ComplexFactor factor;
-  factor.compute(restricted(s, free_faces, slot, c), st.factor_seconds);
+  const ComplexFactor factor(s, free_faces, slot, c, real_form_above, large, st.factor_seconds);
   const Vec x = factor.solve(b);
   if (!x.allFinite()) throw Error(ErrorKind::Internal, "cross field: the linear solve gave a non-finite field");
   for (std::size_t i = 0; i < free_faces.size(); ++i) u[free_faces[i]] = x[static_cast<Eigen::Index>(i)];
@@ -404,8 +439,17 @@ Vec3d field_direction(const CrossField& field, int f, int k) {
   return frame_direction(field.frames, f, field.theta[f] + k * kQuarter);
 }
 
+struct CrossFieldCache::Impl {
+  field_internal::LargeFactor large;
+};
+CrossFieldCache::CrossFieldCache() : impl_(std::make_unique<Impl>()) {}
+CrossFieldCache::~CrossFieldCache() = default;
+int CrossFieldCache::analyses() const { return impl_->large.analyses(); }
+
 CrossField compute_cross_field(const TriMesh& mesh, const std::vector<Vec3d>& input_positions,
-                               const CrossFieldOptions& options) {
+                               const CrossFieldOptions& options, CrossFieldCache* cache) {
+  CrossFieldCache local;
+  field_internal::LargeFactor& large = (cache ? cache : &local)->impl_->large;
   const auto t0 = Clock::now();
   check_input(mesh, input_positions, options);
   const std::vector<Vec3d> p = scaled_positions(input_positions);
@@ -445,9 +489,9 @@ CrossField compute_cross_field(const TriMesh& mesh, const std::vector<Vec3d>& in
   if (st.constrained_faces > 0 || c > 0) {
     st.linear = true;
     st.iterations = 1;
-    u = linear_field(sys, q, c, fixed, fixed_value, st);
+    u = linear_field(sys, q, c, fixed, fixed_value, options.real_form_above, large, st);
   } else {
-    u = smallest_eigenvector(sys, options, st);
+    u = smallest_eigenvector(sys, options, large, st);
   }
   field.theta.resize(nf);
   for (int f = 0; f < nf; ++f) field.theta[f] = fixed[f] ? 0.0 : angle_of(u[f]);

@@ -83,6 +83,73 @@ SpMat restricted(const System& s, const std::vector<int>& free_faces, const std:
   return r;
 }
 
+void LargeFactor::factorize(const System& sys, const std::vector<int>& slot, double shift, double& seconds) {
+  const auto t0 = Clock::now();
+  const SpMat& a = sys.A;
+  const int n = static_cast<int>(a.rows());
+  // The pattern: row 2f (real part of face f) and 2f + 1 (imaginary part) hold both parts of every
+  // neighbour g of f in A (g != f; rows of a column are sorted). A(f, g) = conj(A(g, f)) is read
+  // down column f.
+  std::vector<int> xadj(2 * static_cast<std::size_t>(n) + 1, 0), adj;
+  adj.reserve(4 * static_cast<std::size_t>(a.nonZeros()));
+  for (int f = 0; f < n; ++f)
+    for (int part = 0; part < 2; ++part) {
+      for (SpMat::InnerIterator it(a, f); it; ++it) {
+        const int g = static_cast<int>(it.row());
+        if (g == f) continue;
+        adj.push_back(2 * g);
+        adj.push_back(2 * g + 1);
+      }
+      xadj[2 * f + part + 1] = static_cast<int>(adj.size());
+    }
+  if (!analyzed_ || xadj != xadj_ || adj != adj_) {
+    xadj_.swap(xadj);
+    adj_.swap(adj);
+    group_.resize(2 * static_cast<std::size_t>(n));
+    for (int f = 0; f < n; ++f) group_[2 * f] = group_[2 * f + 1] = f;
+    chol_.analyze(xadj_, adj_, group_, SparseCholesky::Ordering::Metis);
+    analyzed_ = true;
+    ++analyses_;
+  }
+  // The values, aligned with adj_: for h = A(f, g) = a + ib, row 2f gets (a, -b), row 2f + 1 gets
+  // (b, a); 0 where f or g is not free. The diagonal as restricted() writes it; 1 if not free.
+  std::vector<double> val(adj_.size()), diag(2 * static_cast<std::size_t>(n));
+  std::size_t k = 0;
+  for (int f = 0; f < n; ++f) {
+    double d = 1;
+    if (slot[f] >= 0) {
+      d = a.coeff(f, f).real() * (1 + kRegularization) + shift * sys.mass[f];
+      if (!(d > 0)) d = sys.mass[f];
+    }
+    diag[2 * f] = diag[2 * f + 1] = d;
+    for (int part = 0; part < 2; ++part)
+      for (SpMat::InnerIterator it(a, f); it; ++it) {
+        const int g = static_cast<int>(it.row());
+        if (g == f) continue;
+        const bool both = slot[f] >= 0 && slot[g] >= 0;
+        const Complex h = both ? std::conj(it.value()) : Complex(0, 0);
+        val[k++] = part == 0 ? h.real() : h.imag();
+        val[k++] = part == 0 ? -h.imag() : h.real();
+      }
+  }
+  const bool ok = chol_.factorize_numeric(val, diag);
+  seconds += since(t0);
+  if (!ok) throw Error(ErrorKind::Internal, "cross field: the sparse factorization failed (matrix not positive definite)");
+}
+
+Vec LargeFactor::solve(const Vec& b) const {
+  const Eigen::Index n = b.size();
+  Eigen::MatrixXd x(2 * n, 1);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    x(2 * i, 0) = b[i].real();
+    x(2 * i + 1, 0) = b[i].imag();
+  }
+  chol_.solve(x);
+  Vec r(n);
+  for (Eigen::Index i = 0; i < n; ++i) r[i] = Complex(x(2 * i, 0), x(2 * i + 1, 0));
+  return r;
+}
+
 template <class Scalar>
 void Factor<Scalar>::fail() {
   throw Error(ErrorKind::Internal, "cross field: the sparse factorization failed (matrix not positive definite)");

@@ -8,6 +8,7 @@
 #include <complex>
 #include <vector>
 
+#include "igm/embed/sparse_cholesky.h"
 #include "igm/field/cross_field.h"
 
 namespace igm::field_internal {
@@ -97,6 +98,33 @@ inline constexpr double kRegularization = 1e-9;
 /// kRegularization * diag(A) (a row whose diagonal would be 0, a face with no interior edge: its
 /// mass instead).
 SpMat restricted(const System& sys, const std::vector<int>& free_faces, const std::vector<int>& slot, double shift);
+
+/// The field's system above CrossFieldOptions::real_form_above faces: the real symmetric form [[Re, -Im], [Im, Re]] of
+/// restricted(sys, free faces, shift) written on every face (2F unknowns, the two parts of a face
+/// ordered together; a face that is not free is decoupled: identity row and column), factorized
+/// by embed/sparse_cholesky.h (METIS ordering, supernodal on Eigen's dense kernels: the same bits
+/// for any thread count). Its analysis depends only on the pattern of sys.A, i.e. on the mesh, so
+/// it is kept between factorizations (CrossFieldCache: the pipeline's rounds change the
+/// constraints and the shift, not the mesh) and done again only when the pattern differs. The
+/// results do not depend on whether the analysis was kept. Measured against CHOLMOD's simplicial
+/// complex factorization in bench/README.md ("Issue 44, stop 55").
+class LargeFactor {
+ public:
+  /// slot: face -> its free index, or -1 (not free). Adds the wall time to `seconds`. Throws
+  /// igm::Error(Internal) if the matrix is not numerically positive definite.
+  void factorize(const System& sys, const std::vector<int>& slot, double shift, double& seconds);
+  /// x over every face for b over every face (a face that is not free: x = b).
+  Vec solve(const Vec& b) const;
+  /// Frees the numeric factor, keeping the analysis.
+  void release() { chol_.release_numeric(); }
+  int analyses() const { return analyses_; }
+
+ private:
+  std::vector<int> xadj_, adj_, group_;
+  SparseCholesky chol_;
+  bool analyzed_ = false;
+  int analyses_ = 0;
+};
 
 /// The cone cleanup of CrossFieldOptions (remove_close_pairs, split_valence2, split_valence6;
 /// cone_pairs.cpp). `fixed` marks the boundary-constrained faces. Updates theta, periods,

@@ -20,6 +20,7 @@
 #include "igm/layout/polygon_pattern.h"
 #include "igm/layout/quantize.h"
 #include "igm/mesh/scale.h"
+#include "../core/parallel.h"
 #include "motorcycle_internal.h"
 
 namespace igm {
@@ -191,14 +192,33 @@ class Builder {
       busy[TriMesh::face(entry.first)] = 1;
       if (const int t = mesh_.twin(entry.first); t >= 0) busy[TriMesh::face(t)] = 1;
     }
-    for (int f = 0; f < nf; ++f) {
-      const auto fv = mesh_.face_vertices(f);
+    // The busy faces are independent (each writes its own triangles and its own memo entry):
+    // triangulated in parallel, then every face's triangles appended in face order, and the
+    // first failure in face order reported (the same output for any thread count).
+    std::vector<int> busy_faces;
+    for (int f = 0; f < nf; ++f)
+      if (busy[f]) busy_faces.push_back(f);
+    struct FaceOut {
+      std::vector<std::array<int, 3>> triangles;
+      std::string error;
+    };
+    std::vector<FaceOut> done(busy_faces.size());
+    const std::vector<std::vector<int>> none;
+    parallel::for_each_index(static_cast<std::int64_t>(busy_faces.size()), 64, [&](std::int64_t i) {
+      const int f = busy_faces[static_cast<std::size_t>(i)];
+      const auto it = chords.find(f);
+      done[i].error = triangulate_face(f, it != chords.end() ? it->second : none, done[i].triangles);
+    });
+    triangles_.reserve(triangles_.size() + nf + 2 * busy_faces.size());
+    for (int f = 0, k = 0; f < nf; ++f) {
       if (!busy[f]) {
-        triangles_.push_back(fv);
+        triangles_.push_back(mesh_.face_vertices(f));
         continue;
       }
-      std::vector<std::vector<int>> none;
-      if (std::string e = triangulate_face(f, chords.count(f) ? chords[f] : none); !e.empty()) return e;
+      FaceOut& o = done[k++];
+      triangles_.insert(triangles_.end(), o.triangles.begin(), o.triangles.end());
+      if (!o.error.empty()) return o.error;
+      std::vector<std::array<int, 3>>().swap(o.triangles);
     }
     return "";
   }
@@ -208,7 +228,10 @@ class Builder {
     return t >= 0 && t < h ? t : h;
   }
 
-  std::string triangulate_face(int f, const std::vector<std::vector<int>>& face_chords) {
+  // Appends face f's triangles (refined ids) to `tris`; "" or why it failed. Reads the
+  // builder's points and writes only `tris` and f's memo entry: safe in parallel over faces.
+  std::string triangulate_face(int f, const std::vector<std::vector<int>>& face_chords,
+                               std::vector<std::array<int, 3>>& tris) const {
     const auto fv = mesh_.face_vertices(f);
     // Local vertices: refined ids and plane positions.
     std::vector<int> rid;
@@ -237,20 +260,20 @@ class Builder {
     }
     FaceTriangulation* memo = cache_ && static_cast<int>(cache_->size()) > f ? &(*cache_)[f] : nullptr;
     if (memo && memo->known && memo->boundary == boundary && memo->chords == pending && same_points(memo->pos, pos)) {
-      for (const auto& t : memo->triangles) triangles_.push_back({rid[t[0]], rid[t[1]], rid[t[2]]});
+      for (const auto& t : memo->triangles) tris.push_back({rid[t[0]], rid[t[1]], rid[t[2]]});
       return memo->error;
     }
-    const std::size_t first_triangle = triangles_.size();
-    std::string error = solve_face(f, pos, rid, boundary, pending, face_chords.size());
+    const std::size_t first_triangle = tris.size();
+    std::string error = solve_face(f, pos, rid, boundary, pending, face_chords.size(), tris);
     if (memo) {
       memo->known = true;
       memo->pos = pos;
       memo->boundary = boundary;
       memo->chords = std::move(pending);
       memo->triangles.clear();
-      for (std::size_t k = first_triangle; k < triangles_.size(); ++k) {
+      for (std::size_t k = first_triangle; k < tris.size(); ++k) {
         std::array<int, 3> t{};
-        for (int i = 0; i < 3; ++i) t[i] = local.at(triangles_[k][i]);
+        for (int i = 0; i < 3; ++i) t[i] = local.at(tris[k][i]);
         memo->triangles.push_back(t);
       }
       memo->error = error;
@@ -265,9 +288,10 @@ class Builder {
     return true;
   }
 
-  // The cells of face f cut by its chords, triangulated (appended to triangles_ in refined ids).
+  // The cells of face f cut by its chords, triangulated (appended to tris in refined ids).
   std::string solve_face(int f, const std::vector<Point2q>& pos, const std::vector<int>& rid, const std::vector<int>& boundary,
-                         std::vector<std::vector<int>> pending, std::size_t num_chords) {
+                         std::vector<std::vector<int>> pending, std::size_t num_chords,
+                         std::vector<std::array<int, 3>>& tris) const {
     std::vector<std::vector<int>> cells{boundary};
     // Curves that end at one point inside the face, none passing through it: two of them merged
     // head-on there (they run on from it in opposite directions) and are one chord through it
@@ -334,7 +358,7 @@ class Builder {
       return "face " + str(f) + ": curve pieces that do not cut it into cells";
     }
     for (const auto& cell : cells)
-      if (!clip_cell(cell, pos, rid)) return "face " + str(f) + ": a cell that cannot be triangulated";
+      if (!clip_cell(cell, pos, rid, tris)) return "face " + str(f) + ": a cell that cannot be triangulated";
     return "";
   }
 
@@ -398,7 +422,8 @@ class Builder {
   // Triangulates a simple cell (counter-clockwise; collinear vertices and, where curves were
   // merged or snapped, slightly reflex corners allowed) by clipping ears: strictly convex corners
   // whose triangle holds no other vertex of the cell (exact).
-  bool clip_cell(std::vector<int> cell, const std::vector<Point2q>& pos, const std::vector<int>& rid) {
+  static bool clip_cell(std::vector<int> cell, const std::vector<Point2q>& pos, const std::vector<int>& rid,
+                        std::vector<std::array<int, 3>>& tris) {
     for (std::size_t guard = 0; cell.size() > 3 && guard < 4 * pos.size() + 8; ++guard) {
       const std::size_t n = cell.size();
       bool clipped = false;
@@ -414,14 +439,14 @@ class Builder {
                     orient2d(pos[c], pos[a], pos[x]) != Sign::Negative);
         }
         if (!clear) continue;
-        triangles_.push_back({rid[a], rid[b], rid[c]});
+        tris.push_back({rid[a], rid[b], rid[c]});
         cell.erase(cell.begin() + static_cast<long>(i));
         clipped = true;
       }
       if (!clipped) return false;
     }
     if (cell.size() != 3 || orient2d(pos[cell[0]], pos[cell[1]], pos[cell[2]]) != Sign::Positive) return false;
-    triangles_.push_back({rid[cell[0]], rid[cell[1]], rid[cell[2]]});
+    tris.push_back({rid[cell[0]], rid[cell[1]], rid[cell[2]]});
     return true;
   }
 

@@ -169,6 +169,7 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
   // attempts' alignments do not move it), at a patch corner of a wrong angle next to walls, or at
   // contradicting side lengths along walls; drop_walls then lists those walls (the caller leaves
   // them out and calls again).
+  auto field_cache = std::make_unique<CrossFieldCache>();  // the field system's analysis, kept over the rounds and attempts
   auto run_attempts = [&](bool may_drop) {
     drop_walls.clear();
     // With walls, the attempts after the first cost F each: as many as field_wall_work allows.
@@ -186,7 +187,7 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
         if (o.alignment == fo.alignment && o.remove_close_pairs == fo.remove_close_pairs) known = &f;
       if (!known) {
         try {
-          fields.emplace_back(fo, compute_cross_field(*input.mesh, positions, fo));
+          fields.emplace_back(fo, compute_cross_field(*input.mesh, positions, fo, field_cache.get()));
         } catch (const Error& e) {
           if (e.kind() != ErrorKind::Internal) throw;
           if (first_failure.empty()) first_failure = std::string("field: ") + e.what();
@@ -334,6 +335,8 @@ std::optional<PipelineResult> compute_igm_field(const FieldSurface& input, const
     }
     fields.clear();  // the features changed: every field again
   }
+  field_cache.reset();  // the fields are no longer needed: their memory back before the maps
+  std::vector<std::pair<CrossFieldOptions, CrossField>>().swap(fields);
   if (!traced.ok) return fail(first_failure);
   stats.feature_walls = static_cast<int>(features.walls.size());
   stats.refined_vertices = traced.stats.refined_vertices;

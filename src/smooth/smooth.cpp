@@ -173,6 +173,32 @@ class Smoother {
     }
     std::vector<int>().swap(nbr);
     std::vector<int>().swap(begin);
+    // Where each face's Hessian entries go, found once (face_terms reads them every iteration).
+    // Row r of vertex a lists the unknowns of a's neighbours in vertex order; a's two rows differ
+    // only in a's own entry (each holds the other unknown of a, at the same place), so a
+    // neighbour b's columns sit at the same offset from the row's start in both rows of a:
+    // pair_offset_[6 f + p] for the p-th ordered pair (i, j), i != j, of f's corners, and
+    // self_offset_[a] for the entry (u_a, v_a).
+    auto first_unknown = [&](int v) { return unknown_[v][0] >= 0 ? unknown_[v][0] : unknown_[v][1]; };
+    auto offset = [&](int r, int c) {
+      const auto row = adj_.begin() + xadj_[r], end = adj_.begin() + xadj_[r + 1];
+      const auto it = std::lower_bound(row, end, c);
+      if (it == end || *it != c) throw Error(ErrorKind::Internal, "smooth: an entry missing from the Hessian's pattern");
+      return static_cast<int>(it - row);
+    };
+    pair_offset_.assign(6 * static_cast<std::size_t>(nf), -1);
+    for (int f = 0; f < nf; ++f)
+      for (int i = 0; i < 3; ++i) {
+        const int ra = first_unknown(s_.mesh.origin(3 * f + i));
+        if (ra < 0) continue;
+        for (int k = 1; k <= 2; ++k) {
+          const int cb = first_unknown(s_.mesh.origin(3 * f + (i + k) % 3));
+          if (cb >= 0) pair_offset_[6 * static_cast<std::size_t>(f) + 2 * i + k - 1] = offset(ra, cb);
+        }
+      }
+    self_offset_.assign(nv, -1);
+    for (int v = 0; v < nv; ++v)
+      if (unknown_[v][0] >= 0 && unknown_[v][1] >= 0) self_offset_[v] = offset(unknown_[v][0], unknown_[v][1]);
     values_.assign(adj_.size(), 0.0);
     diag_.assign(m, 0.0);
     // the factorization's analysis, once: both unknowns of a vertex ordered together
@@ -193,12 +219,16 @@ class Smoother {
     }
   }
 
-  // Where entry (ga, gb) of the Hessian goes: an index into the off-diagonal values, -2 - ga on
-  // the diagonal, -1 if either is a fixed coordinate.
-  int slot(int ga, int gb) const {
+  // Where entry (row r of corner i, column c of corner j) of face f's Hessian goes: an index
+  // into the off-diagonal values, -2 - ga on the diagonal, -1 if either is a fixed coordinate.
+  int slot(int f, int i, int r, int j, int c) const {
+    const int a = s_.mesh.origin(3 * f + i), b = s_.mesh.origin(3 * f + j);
+    const int ga = unknown_[a][r], gb = unknown_[b][c];
     if (ga < 0 || gb < 0) return -1;
-    if (ga == gb) return -2 - ga;
-    return static_cast<int>(std::lower_bound(adj_.begin() + xadj_[ga], adj_.begin() + xadj_[ga + 1], gb) - adj_.begin());
+    if (i == j) return r == c ? -2 - ga : xadj_[ga] + self_offset_[a];
+    const int k = (j - i + 3) % 3;  // 1 or 2
+    return xadj_[ga] + pair_offset_[6 * static_cast<std::size_t>(f) + 2 * i + k - 1] +
+           (c == 1 && unknown_[b][0] >= 0 ? 1 : 0);
   }
 
   // One face's gradient and projected Hessian in its corners' free coordinates, with where they go.
@@ -259,7 +289,7 @@ class Smoother {
             t.hx[6 * (2 * i + r) + 2 * j + c] = sum;
           }
     for (int a = 0; a < 6; ++a)
-      for (int b = 0; b < 6; ++b) t.slot[6 * a + b] = slot(t.unknown[a], t.unknown[b]);
+      for (int b = 0; b < 6; ++b) t.slot[6 * a + b] = slot(f, a / 2, a % 2, b / 2, b % 2);
   }
 
   // d = -H^-1 g for H + mu diag(H) (Levenberg-Marquardt with the diagonal's scale: the entries of
@@ -361,6 +391,7 @@ class Smoother {
   std::vector<SdReference> refs_;
   std::vector<std::array<Vec2d, 3>> corners_, trial_corners_;
   std::vector<int> xadj_, adj_;
+  std::vector<int> pair_offset_, self_offset_;  // slot offsets (build_pattern)
   std::vector<double> values_, diag_;
   SparseCholesky solver_;
   Eigen::VectorXd gradient_;

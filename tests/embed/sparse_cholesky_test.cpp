@@ -197,6 +197,15 @@ TEST_CASE("sparse Cholesky: the supernodal factorization of a grouped system, an
   bad.diag[bad.diag.size() / 2] = -1;
   CHECK_FALSE(chol.factorize_numeric(bad.val, bad.diag));
   CHECK(chol.factorize_numeric(b.c.val, b.c.diag));
+  // The numeric factor released: no solve until the next factorization, which gives the same bits.
+  Eigen::MatrixXd before = rhs;
+  chol.solve(before);
+  chol.release_numeric();
+  Eigen::MatrixXd after = rhs;
+  CHECK_THROWS_AS(chol.solve(after), Error);
+  REQUIRE(chol.factorize_numeric(b.c.val, b.c.diag));
+  chol.solve(after);
+  CHECK(after == before);
   // Values that do not match the pattern, or a solve before any analysis.
   CHECK_THROWS_AS(chol.factorize_numeric(std::vector<double>(3), b.c.diag), Error);
   SparseCholesky none;

@@ -694,3 +694,63 @@ TEST_CASE("cross field: feature edges are hard constraints (issue 45)") {
   o.constrained_edges[0] = 1;
   CHECK_THROWS_AS(compute_cross_field(s.mesh, s.positions, o), Error);
 }
+
+TEST_CASE("cross field: the real form on every face agrees with the complex factorization, and a cache keeps its analysis (issue 44)") {
+  // Forced onto small surfaces by real_form_above = 0: a closed genus 2 (the smallest eigenvector
+  // and the aligned field), an open genus 0 with three loops (boundary faces fixed: decoupled in
+  // the real form, eliminated in the complex one) and the cube with its creases as constraints.
+  const Surface cube = subdivided_cube(4);
+  const std::vector<char> creases = flag_edges(cube, [](const Vec3d& p) {
+    return (std::fabs(p.x) == 1) + (std::fabs(p.y) == 1) + (std::fabs(p.z) == 1) >= 2;
+  });
+  struct Case {
+    Surface s;
+    std::vector<char> constrained;
+  };
+  std::vector<Case> cases{{generated(2, 3000, 0, 9), {}}, {generated(0, 3000, 3, 9), {}}, {cube, creases}};
+  for (const Case& c : cases)
+    for (double w : {0.0, 100.0}) {
+      CAPTURE(w);
+      CrossFieldOptions o;
+      o.alignment = w;
+      o.constrained_edges = c.constrained;
+      const CrossField complex = compute_cross_field(c.s.mesh, c.s.positions, o);
+      CHECK(complex.stats.iterations >= 1);
+      o.real_form_above = 0;
+      const CrossField real = compute_cross_field(c.s.mesh, c.s.positions, o);
+      // The same field to rounding: every face's cross within 1e-6 rad, hence the same matchings,
+      // valences and cones.
+      double worst = 0;
+      for (std::size_t f = 0; f < real.theta.size(); ++f)
+        worst = std::max(worst, std::fabs(std::remainder(real.theta[f] - complex.theta[f], kQuarter)));
+      CHECK(worst < 1e-6);
+      CHECK(real.valence == complex.valence);
+      CHECK(real.matching == complex.matching);
+      CHECK(real.stats.iterations == complex.stats.iterations);
+      // With a cache: one analysis for every call on the mesh, the same bytes as without.
+      CrossFieldCache cache;
+      const CrossField a = compute_cross_field(c.s.mesh, c.s.positions, o, &cache);
+      CrossFieldOptions o2 = o;
+      o2.alignment = w > 0 ? 0.0 : 100.0;
+      o2.constrained_edges.clear();
+      const CrossField b = compute_cross_field(c.s.mesh, c.s.positions, o2, &cache);
+      const CrossField again = compute_cross_field(c.s.mesh, c.s.positions, o, &cache);
+      CHECK(cache.analyses() == 1);
+      CHECK(a.theta == real.theta);  // bitwise
+      CHECK(again.theta == real.theta);
+      CHECK(b.theta == compute_cross_field(c.s.mesh, c.s.positions, o2).theta);
+    }
+  // Another mesh through the same cache is analyzed again; the default leaves small meshes to
+  // CHOLMOD (no analysis kept).
+  CrossFieldCache cache;
+  CrossFieldOptions o;
+  o.real_form_above = 0;
+  compute_cross_field(cases[0].s.mesh, cases[0].s.positions, o, &cache);
+  compute_cross_field(cube.mesh, cube.positions, o, &cache);
+  CHECK(cache.analyses() == 2);
+  CrossFieldCache unused;
+  compute_cross_field(cube.mesh, cube.positions, CrossFieldOptions{}, &unused);
+  CHECK(unused.analyses() == 0);
+  o.real_form_above = -1;
+  CHECK_THROWS_AS(compute_cross_field(cube.mesh, cube.positions, o), Error);
+}

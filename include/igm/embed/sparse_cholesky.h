@@ -85,6 +85,10 @@ class SparseCholesky {
   /// Pre: a successful factorization. Cost O(k * factor_entries()).
   void solve(Eigen::MatrixXd& b) const;
 
+  /// Frees the numeric factor of a supernodal factorization (most of its memory), keeping the
+  /// analysis: factorize_numeric() is needed again before solve(). No effect on a simplicial one.
+  void release_numeric();
+
   int size() const { return stats_.n; }
   std::size_t factor_entries() const { return stats_.factor_entries; }
   int max_front() const { return stats_.max_front; }

@@ -47,6 +47,7 @@
 #include <array>
 #include <complex>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -78,6 +79,11 @@ struct CrossFieldOptions {
   /// tolerance on the Ritz values.
   int max_iterations = 100;
   double tolerance = 1e-5;
+  /// Surfaces with more faces than this (>= 0) have the field's system factorized in its real
+  /// form by embed/sparse_cholesky.h (METIS, supernodal, its analysis kept in a CrossFieldCache),
+  /// smaller ones by CHOLMOD's simplicial complex LDL^T (the analysis is cheap there). Measured:
+  /// bench/README.md, "Issue 44, stop 55". The two agree to rounding.
+  int real_form_above = 200000;
   /// Cones of opposite index (valence sum 8: 3 with 5, 2 with 6) closer than this many mean edge
   /// lengths (shortest path along the edges) are reported as close pairs.
   double close_pair_distance = 3.0;
@@ -173,9 +179,34 @@ struct CrossField {
 /// vector, no randomness). Cost: one sparse LDL^T factorization of the F x F complex system, one
 /// solve (alignment or boundary) or at most max_iterations (the smoothest closed field); the
 /// cleanup one real factorization on the faces around its moves per attempt (docs/field.md:
-/// 0.4 s for armadillo's 52k faces, about 20 s of CPU and 1.1 GB for 1M faces).
+/// 0.4 s for armadillo's 52k faces, about 20 s of CPU and 1.1 GB for 1M faces). Above
+/// options.real_form_above faces the system is factorized in its real form by
+/// embed/sparse_cholesky.h (METIS, supernodal; the same bits for any thread count), whose
+/// analysis `cache` keeps between calls.
+class CrossFieldCache;
 CrossField compute_cross_field(const TriMesh& mesh, const std::vector<Vec3d>& positions,
-                               const CrossFieldOptions& options = {});
+                               const CrossFieldOptions& options = {}, CrossFieldCache* cache = nullptr);
+
+/// What compute_cross_field calls on one mesh share: the pipeline's rounds and attempts change
+/// the feature constraints and the alignment, not the mesh. Above real_form_above faces it keeps the
+/// analysis (fill-reducing order, symbolic factorization) of the field's system, which depends
+/// only on the mesh's edges; a call on another mesh analyzes again. The results are the same
+/// bytes with or without a cache. One call at a time.
+class CrossFieldCache {
+ public:
+  CrossFieldCache();
+  ~CrossFieldCache();
+  CrossFieldCache(const CrossFieldCache&) = delete;
+  CrossFieldCache& operator=(const CrossFieldCache&) = delete;
+  /// Analyses done so far (0 while every mesh seen had at most real_form_above faces).
+  int analyses() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  friend CrossField compute_cross_field(const TriMesh&, const std::vector<Vec3d>&, const CrossFieldOptions&,
+                                        CrossFieldCache*);
+};
 
 /// Recomputes matchings, periods, valences, cones and stats.valence_count / boundary_count from
 /// field.theta and field.frames (used by compute_cross_field, and by a caller that edits theta).
