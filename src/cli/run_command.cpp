@@ -16,6 +16,7 @@
 #include <string>
 
 #include "igm/core/error.h"
+#include "igm/core/threads.h"
 #include "igm/core/memory.h"
 #include "igm/mesh/generate.h"
 #include "igm/io/read_mesh.h"
@@ -199,16 +200,20 @@ int print_verdict(const igm::certify::Report& igm_report, const igm::certify::Re
   return kExitCertified;
 }
 
-// Creates DIR and writes NAME.igm.obj (doubles), NAME.igm.exact, NAME.quad.obj and NAME.quad.svg;
-// returns the path maker DIR/NAME + suffix for the run's other files.
+// Creates DIR and writes NAME.igm.obj (doubles), NAME.igm.exact, NAME.quad.obj and NAME.quad.svg
+// (formatted on `threads` threads, as the run's stages); returns the path maker DIR/NAME + suffix
+// for the run's other files.
 std::function<std::filesystem::path(const char*)> write_outputs(const std::filesystem::path& dir, const std::string& name,
-                                                               const igm::IgmMesh& igm, const igm::QuadMesh& quads) {
+                                                               const igm::IgmMesh& igm, const igm::QuadMesh& quads,
+                                                               int threads) {
   create_folder(dir);
   auto out = [dir, name](const char* suffix) { return dir / (name + suffix); };
-  write_file(out(".igm.obj"), [&](std::ostream& s) { igm::write_igm_obj(s, igm, false); });
-  write_file(out(".igm.exact"), [&](std::ostream& s) { igm::write_igm_obj(s, igm, true); });
-  write_file(out(".quad.obj"), [&](std::ostream& s) { igm::write_quad_obj(s, quads); });
-  write_file(out(".quad.svg"), [&](std::ostream& s) { igm::write_quad_svg(s, quads); });
+  igm::with_threads(threads, [&] {
+    write_file(out(".igm.obj"), [&](std::ostream& s) { igm::write_igm_obj(s, igm, false); });
+    write_file(out(".igm.exact"), [&](std::ostream& s) { igm::write_igm_obj(s, igm, true); });
+    write_file(out(".quad.obj"), [&](std::ostream& s) { igm::write_quad_obj(s, quads); });
+    write_file(out(".quad.svg"), [&](std::ostream& s) { igm::write_quad_svg(s, quads); });
+  });
   return out;
 }
 
@@ -246,7 +251,7 @@ int run_surfaces(const igm::SurfaceSet& set, const std::string& name, const std:
   const auto t0 = std::chrono::steady_clock::now();
   const igm::SurfacesResult r = igm::compute_igms(set, options);
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const auto out = write_outputs(dir, name, r.igm, r.quads);
+  const auto out = write_outputs(dir, name, r.igm, r.quads, options.threads);
   write_file(out(".cert.json"), [&](std::ostream& s) {
     s << "{\n\"input\": {\"name\": \"" << json_escape(name) << "\", \"surfaces\": " << set.components.size() << "},\n"
       << "\"certified\": " << (r.certified() ? "true" : "false") << ",\n\"surfaces\": [";
@@ -293,7 +298,7 @@ int run_pipeline(const igm::ValidMesh& mesh, const std::string& name, const std:
   igm::PipelineResult r = igm::compute_igm(mesh, options);
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-  const auto out = write_outputs(dir, name, r.igm, r.quads);
+  const auto out = write_outputs(dir, name, r.igm, r.quads, options.threads);
   write_file(out(".schema.svg"), [&](std::ostream& s) { igm::write_schema_svg(s, r.schema); });
   write_file(out(".cert.json"), [&](std::ostream& s) {
     const igm::PipelineStats& st = r.stats;

@@ -1,11 +1,16 @@
 #include "igm/output/igm_mesh.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <ostream>
+#include <sstream>
 #include <string>
+#include <vector>
 
+#include "../core/parallel.h"
 #include "igm/core/error.h"
 
 namespace igm {
@@ -61,16 +66,38 @@ void check_uv_count(const IgmMesh& igm, const std::vector<std::array<Point2q, 3>
                                                 std::to_string(corner_uv.size()) + " UV triples");
 }
 
-void put_positions(std::ostream& out, const std::vector<Vec3d>& positions) {
-  for (const Vec3d& p : positions) {
-    out << "v ";
-    put_double(out, p.x);
-    out << ' ';
-    put_double(out, p.y);
-    out << ' ';
-    put_double(out, p.z);
-    out << '\n';
+// Writes put(i, stream) for i = 0..n-1 to out, in order. The lines are formatted in parallel
+// (core/parallel.h) into strings of kLines items each, kBatch strings at a time, then written in
+// order: the same bytes for any thread count, at most kLines * kBatch lines held in memory. Each
+// string's stream copies out's format (its locale for integers).
+template <class Put>
+void put_lines(std::ostream& out, std::int64_t n, const Put& put) {
+  constexpr std::int64_t kLines = 2048, kBatch = 64;
+  std::vector<std::string> text(kBatch);
+  for (std::int64_t b0 = 0; b0 < n; b0 += kLines * kBatch) {
+    const std::int64_t chunks = std::min(kBatch, (n - b0 + kLines - 1) / kLines);
+    parallel::for_each_index(chunks, 1, [&](std::int64_t c) {
+      std::ostringstream s;
+      s.copyfmt(out);
+      const std::int64_t first = b0 + c * kLines, last = std::min(n, first + kLines);
+      for (std::int64_t i = first; i < last; ++i) put(i, s);
+      text[static_cast<std::size_t>(c)] = std::move(s).str();
+    });
+    for (std::int64_t c = 0; c < chunks; ++c) out << text[static_cast<std::size_t>(c)];
   }
+}
+
+void put_positions(std::ostream& out, const std::vector<Vec3d>& positions) {
+  put_lines(out, static_cast<std::int64_t>(positions.size()), [&](std::int64_t v, std::ostream& o) {
+    const Vec3d& p = positions[static_cast<std::size_t>(v)];
+    o << "v ";
+    put_double(o, p.x);
+    o << ' ';
+    put_double(o, p.y);
+    o << ' ';
+    put_double(o, p.z);
+    o << '\n';
+  });
 }
 
 }  // namespace
@@ -80,23 +107,24 @@ void write_igm_obj(std::ostream& out, const IgmMesh& igm, bool exact) {
   out << (exact ? "# igm exact IGM: one vt per face corner, exact rationals p/q\n"
                 : "# igm IGM: one vt per face corner (exact decimals where exactly doubles, else doubles rounded toward zero)\n");
   put_positions(out, igm.positions);
-  for (const auto& tri : igm.corner_uv)
-    for (const Point2q& uv : tri) {
-      out << "vt ";
-      if (exact) {
-        out << to_string(uv.x) << ' ' << to_string(uv.y);
-      } else {
-        put_uv_coordinate(out, uv.x);
-        out << ' ';
-        put_uv_coordinate(out, uv.y);
-      }
-      out << '\n';
+  put_lines(out, 3 * static_cast<std::int64_t>(igm.corner_uv.size()), [&](std::int64_t c, std::ostream& o) {
+    const Point2q& uv = igm.corner_uv[static_cast<std::size_t>(c / 3)][static_cast<std::size_t>(c % 3)];
+    o << "vt ";
+    if (exact) {
+      o << to_string(uv.x) << ' ' << to_string(uv.y);
+    } else {
+      put_uv_coordinate(o, uv.x);
+      o << ' ';
+      put_uv_coordinate(o, uv.y);
     }
-  for (std::size_t f = 0; f < igm.triangles.size(); ++f) {
-    out << 'f';
-    for (int i = 0; i < 3; ++i) out << ' ' << igm.triangles[f][i] + 1 << '/' << 3 * f + i + 1;
-    out << '\n';
-  }
+    o << '\n';
+  });
+  put_lines(out, static_cast<std::int64_t>(igm.triangles.size()), [&](std::int64_t f, std::ostream& o) {
+    o << 'f';
+    for (int i = 0; i < 3; ++i)
+      o << ' ' << igm.triangles[static_cast<std::size_t>(f)][i] + 1 << '/' << 3 * static_cast<std::size_t>(f) + i + 1;
+    o << '\n';
+  });
 }
 
 certify::IgmInput certify_input(const IgmMesh& igm, const std::vector<std::array<Point2q, 3>>& corner_uv) {

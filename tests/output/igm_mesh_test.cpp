@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "certify/certify.h"
+#include "igm/core/threads.h"
 #include "igm/output/igm_mesh.h"
 #include "igm/output/schema_svg.h"
 #include "square_torus.h"
@@ -122,5 +123,43 @@ TEST_CASE("a map on a double grid certifies from the doubles file and reads back
     const Point2q& uv = m.corner_uv[c / 3][c % 3];
     CHECK(parse_rational(vt[c][0]) == uv.x);
     CHECK(parse_rational(vt[c][1]) == uv.y);
+  }
+}
+
+TEST_CASE("the IGM files are the same bytes for any thread count, line by line in order") {
+  // 80 x 80 squares: 12,800 triangles, 38,400 vt lines, more than one batch of the parallel
+  // formatting (64 strings of 2048 lines); one UV made non-dyadic so both formats take both paths.
+  IgmMesh m = square_torus(80);
+  m.corner_uv[5][2].y = Rational(2, 3);
+  for (bool exact : {true, false}) {
+    std::string text[3];
+    int k = 0;
+    for (int threads : {1, 2, 3})
+      with_threads(threads, [&] {
+        std::ostringstream s;
+        write_igm_obj(s, m, exact);
+        text[k++] = s.str();
+      });
+    CHECK(text[0] == text[1]);
+    CHECK(text[0] == text[2]);
+    // The lines in order: the vertices, then one vt per corner, then the faces.
+    std::istringstream in(text[0]);
+    std::string line;
+    std::size_t v = 0, vt = 0, f = 0;
+    bool order = true;
+    while (std::getline(in, line)) {
+      if (line.rfind("v ", 0) == 0) order = order && vt == 0 && f == 0, ++v;
+      else if (line.rfind("vt ", 0) == 0) order = order && f == 0, ++vt;
+      else if (line.rfind("f ", 0) == 0) {
+        // face f's corners are the vt lines 3f+1 .. 3f+3
+        order = order && line.find("/" + std::to_string(3 * f + 1) + " ") != std::string::npos;
+        ++f;
+      }
+    }
+    CHECK(order);
+    CHECK(v == m.positions.size());
+    CHECK(vt == 3 * m.triangles.size());
+    CHECK(f == m.triangles.size());
+    if (exact) CHECK(text[0].find(" 2/3\n") != std::string::npos);
   }
 }
