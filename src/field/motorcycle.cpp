@@ -1785,9 +1785,17 @@ class Tracer {
         for (const FaceSegment& fs : face_segments_[f])
           if (fs.curve == hits_[i].curve && fs.segment == s) dir = fs.dir;
       } else {
-        for (const auto& [ce, walks] : edge_walks_)
+        // The segment walks along the edge its T-junction points lie on: that edge's walks first,
+        // every edge's only if it is not there (a point not on an edge).
+        auto take = [&](const std::vector<EdgeWalk>& walks) {
           for (const EdgeWalk& w : walks)
             if (w.curve == hits_[i].curve && w.segment == s) dir = w.dir, dir_face = w.face;
+        };
+        const TracePoint& q = graph_.points[pts[0]];
+        if (q.kind == TracePoint::Kind::Edge)
+          if (const auto it = edge_walks_.find(q.element); it != edge_walks_.end()) take(it->second);
+        if (dir < 0)
+          for (const auto& entry : edge_walks_) take(entry.second);
       }
       if (dir < 0) throw Error(ErrorKind::Internal, "trace: a T-junction on a segment that was not recorded");
       std::vector<int> rb, rf;
