@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -448,8 +449,8 @@ int CrossFieldCache::analyses() const { return impl_->large.analyses(); }
 
 CrossField compute_cross_field(const TriMesh& mesh, const std::vector<Vec3d>& input_positions,
                                const CrossFieldOptions& options, CrossFieldCache* cache) {
-  CrossFieldCache local;
-  field_internal::LargeFactor& large = (cache ? cache : &local)->impl_->large;
+  std::optional<CrossFieldCache> local;  // only when the caller keeps none
+  field_internal::LargeFactor& large = (cache ? cache : &local.emplace())->impl_->large;
   const auto t0 = Clock::now();
   check_input(mesh, input_positions, options);
   const std::vector<Vec3d> p = scaled_positions(input_positions);

@@ -71,10 +71,7 @@ SpMat restricted(const System& s, const std::vector<int>& free_faces, const std:
       const int j = slot[it.row()];
       if (j < 0) continue;
       Complex v = it.value();
-      if (j == i) {
-        const double d = v.real() * (1 + kRegularization) + shift * s.mass[f];
-        v = d > 0 ? d : s.mass[f];
-      }
+      if (j == i) v = regularized_diagonal(s, f, v.real(), shift);
       trip.emplace_back(j, i, v);
     }
   }
@@ -112,15 +109,11 @@ void LargeFactor::factorize(const System& sys, const std::vector<int>& slot, dou
     ++analyses_;
   }
   // The values, aligned with adj_: for h = A(f, g) = a + ib, row 2f gets (a, -b), row 2f + 1 gets
-  // (b, a); 0 where f or g is not free. The diagonal as restricted() writes it; 1 if not free.
+  // (b, a); 0 where f or g is not free. The diagonal: regularized_diagonal; 1 if not free.
   std::vector<double> val(adj_.size()), diag(2 * static_cast<std::size_t>(n));
   std::size_t k = 0;
   for (int f = 0; f < n; ++f) {
-    double d = 1;
-    if (slot[f] >= 0) {
-      d = a.coeff(f, f).real() * (1 + kRegularization) + shift * sys.mass[f];
-      if (!(d > 0)) d = sys.mass[f];
-    }
+    const double d = slot[f] >= 0 ? regularized_diagonal(sys, f, a.coeff(f, f).real(), shift) : 1.0;
     diag[2 * f] = diag[2 * f + 1] = d;
     for (int part = 0; part < 2; ++part)
       for (SpMat::InnerIterator it(a, f); it; ++it) {

@@ -94,6 +94,14 @@ class Factor {
 /// 10^6 apart). Solutions move by about 1e-9 relative.
 inline constexpr double kRegularization = 1e-9;
 
+/// The diagonal entry every factorized form of the system gives face f: A_ff (real, `a_ff`)
+/// times 1 + kRegularization plus shift * M_ff; the face's mass where that is not positive (a
+/// face with no interior edge). restricted() and LargeFactor share it.
+inline double regularized_diagonal(const System& sys, int f, double a_ff, double shift) {
+  const double d = a_ff * (1 + kRegularization) + shift * sys.mass[f];
+  return d > 0 ? d : sys.mass[f];
+}
+
 /// The submatrix of sys.A on `free_faces` (slot: face -> its row, or -1) plus shift * M plus
 /// kRegularization * diag(A) (a row whose diagonal would be 0, a face with no interior edge: its
 /// mass instead).
