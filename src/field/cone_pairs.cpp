@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 #include <queue>
+#include <set>
 #include <utility>
 
 #include "field_internal.h"
@@ -187,7 +188,8 @@ std::array<long long, 3> singularity_score(const CrossField& field, const CrossF
     const int val = field.valence[v];
     illegal += val < 1;
     if (!field.on_boundary[v])
-      halves += 2 * (o.split_valence1 && val == 1) + (o.split_valence2 && val == 2) + (o.split_valence6 && val == 6);
+      halves += 2 * (o.split_valence1 && val == 1) + (o.split_valence2 && val == 2) + (o.split_valence6 && val == 6) +
+                (o.split_valence7 && val >= 7);
     deviation += std::abs((field.on_boundary[v] ? 2 : 4) - val);
   }
   return {illegal, halves, deviation};
@@ -202,6 +204,9 @@ void clean_cones(const TriMesh& mesh, const std::vector<Vec3d>& p, const System&
   CrossFieldStats& st = field.stats;
   std::vector<double> dist(nv, INFINITY);
   std::vector<int> via(nv, -1), touched;
+  // Split and raise moves (plus, minus) whose re-solve was refused: a later round takes the next
+  // candidate instead of the same one again.
+  std::set<std::pair<int, int>> refused;
   for (int round = 0; round < options.cleanup_rounds; ++round) {
     const auto regular = [&](int v) { return field.valence[v] == (field.on_boundary[v] ? 2 : 4); };
     // Paths avoid every other singular vertex: the field twists most near a cone, where a quarter
@@ -217,14 +222,16 @@ void clean_cones(const TriMesh& mesh, const std::vector<Vec3d>& p, const System&
     std::vector<Move> moves;
     if (options.remove_close_pairs)
       for (const ConePair& pr : field.close_pairs)
-        if (field.valence[pr.positive] == 3 && field.valence[pr.negative] == 5)
+        if (field.valence[pr.positive] == 3 && field.valence[pr.negative] == 5 &&
+            !refused.count({pr.positive, pr.negative}))
           moves.push_back({pr.positive, pr.negative, pr.distance});
     for (int v = 0; v < nv; ++v) {
       const int val = field.valence[v];
       const bool raise = options.remove_close_pairs && val < 1;
       const bool split2 = ((options.split_valence2 && val == 2) || (options.split_valence1 && val == 1)) &&
                           !field.on_boundary[v];
-      const bool split6 = options.split_valence6 && val == 6 && !field.on_boundary[v];
+      const bool split6 = ((options.split_valence6 && val == 6) || (options.split_valence7 && val >= 7)) &&
+                          !field.on_boundary[v];
       if (!raise && !split2 && !split6) continue;
       // Candidates within 8 mean edges; ties by vertex id (sorted by (distance, id)). Paths avoid
       // the other singular vertices (`blocked`); a cone walled in by them (a spike of three tiny
@@ -237,10 +244,17 @@ void clean_cones(const TriMesh& mesh, const std::vector<Vec3d>& p, const System&
         if (raise)  // the nearest interior cone of valence >= 5, else the nearest regular vertex
           for (int kind = 0; kind < 2; ++kind)
             for (int w : near)
-              if (w != v && !field.on_boundary[w] && (kind == 0 ? field.valence[w] >= 5 : regular(w))) return w;
+              if (w != v && !field.on_boundary[w] && (kind == 0 ? field.valence[w] >= 5 : regular(w)) &&
+                  !refused.count({v, w}))
+                return w;
+        if (split6 && val >= 7)  // the nearest interior cone of valence <= 3: both nearer regular
+          for (int w : near)
+            if (w != v && !field.on_boundary[w] && field.valence[w] <= 3 && !refused.count({w, v})) return w;
         if (split2 || split6)  // the nearest regular interior vertex at least split_distance away
           for (int w : near)
-            if (w != v && !field.on_boundary[w] && regular(w) && dist[w] >= options.split_distance * mean) return w;
+            if (w != v && !field.on_boundary[w] && regular(w) && dist[w] >= options.split_distance * mean &&
+                !refused.count(split6 ? std::make_pair(w, v) : std::make_pair(v, w)))
+              return w;
         return -1;
       };
       int partner = find_partner(&singular);
@@ -255,6 +269,7 @@ void clean_cones(const TriMesh& mesh, const std::vector<Vec3d>& p, const System&
       reset(dist, via, touched);
     }
     std::vector<PairPlan> plans;
+    std::vector<std::pair<int, int>> plan_move;  // per plan: its move's (plus, minus)
     std::vector<int> stamp(nf, -1);
     for (const Move& mv : moves) {
       dijkstra(mesh, p, {mv.plus}, (2 * mv.distance + 2) * mean, true, mv.minus, &singular, dist, via, touched);
@@ -296,6 +311,7 @@ void clean_cones(const TriMesh& mesh, const std::vector<Vec3d>& p, const System&
       }
       reset(dist, via, touched);
       plans.push_back(std::move(plan));
+      plan_move.push_back({mv.plus, mv.minus});
     }
     // Apply the plans together. A vertex that moves further from regular and ends outside
     // valence 3..5 (boundary: further from k = 2) means the solve could not spread some quarter
@@ -304,6 +320,7 @@ void clean_cones(const TriMesh& mesh, const std::vector<Vec3d>& p, const System&
     // singularity score (singularity_score).
     std::vector<char> dropped(plans.size(), 0);
     bool kept = false;
+    const std::size_t refused_before = refused.size();
     for (std::size_t attempt = 0; attempt <= plans.size(); ++attempt) {
       std::vector<int> period = field.period;
       std::vector<char> region(nf, 0);
@@ -339,6 +356,12 @@ void clean_cones(const TriMesh& mesh, const std::vector<Vec3d>& p, const System&
         }
       }
       if (!bad) {
+        // A move whose ends did not both change (the re-solve put its quarter turn elsewhere) is
+        // refused: the next round tries another partner.
+        for (std::size_t i = 0; i < plans.size(); ++i)
+          if (!dropped[i] && (trial.valence[plan_move[i].first] == field.valence[plan_move[i].first] ||
+                              trial.valence[plan_move[i].second] == field.valence[plan_move[i].second]))
+            refused.insert(plan_move[i]);
         if (singularity_score(trial, options) < singularity_score(field, options)) {
           field = std::move(trial);
           kept = true;
@@ -353,11 +376,15 @@ void clean_cones(const TriMesh& mesh, const std::vector<Vec3d>& p, const System&
               dropped[i] = 1;
               excluded = true;
               ++st.cleanup_rejected;
+              refused.insert(plan_move[i]);
               break;
             }
       if (!excluded) break;
     }
-    if (!kept) break;
+    if (!kept) {
+      if (refused.size() > refused_before) continue;  // the next round tries other partners
+      break;
+    }
     st.cleanup_rounds = round + 1;
     field.close_pairs = close_cone_pairs(mesh, p, field, options.close_pair_distance);
   }

@@ -423,6 +423,43 @@ TEST_CASE("cross field: cones of valence 2 and 6 are split in two") {
   }
 }
 
+TEST_CASE("cross field: a valence-2 cone whose first split is refused is split with the next partner") {
+  IGM_REQUIRE_DATA(dir);
+  // hand.off: vertex 1173 (valence 2) has a valence-6 cone a few edges away; its first split
+  // re-solves into a valence 7 there (refused), and the same partner again would fail every round.
+  const Surface s = load(dir / "meshes/clean/hand.off");
+  CrossFieldOptions o;
+  o.split_valence2 = false;
+  const CrossField before = compute_cross_field(s.mesh, s.positions, o);
+  REQUIRE(before.valence[1173] == 2);
+  o.split_valence2 = true;
+  const CrossField after = compute_cross_field(s.mesh, s.positions, o);
+  check_field(s, after, "hand");
+  CHECK(after.valence[1173] == 3);
+  CHECK(after.stats.valence_count[2] == 0);
+  CHECK(after.stats.valence_count[7] + after.stats.valence_count[8] == 0);
+  CHECK(after.stats.cleanup_rejected > 0);
+}
+
+TEST_CASE("cross field: a refused split tries the next partner, and a cone of valence 7 gives a quarter turn away") {
+  IGM_REQUIRE_DATA(dir);
+  // bull.off: the aligned field has a valence-7 cone and two valence-2 cones; the first partner of
+  // vertex 524's split puts the quarter turn on a neighbouring valence-6 cone (refused), the
+  // second one works.
+  const Surface s = load(dir / "meshes/clean/bull.off");
+  CrossFieldOptions o;
+  o.split_valence7 = false;
+  const CrossField without = compute_cross_field(s.mesh, s.positions, o);
+  REQUIRE(without.stats.valence_count[7] + without.stats.valence_count[8] > 0);
+  o.split_valence7 = true;
+  const CrossField after = compute_cross_field(s.mesh, s.positions, o);
+  check_field(s, after, "bull");
+  CHECK(after.stats.valence_count[7] + after.stats.valence_count[8] == 0);
+  CHECK(after.stats.valence_count[2] == 0);
+  CHECK(after.stats.valence_count[1] + after.stats.valence_count[0] == 0);
+  CHECK(after.stats.cleanup_rejected > 0);
+}
+
 TEST_CASE("cross field: a cone of angle 0 at a spike is raised to valence 1") {
   IGM_REQUIRE_DATA(dir);
   // mannequin-devil.off: vertex 11829 is a spike tip (corner angles summing to 116.5 degrees);

@@ -97,23 +97,31 @@ struct CrossFieldOptions {
   ///    seamless map allows (interior valence < 1, boundary k < 1: seen at spikes when the field
   ///    is aligned) gets a quarter turn from the nearest interior cone of valence >= 5 within 8
   ///    mean edges, or else from its nearest regular interior vertex;
-  ///  - split_valence2 / split_valence6: each interior cone of valence 2 (6) becomes two of
-  ///    valence 3 (5), the second at the regular interior vertex nearest to split_distance mean
-  ///    edges away (at least that far, within 8);
+  ///  - split_valence2: each interior cone of valence 2 becomes two cones of valence 3, the
+  ///    second at the regular interior vertex nearest to split_distance mean edges away (at
+  ///    least that far, within 8);
+  ///  - split_valence7: each interior cone of valence >= 7 gives a quarter turn to the nearest
+  ///    interior cone of valence <= 3 within 8 mean edges, else to a regular vertex as for
+  ///    split_valence6;
+  ///  - split_valence6: each interior cone of valence 6 becomes two of valence 5, as a valence 2
+  ///    into two of valence 3;
   ///  - split_valence1: each interior cone of valence 1 (a sharp tip: cow horns, a needle; no
   ///    patch layout has one) gives a quarter turn to such a vertex (valence 2 and 3), and the
   ///    valence 2 is split in the next round: three cones of valence 3 (needs 2 rounds).
   /// A move whose re-solve leaves a vertex further from regular and outside valence 3..5
-  /// (rounding put the quarter turn elsewhere) is dropped; a round is kept if it lowers
-  /// (vertices of valence < 1, splits still to do (2 for a valence 1, 1 for a 2 or 6 as asked),
-  ///  sum |4 - valence| + sum |2 - k|)
-  /// lexicographically; at most `cleanup_rounds` rounds. docs/field.md has the counts.
+  /// (rounding put the quarter turn elsewhere) is dropped, and so is one whose two ends did not
+  /// both change; a dropped move is not tried again: the next round takes the next partner
+  /// (a round where only moves were dropped does not end the cleanup). A round is kept if it
+  /// lowers (vertices of valence < 1, splits still to do (2 for a valence 1, 1 for a 2, a 6 as
+  /// asked or a valence >= 7), sum |4 - valence| + sum |2 - k|) lexicographically; at most
+  /// `cleanup_rounds` rounds. docs/field.md has the counts.
   bool remove_close_pairs = true;
   bool split_valence1 = true;
   bool split_valence2 = true;
   bool split_valence6 = false;
+  bool split_valence7 = true;
   double split_distance = 2.0;
-  int cleanup_rounds = 3;
+  int cleanup_rounds = 6;
   /// Feature edges as hard constraints (issue 45): empty, or one flag per half-edge, set on both
   /// half-edges of each constrained interior edge. A face with a flagged edge is aligned with it
   /// exactly as with a boundary edge (the longest of its constrained edges; face_frames.h), on
