@@ -113,6 +113,7 @@ namespace {
 
 // One close pair's cancellation: the period changes along its path and the faces to re-solve.
 struct PairPlan {
+  std::pair<int, int> move;  // the vertices (plus, minus): valence + 1 and valence - 1
   std::vector<int> plus;    // half-edges whose period gains 1 (their twins lose 1)
   std::vector<int> region;  // faces with a corner within the radius of the path (unconstrained)
 };
@@ -230,9 +231,13 @@ void clean_cones(const TriMesh& mesh, const std::vector<Vec3d>& p, const System&
       const bool raise = options.remove_close_pairs && val < 1;
       const bool split2 = ((options.split_valence2 && val == 2) || (options.split_valence1 && val == 1)) &&
                           !field.on_boundary[v];
-      const bool split6 = ((options.split_valence6 && val == 6) || (options.split_valence7 && val >= 7)) &&
-                          !field.on_boundary[v];
-      if (!raise && !split2 && !split6) continue;
+      // v gives a quarter turn away (valence 6 into two 5s, or a valence >= 7).
+      const bool gives = ((options.split_valence6 && val == 6) || (options.split_valence7 && val >= 7)) &&
+                         !field.on_boundary[v];
+      if (!raise && !split2 && !gives) continue;
+      // The move with partner w, (plus, minus); w may take it if interior and not refused before.
+      auto move_with = [&](int w) { return gives ? std::make_pair(w, v) : std::make_pair(v, w); };
+      auto usable = [&](int w) { return w != v && !field.on_boundary[w] && !refused.count(move_with(w)); };
       // Candidates within 8 mean edges; ties by vertex id (sorted by (distance, id)). Paths avoid
       // the other singular vertices (`blocked`); a cone walled in by them (a spike of three tiny
       // faces whose neighbours are all cones) is given paths through them (a vertex inside a path
@@ -244,17 +249,13 @@ void clean_cones(const TriMesh& mesh, const std::vector<Vec3d>& p, const System&
         if (raise)  // the nearest interior cone of valence >= 5, else the nearest regular vertex
           for (int kind = 0; kind < 2; ++kind)
             for (int w : near)
-              if (w != v && !field.on_boundary[w] && (kind == 0 ? field.valence[w] >= 5 : regular(w)) &&
-                  !refused.count({v, w}))
-                return w;
-        if (split6 && val >= 7)  // the nearest interior cone of valence <= 3: both nearer regular
+              if (usable(w) && (kind == 0 ? field.valence[w] >= 5 : regular(w))) return w;
+        if (gives && val >= 7)  // the nearest interior cone of valence <= 3: both nearer regular
           for (int w : near)
-            if (w != v && !field.on_boundary[w] && field.valence[w] <= 3 && !refused.count({w, v})) return w;
-        if (split2 || split6)  // the nearest regular interior vertex at least split_distance away
+            if (usable(w) && field.valence[w] <= 3) return w;
+        if (split2 || gives)  // the nearest regular interior vertex at least split_distance away
           for (int w : near)
-            if (w != v && !field.on_boundary[w] && regular(w) && dist[w] >= options.split_distance * mean &&
-                !refused.count(split6 ? std::make_pair(w, v) : std::make_pair(v, w)))
-              return w;
+            if (usable(w) && regular(w) && dist[w] >= options.split_distance * mean) return w;
         return -1;
       };
       int partner = find_partner(&singular);
@@ -264,12 +265,12 @@ void clean_cones(const TriMesh& mesh, const std::vector<Vec3d>& p, const System&
       }
       if (partner >= 0) {
         const double d = dist[partner] / mean;
-        moves.push_back(split6 ? Move{partner, v, d} : Move{v, partner, d});
+        const auto [plus, minus] = move_with(partner);
+        moves.push_back({plus, minus, d});
       }
       reset(dist, via, touched);
     }
     std::vector<PairPlan> plans;
-    std::vector<std::pair<int, int>> plan_move;  // per plan: its move's (plus, minus)
     std::vector<int> stamp(nf, -1);
     for (const Move& mv : moves) {
       dijkstra(mesh, p, {mv.plus}, (2 * mv.distance + 2) * mean, true, mv.minus, &singular, dist, via, touched);
@@ -278,6 +279,7 @@ void clean_cones(const TriMesh& mesh, const std::vector<Vec3d>& p, const System&
         dijkstra(mesh, p, {mv.plus}, (2 * mv.distance + 2) * mean, true, mv.minus, nullptr, dist, via, touched);
       }
       PairPlan plan;
+      plan.move = {mv.plus, mv.minus};
       std::vector<int> path;  // vertices, from `minus` back to `plus`
       if (via[mv.minus] >= 0) {
         for (int v = mv.minus, step = 0; v != mv.plus && step < nv; ++step) {
@@ -311,7 +313,6 @@ void clean_cones(const TriMesh& mesh, const std::vector<Vec3d>& p, const System&
       }
       reset(dist, via, touched);
       plans.push_back(std::move(plan));
-      plan_move.push_back({mv.plus, mv.minus});
     }
     // Apply the plans together. A vertex that moves further from regular and ends outside
     // valence 3..5 (boundary: further from k = 2) means the solve could not spread some quarter
@@ -359,9 +360,11 @@ void clean_cones(const TriMesh& mesh, const std::vector<Vec3d>& p, const System&
         // A move whose ends did not both change (the re-solve put its quarter turn elsewhere) is
         // refused: the next round tries another partner.
         for (std::size_t i = 0; i < plans.size(); ++i)
-          if (!dropped[i] && (trial.valence[plan_move[i].first] == field.valence[plan_move[i].first] ||
-                              trial.valence[plan_move[i].second] == field.valence[plan_move[i].second]))
-            refused.insert(plan_move[i]);
+          if (!dropped[i]) {
+            const auto [plus, minus] = plans[i].move;
+            if (trial.valence[plus] == field.valence[plus] || trial.valence[minus] == field.valence[minus])
+              refused.insert(plans[i].move);
+          }
         if (singularity_score(trial, options) < singularity_score(field, options)) {
           field = std::move(trial);
           kept = true;
@@ -376,7 +379,7 @@ void clean_cones(const TriMesh& mesh, const std::vector<Vec3d>& p, const System&
               dropped[i] = 1;
               excluded = true;
               ++st.cleanup_rejected;
-              refused.insert(plan_move[i]);
+              refused.insert(plans[i].move);
               break;
             }
       if (!excluded) break;
